@@ -1,0 +1,142 @@
+// Neo-Hookean: energy against its matrix form, and the continuation below J0 (C2 at J0,
+// finite, restoring).
+
+#include "material_neohookean.h"
+#include "signed_svd.h"
+#include "stress.h"
+#include "test_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using PeriSISSM::NeoHookeanMaterial;
+
+// W = mu/2 (tr F^T F - 3) - mu ln J + lambda/2 (ln J)^2 wherever J >= J0.
+TEST(NeoHookeanMaterial, EnergyMatchesMatrixFormAboveThreshold)
+{
+  for (const auto& c : PeriSISSMTest::material_cases()) {
+    const NeoHookeanMaterial m(c.mu, c.lambda);
+    for (const auto& sample : PeriSISSMTest::random_samples(53u, 40)) {
+      const Matrix3d& F = sample.F;
+      const double J = F.determinant();
+      if (J < m.continuation_threshold()) continue;
+      const double W = 0.5 * c.mu * (F.squaredNorm() - 3.0) - c.mu * std::log(J) +
+                       0.5 * c.lambda * std::log(J) * std::log(J);
+      const double scale = (c.mu + std::abs(c.lambda)) * (1.0 + F.squaredNorm());
+      EXPECT_NEAR(PeriSISSMTest::energy_of_F(m, F), W, 1e-13 * scale);
+    }
+  }
+}
+
+TEST(NeoHookeanMaterial, ImplicitCoefficientIsMu)
+{
+  const NeoHookeanMaterial m(2.5, 1.0);
+  for (const Vector3d& s : {Vector3d(1, 1, 1), Vector3d(3, 2, -1), Vector3d(0, 0, 0)})
+    EXPECT_EQ(m.implicit_coefficient(s), Vector3d::Constant(2.5));
+}
+
+// J0 = 0.1 for lambda >= 0; raised to exp(1 + mu/lambda) for lambda < 0 when that is larger,
+// so that g''(J0) >= 0.
+TEST(NeoHookeanContinuation, Threshold)
+{
+  EXPECT_EQ(NeoHookeanMaterial(1.0, 1.5).continuation_threshold(), PeriSISSM::kNeoHookeanJ0);
+  EXPECT_EQ(NeoHookeanMaterial(1.0, 0.0).continuation_threshold(), PeriSISSM::kNeoHookeanJ0);
+  EXPECT_EQ(NeoHookeanMaterial(1.0, -0.2).continuation_threshold(), PeriSISSM::kNeoHookeanJ0);
+  EXPECT_DOUBLE_EQ(NeoHookeanMaterial(1.0, -0.375).continuation_threshold(),
+                   std::exp(1.0 - 1.0 / 0.375));
+  EXPECT_LT(NeoHookeanMaterial(1.0, -0.66).continuation_threshold(), std::exp(-0.5));
+}
+
+// W and P continuous across J0: compare J = J0 (1 - 1e-9) with J0 (1 + 1e-9), for uniform and
+// for distorted shapes. A C0 jump would be O(modulus); the change over 2e-9 J0 is
+// |dW/dJ| 2e-9 J0 <~ 1e-7 modulus. Also C1 and C2 of the volumetric term g at J0 by one-sided
+// differences.
+TEST(NeoHookeanContinuation, ContinuousAtThreshold)
+{
+  for (const auto& c : PeriSISSMTest::material_cases()) {
+    SCOPED_TRACE(c.label);
+    const NeoHookeanMaterial m(c.mu, c.lambda);
+    const double j0 = m.continuation_threshold();
+    const double modulus = c.mu + std::abs(c.lambda);
+    for (const Vector3d& shape : {Vector3d(1, 1, 1), Vector3d(2, 1, 0.5), Vector3d(3, 0.5, -1)}) {
+      const double J0shape = shape.prod();
+      Vector3d sm = shape, sp = shape;
+      sm(2) *= j0 * (1.0 - 1e-9) / J0shape;
+      sp(2) *= j0 * (1.0 + 1e-9) / J0shape;
+      EXPECT_LT(sm.prod(), j0);
+      EXPECT_GT(sp.prod(), j0);
+      EXPECT_NEAR(m.energy(sm), m.energy(sp), 1e-6 * modulus);
+      EXPECT_LE((m.principal_stress(sm) - m.principal_stress(sp)).cwiseAbs().maxCoeff(),
+                1e-6 * modulus);
+    }
+    const double d = 1e-5 * j0;
+    const double below = (m.volumetric_slope(j0 - d) - m.volumetric_slope(j0 - 2 * d)) / d;
+    const double above = (m.volumetric_slope(j0 + 2 * d) - m.volumetric_slope(j0 + d)) / d;
+    const double g2 = (c.mu + c.lambda * (1.0 - std::log(j0))) / (j0 * j0);
+    EXPECT_NEAR(below, std::max(g2, 0.0), 1e-3 * modulus / (j0 * j0));
+    EXPECT_NEAR(above, g2, 1e-3 * modulus / (j0 * j0));
+    EXPECT_NEAR(m.volumetric_slope(j0 - d), m.volumetric_slope(j0 + d), 1e-3 * modulus / j0);
+    // g' is the derivative of g on both sides.
+    for (double J : {j0 * 0.5, j0 * 2.0, -1.0, 0.0}) {
+      const double h = 1e-6;
+      const double fd = (m.volumetric_energy(J + h) - m.volumetric_energy(J - h)) / (2 * h);
+      EXPECT_NEAR(fd, m.volumetric_slope(J), 1e-6 * modulus / j0) << "J = " << J;
+    }
+  }
+}
+
+// The volumetric term alone pushes J up everywhere below J0 (g' < 0), for every material.
+TEST(NeoHookeanContinuation, VolumetricTermRestoringBelowThreshold)
+{
+  for (const auto& c : PeriSISSMTest::material_cases()) {
+    const NeoHookeanMaterial m(c.mu, c.lambda);
+    const double j0 = m.continuation_threshold();
+    for (double J = j0 * (1 - 1e-9); J > -100.0; J -= 0.01 * (1.0 + std::abs(J)))
+      EXPECT_LT(m.volumetric_slope(J), 0.0) << c.label << " J = " << J;
+  }
+}
+
+// dW/dJ along a path F(t) with J(t): dW/dt = P : dF/dt, divided by dJ/dt.
+double dW_dJ_uniform(const NeoHookeanMaterial& m, double t)
+{
+  const Matrix3d P = PeriSISSM::first_piola(m, t * Matrix3d::Identity());
+  return P.trace() / (3.0 * t * t);
+}
+
+// Along uniform compression F = t I (lambda >= 0): dW/dJ < 0 for J = t^3 from J0 down to
+// J0^3 = 1e-3, and for every uniformly inverted F (t < 0). Below J_c (<= 1e-3, ~1.25e-4 for
+// lambda = 0) it cannot be: F = 0 is a local minimum of any g-only continuation
+// (material_neohookean.h).
+TEST(NeoHookeanContinuation, RestoringUnderUniformCompression)
+{
+  for (const auto& c : PeriSISSMTest::material_cases()) {
+    if (c.lambda < 0.0) continue;  // the model itself is not restoring here (header)
+    const NeoHookeanMaterial m(c.mu, c.lambda);
+    const double j0 = m.continuation_threshold();
+    for (double J = j0 * (1 - 1e-9); J >= 1e-3; J *= 0.9)
+      EXPECT_LT(dW_dJ_uniform(m, std::cbrt(J)), 0.0) << c.label << " J = " << J;
+    for (double t = -1e-3; t > -10.0; t *= 1.1)
+      EXPECT_LT(dW_dJ_uniform(m, t), 0.0) << c.label << " t = " << t;
+  }
+}
+
+// Uniaxial collapse and inversion F = diag(1, 1, t), t < J0: dW/dJ = P_33 < 0 (pushes t up), for
+// every material including lambda < 0.
+TEST(NeoHookeanContinuation, RestoringUnderUniaxialCollapseAndInversion)
+{
+  for (const auto& c : PeriSISSMTest::material_cases()) {
+    const NeoHookeanMaterial m(c.mu, c.lambda);
+    const double j0 = m.continuation_threshold();
+    for (double t = j0 * (1 - 1e-9); t > -100.0; t -= 0.01 * (0.1 + std::abs(t))) {
+      const Matrix3d P = PeriSISSM::first_piola(m, Vector3d(1, 1, t).asDiagonal());
+      EXPECT_LT(P(2, 2), 0.0) << c.label << " t = " << t;
+    }
+  }
+}
+
+}  // namespace
