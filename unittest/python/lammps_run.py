@@ -19,7 +19,8 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[2]
-LMP = REPO / "build" / "lmp"
+# PERI_SISSM_LMP points the tests at another wrapper (e.g. a scratch build); default build/lmp.
+LMP = Path(os.environ.get("PERI_SISSM_LMP", REPO / "build" / "lmp"))
 
 
 @dataclass
