@@ -6,7 +6,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bash "$here/tools/setup.sh"
 out="$here/build/demo"
 mkdir -p "$out"
-deck=${1:-in.impact.lps}
+deck=${1:-in.impact.nosb}
 echo "[demo] $deck in $out"
 cd "$out"
 cp "$here"/examples/impact/impact.geometry .

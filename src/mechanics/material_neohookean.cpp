@@ -39,10 +39,54 @@ double NeoHookeanMaterial::volumetric_slope(double J) const
   return g1_ + g2_ * (J - j0_);
 }
 
-// W = mu/2 (|s|^2 - 3) + g(s_1 s_2 s_3).
+namespace {
+
+// psi(x) = x - ln(1 + x) >= 0 for x > -1, accurate to round-off relative to psi itself.
+// Written as x - log1p(x) it loses ~2 eps / |x| relative near 0, where psi ~ x^2/2. With
+// u = x / (2 + x), ln(1 + x) = 2 atanh(u) = 2 (u + u^3/3 + u^5/5 + ...) and x - 2u = x u, so
+//   psi(x) = x u - 2 (u^3/3 + u^5/5 + ...),
+// a leading term free of cancellation plus a series that is smaller by ~|x|/6 and converges
+// like u^2. Used for |x| <= 1/4 (|u| <= 1/7: 20 terms reach u^41 < 1e-34, below round-off of
+// psi >= x^2/3 there); beyond, x - log1p(x) loses at most a factor |x|/psi(x) < 10.
+double x_minus_log1p(double x)
+{
+  if (!(std::abs(x) <= 0.25)) return x - std::log1p(x);
+  const double u = x / (2.0 + x);
+  const double u2 = u * u;
+  double term = u * u2, series = 0.0;
+  for (int k = 3; k <= 41; k += 2) {
+    series += term / k;
+    term *= u2;
+  }
+  return x * u - 2.0 * series;
+}
+
+}  // namespace
+
+// W = mu/2 (|s|^2 - 3) + g(J), J = s_1 s_2 s_3, evaluated so that W near rest (where W ~ e^2
+// for F = I + O(e) but its terms are O(e) each) keeps round-off accuracy relative to W itself.
+// With e_k = s_k - 1 (exact in floating point near 1), when every s_k > 0 and J >= J0:
+//   mu/2 (s_k^2 - 1) - mu ln s_k = mu (e_k^2/2 + e_k - log1p(e_k)) = mu (e_k^2/2 + psi(e_k)),
+//   ln J = sum_k log1p(e_k),
+// so W = mu sum_k (e_k^2/2 + psi(e_k)) + lambda/2 (ln J)^2: the mu part is a sum of
+// non-negative terms, and nothing cancels. Equal to the defining form in exact arithmetic.
+// Otherwise (J < J0: continued volumetric term, or a non-positive s_k, which the signed SVD
+// gives only for J <= 0) W = mu/2 sum_k (s_k - 1)(s_k + 1) + g(J), far from rest.
 double NeoHookeanMaterial::energy(const Eigen::Vector3d& s) const
 {
-  return 0.5 * mu_ * (s.squaredNorm() - 3.0) + volumetric_energy(s.prod());
+  const double J = s.prod();
+  if (J >= j0_ && s.minCoeff() > 0.0) {
+    double shear = 0.0, lnj = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double e = s(k) - 1.0;
+      shear += 0.5 * e * e + x_minus_log1p(e);
+      lnj += std::log1p(e);
+    }
+    return mu_ * shear + 0.5 * lambda_ * lnj * lnj;
+  }
+  double shear = 0.0;
+  for (int k = 0; k < 3; ++k) shear += (s(k) - 1.0) * (s(k) + 1.0);
+  return 0.5 * mu_ * shear + volumetric_energy(J);
 }
 
 // dJ/ds_k = J/s_k = product of the other two singular values (no division: finite at s_k = 0),

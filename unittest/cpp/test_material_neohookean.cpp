@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace {
 
@@ -29,6 +30,97 @@ TEST(NeoHookeanMaterial, EnergyMatchesMatrixFormAboveThreshold)
                        0.5 * c.lambda * std::log(J) * std::log(J);
       const double scale = (c.mu + std::abs(c.lambda)) * (1.0 + F.squaredNorm());
       EXPECT_NEAR(PeriSISSMTest::energy_of_F(m, F), W, 1e-13 * scale);
+    }
+  }
+}
+
+// Near rest W is O(e^2) for F = I + e G while its terms mu/2 (|s|^2 - 3) and -mu ln J are O(e)
+// each: summed as written they cancel and leave an absolute error of ~eps mu, a relative error
+// of ~eps / e^2 (~1e-4 at e = 1e-6, ~1 at e = 1e-8). W must be accurate to round-off relative
+// to itself (material_neohookean.cpp).
+//
+// Reference: for principal strains eps_k (s_k = 1 + eps_k), expanding ln(1 + eps) gives
+//   W = mu |E|^2 + lambda/2 tr(E)^2  -  mu/3 tr(E^3) - lambda/2 tr(E) |E|^2  +  O(e^4)
+// with E = diag(eps) (or any symmetric E with those eigenvalues): the small-strain quadratic
+// form plus its cubic correction, whose relative size ~2.5 e for unit |E|/e exceeds 1e-6 at
+// e = 1e-6 and must therefore be in the reference. The remainder is ~6 e^2 relative (measured).
+double neohookean_reference_near_rest(double mu, double lambda, const Matrix3d& E)
+{
+  const double tr = E.trace(), n2 = E.squaredNorm(), tr3 = (E * E * E).trace();
+  return mu * n2 + 0.5 * lambda * tr * tr - mu / 3.0 * tr3 - 0.5 * lambda * tr * n2;
+}
+
+// W(s) itself, singular values given: round-off relative to W down to e = 1e-10 (the
+// reference's remainder is 6e-20 there).
+TEST(NeoHookeanMaterial, EnergyAccurateNearRestOnSingularValues)
+{
+  std::mt19937_64 rng(89u);
+  for (const auto& c : PeriSISSMTest::material_cases()) {
+    SCOPED_TRACE(c.label);
+    const NeoHookeanMaterial m(c.mu, c.lambda);
+    for (double e : {1e-10, 1e-8, 1e-6}) {
+      for (int trial = 0; trial < 40; ++trial) {
+        const Vector3d dir = PeriSISSMTest::gaussian_matrix(rng).col(0).normalized();
+        const Vector3d s = Vector3d::Ones() + e * dir;
+        const Matrix3d E = (s - Vector3d::Ones()).asDiagonal();  // exact: s_k - 1
+        const double ref = neohookean_reference_near_rest(c.mu, c.lambda, E);
+        EXPECT_NEAR(m.energy(s), ref, (1e-14 + 10.0 * e * e) * ref)
+            << "e = " << e << ", trial " << trial;
+      }
+    }
+    // At rest W = 0 exactly.
+    EXPECT_EQ(m.energy(Vector3d(1, 1, 1)), 0.0);
+  }
+}
+
+// Through the signed SVD, F = R (I + e S) with S symmetric, |S| = 1, R a rotation: the SVD
+// gives s_k to a few 1e-15 absolute, i.e. ~1e-14 / e relative in eps_k and in W; tolerance
+// 5e-14 / e (+ the reference's remainder). At e = 1e-6 that is 5e-8; the unfixed form is off by
+// ~1e-4 there. Pure shears S ~ diag(1, -1, 0) have tr E = tr E^3 = 0: W is then the quadratic
+// form mu |sym eG|^2 + lambda/2 tr(eG)^2 itself to O(e^4), required to 1e-6 relative.
+TEST(NeoHookeanMaterial, EnergyAccurateNearRest)
+{
+  std::mt19937_64 rng(97u);
+  for (const auto& c : PeriSISSMTest::material_cases()) {
+    SCOPED_TRACE(c.label);
+    const NeoHookeanMaterial m(c.mu, c.lambda);
+    for (double e : {1e-4, 1e-6, 1e-8}) {
+      const double tol = 5e-14 / e + 10.0 * e * e;
+      for (int trial = 0; trial < 40; ++trial) {
+        const Matrix3d G = PeriSISSMTest::gaussian_matrix(rng);
+        const Matrix3d E = e * (G + G.transpose()).normalized();
+        const Matrix3d F = PeriSISSMTest::random_rotation(rng) * (Matrix3d::Identity() + E);
+        const double ref = neohookean_reference_near_rest(c.mu, c.lambda, E);
+        EXPECT_NEAR(PeriSISSMTest::energy_of_F(m, F), ref, tol * ref)
+            << "e = " << e << ", trial " << trial;
+      }
+    }
+    const double e = 1e-6;
+    for (int trial = 0; trial < 40; ++trial) {
+      const Matrix3d Q = PeriSISSMTest::random_rotation(rng);
+      const Matrix3d eG = e * Q * Vector3d(1.0, -1.0, 0.0).asDiagonal() * Q.transpose();
+      const double quad =
+          c.mu * eG.squaredNorm() + 0.5 * c.lambda * eG.trace() * eG.trace();
+      const Matrix3d F = PeriSISSMTest::random_rotation(rng) * (Matrix3d::Identity() + eG);
+      EXPECT_NEAR(PeriSISSMTest::energy_of_F(m, F), quad, 1e-6 * quad) << "trial " << trial;
+    }
+  }
+}
+
+// The accurate form switches its evaluation of x - ln(1 + x) at |x| = 1/4: W stays equal to
+// the defining form there (where that form has no cancellation to speak of).
+TEST(NeoHookeanMaterial, EnergyContinuousAtSeriesSwitch)
+{
+  for (const auto& c : PeriSISSMTest::material_cases()) {
+    SCOPED_TRACE(c.label);
+    const NeoHookeanMaterial m(c.mu, c.lambda);
+    for (double x0 : {0.25, -0.25}) {
+      for (double x : {x0 * (1.0 - 1e-12), x0, x0 * (1.0 + 1e-12)}) {
+        const Vector3d s(1.0 + x, 1.0, 1.0);
+        const double lnj = std::log1p(x);
+        const double W = c.mu * (0.5 * x * x + x - lnj) + 0.5 * c.lambda * lnj * lnj;
+        EXPECT_NEAR(m.energy(s), W, 1e-14 * (c.mu + std::abs(c.lambda))) << "x = " << x;
+      }
     }
   }
 }

@@ -20,7 +20,7 @@ from lammps_run import run_deck  # noqa: E402
 
 IMPACT = REPO / "examples" / "impact"
 # column name -> deck; later styles add their decks here
-STYLES = {"peri/pmb": "in.impact.pmb", "peri/lps": "in.impact.lps"}
+STYLES = {"peri/pmb": "in.impact.pmb", "peri/lps": "in.impact.lps", "peri/nosb": "in.impact.nosb"}
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 
 

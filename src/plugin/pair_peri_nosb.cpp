@@ -1,0 +1,1165 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   pair_style peri/nosb
+
+   Model (math.md section 1), for particle i with family H_i (fix nosb/family):
+     K_i = sum_j omega_ij xi (x) xi,    M_i = sum_j omega_ij eta (x) xi,    F_i = M_i K_i^-1
+     omega_ij = w beta_ij V_j,  w = 1 (influence function),  beta_ij the partial-volume factor
+     W_i = W(F_i)  (material model, signed SVD)
+   plus the zero-energy-mode stabilization (correspondence.h), per bond
+     z_ij = eta - (F_i + F_j)/2 xi,   energy (Cbar_ij/2) omega_ij V_i |z_ij|^2,
+     Cbar_ij = (C_i + C_j)/2,   C_i = (8/5) Cs K tr(K_i^-1)
+   E = sum_i V_i W_i + sum over bonds of the stabilization energy; forces are the exact
+   force densities f_k = -(1/V_k) dE/dy_k:
+     f_i = sum_j omega_ij ( (H_i + H_j) xi + Cbar_ij z_ij ),
+     H_i = (P(F_i) + Q_i) K_i^-1,   Q_i = -(1/2) sum_j Cbar_ij omega_ij z_ij (x) xi
+   (Q_i = dE_stab/dF_i / V_i: the stabilization energy depends on F_i through z). pe tallies
+   sum_i (W_i + 1/4 sum_j Cbar omega |z|^2), as the built-in PERI styles tally densities.
+
+   Parallel: (1) F, C of owned atoms; forward comm; (2) z, Q, the direct stabilization force
+   and H of owned atoms; forward comm; (3) bond forces. Each owned atom sums its own bonds, so
+   no reverse comm is needed, and per-atom results do not depend on the number of ranks
+   (families are sorted by tag). Without stabilization (2) and its comm are skipped.
+
+   Choices (for the documentation):
+   - influence function w = 1; partial volume beta = 1 up to delta - h/2, then linear down
+     to 1/2 at r = delta, h = mean of the two particles' V^(1/3) (as the built-ins, with h
+     from the volumes instead of the lattice); weights fixed when the families are built.
+   - a particle whose K is singular (kMinShapeConditioning, correspondence.h) has no F: no
+     force state of its own, W = 0; its bonds carry the partners' force states, and their
+     stabilization uses the partner's F alone (a bond between two such particles is inert).
+   - breaking: every force evaluation of a run checks every bond once, before F is formed,
+     with s0 of the previous evaluation; a broken bond already counts as broken in that
+     evaluation. The setup evaluation at the start of a run breaks nothing (refreshes s0).
+   - short-range contact as the built-ins, but only between particles that are not bonded.
+   - per-atom virial: each bond's force is equal and opposite at its two ends; each end
+     tallies half of (x_i - x_j) (x) (force on i), as pair peri/lps does; sum over atoms of
+     the virial equals sum_i V_i tau_i (Kirchhoff stress) for affine deformations.
+   - mixed types: each particle uses the material and Cs of its own type (pair_coeff I I);
+     horizon, s00, alpha, break, contact of a bond come from pair_coeff I J, or, if not
+     given, horizon = max, s00 and alpha of the type with the smaller s00 among the types that
+     break, break and contact on if on for either type, contact stiffness from the mean K.
+------------------------------------------------------------------------- */
+
+#include "pair_peri_nosb.h"
+
+#include "fix_nosb_family.h"
+
+#include "correspondence.h"
+#include "material.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+static constexpr double MY_PI = 3.14159265358979323846;
+// Default of the stabilize keyword. Zero-energy modes need a stiff control, and with the
+// bond-averaged residual smooth fields hardly feel it (correspondence.h). On the brittle impact
+// deck (examples/impact, s00 = 5e-4) Cs >= 1.75 keeps the damage near the indenter, while
+// Cs <= 1.5 lets a fragmentation avalanche run through the whole cylinder (converged in dt);
+// 2 leaves a margin. Price: the explicit stable time step of an intact sc lattice with horizon
+// 3a falls to ~0.6 of peri/lps's (limits measured: Cs 0.1 > 2.8e-7 s, 0.5 ~2.6e-7, 1 ~1.9e-7,
+// 2 ~1.5e-7, peri/lps ~2.6e-7 for the impact material and spacing).
+static constexpr double DEFAULT_CS = 2.0;
+
+/* ---------------------------------------------------------------------- */
+
+PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
+    Pair(lmp), family(nullptr), external_breaking(0), stiffness_flag(0), kstate(nullptr),
+    gstate(nullptr), hstate(nullptr),
+    wdens(nullptr), model(nullptr), bulk(nullptr), shear(nullptr), cut(nullptr), s00(nullptr),
+    alpha(nullptr), cs(nullptr), breakflag(nullptr), contactflag(nullptr), kcontact(nullptr),
+    materials(nullptr), any_break(0), any_stab(0), any_contact(0), uniform_break(0), hmax(0.0),
+    contact_first(nullptr), contact_neigh(nullptr), contact_maxfirst(0), contact_maxneigh(0),
+    contact_inum(-1), nmax(0), commflag(COMM_STATE), s0_new(nullptr)
+{
+  single_enable = 0;
+  no_virial_fdotr_compute = 1;    // forces are densities: f.r is not the virial
+  restartinfo = 1;
+  comm_forward = NGSTATE;    // the larger of the two payloads (NGSTATE, 9)
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairPeriNosb::~PairPeriNosb()
+{
+  if (modify->get_fix_by_id("NOSB_FAMILY")) modify->delete_fix("NOSB_FAMILY");
+
+  memory->destroy(gstate);
+  memory->destroy(hstate);
+  memory->destroy(kstate);
+  memory->destroy(wdens);
+  memory->destroy(s0_new);
+  memory->destroy(contact_first);
+  memory->destroy(contact_neigh);
+
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(model);
+    memory->destroy(bulk);
+    memory->destroy(shear);
+    memory->destroy(cut);
+    memory->destroy(s00);
+    memory->destroy(alpha);
+    memory->destroy(cs);
+    memory->destroy(breakflag);
+    memory->destroy(contactflag);
+    memory->destroy(kcontact);
+    for (int i = 0; i <= atom->ntypes; i++) delete materials[i];
+    delete[] materials;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) setflag[i][j] = 0;
+  memory->create(cutsq, n, n, "pair:cutsq");
+  memory->create(model, n, n, "pair:model");
+  memory->create(bulk, n, n, "pair:bulk");
+  memory->create(shear, n, n, "pair:shear");
+  memory->create(cut, n, n, "pair:cut");
+  memory->create(s00, n, n, "pair:s00");
+  memory->create(alpha, n, n, "pair:alpha");
+  memory->create(cs, n, n, "pair:cs");
+  memory->create(breakflag, n, n, "pair:breakflag");
+  memory->create(contactflag, n, n, "pair:contactflag");
+  memory->create(kcontact, n, n, "pair:kcontact");
+  materials = new PeriSISSM::Material *[n];
+  for (int i = 0; i < n; i++) materials[i] = nullptr;
+}
+
+/* ----------------------------------------------------------------------
+   pair_style peri/nosb (no arguments)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::settings(int narg, char **arg)
+{
+  if (narg)
+    error->all(FLERR, "Illegal pair_style peri/nosb command: no arguments expected, got '{}'",
+               arg[0]);
+}
+
+/* ----------------------------------------------------------------------
+   parse a finite number for pair_coeff, naming the parameter on error
+------------------------------------------------------------------------- */
+
+static double coeff_number(const char *what, const char *str, Error *error)
+{
+  if (!utils::is_double(str))
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be a number, got '{}'",
+               what, str);
+  const double value = std::strtod(str, nullptr);
+  if (!std::isfinite(value))
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be finite, got '{}'",
+               what, str);
+  return value;
+}
+
+/* ----------------------------------------------------------------------
+   parse a yes/no keyword value for pair_coeff
+------------------------------------------------------------------------- */
+
+static int coeff_flag(const char *keyword, const char *str, Error *error)
+{
+  const std::string v(str);
+  if (v == "yes" || v == "on" || v == "true" || v == "1") return 1;
+  if (v == "no" || v == "off" || v == "false" || v == "0") return 0;
+  error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be yes or no, got '{}'",
+             keyword, str);
+  return 0;
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] [contact yes/no]
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::coeff(int narg, char **arg)
+{
+  if (narg < 8)
+    error->all(FLERR,
+               "Incorrect number of args for pair_coeff peri/nosb command: expected "
+               "I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] "
+               "[contact yes/no], got {} arguments",
+               narg);
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  const auto &names = PeriSISSM::material_names();
+  const auto found = std::find(names.begin(), names.end(), std::string(arg[2]));
+  if (found == names.end())
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: unknown model '{}' (allowed: {})",
+               arg[2], PeriSISSM::material_names_joined());
+  const int model_one = (int) (found - names.begin());
+
+  const double k_one = coeff_number("bulk modulus K", arg[3], error);
+  const double g_one = coeff_number("shear modulus G", arg[4], error);
+  const double cut_one = coeff_number("horizon", arg[5], error);
+  const double s00_one = coeff_number("s00", arg[6], error);
+  const double alpha_one = coeff_number("alpha", arg[7], error);
+
+  if (k_one <= 0.0)
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: bulk modulus K must be > 0, got {}",
+               arg[3]);
+  if (g_one <= 0.0)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: shear modulus G must be > 0, got {}",
+               arg[4]);
+  const double nu = (3.0 * k_one - 2.0 * g_one) / (2.0 * (3.0 * k_one + g_one));
+  const auto lame = PeriSISSM::lame_from_bulk_shear(k_one, g_one);
+  if (!(nu > -1.0 && nu < 0.5) || !PeriSISSM::lame_parameters_admissible(lame.mu, lame.lambda))
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: K = {} and G = {} give Poisson's ratio {} "
+               "outside (-1, 0.5)",
+               arg[3], arg[4], nu);
+  if (cut_one <= 0.0)
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: horizon must be > 0, got {}",
+               arg[5]);
+
+  double cs_one = DEFAULT_CS;
+  int break_one = 1, contact_one = 1;
+  int iarg = 8;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "stabilize") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb stabilize", error);
+      cs_one = coeff_number("stabilize Cs", arg[iarg + 1], error);
+      if (cs_one < 0.0)
+        error->all(FLERR,
+                   "Illegal pair_coeff peri/nosb command: stabilize Cs must be >= 0, got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "break") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb break", error);
+      break_one = coeff_flag("break", arg[iarg + 1], error);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "contact") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb contact", error);
+      contact_one = coeff_flag("contact", arg[iarg + 1], error);
+      iarg += 2;
+    } else {
+      error->all(FLERR,
+                 "Illegal pair_coeff peri/nosb command: unknown keyword '{}' (allowed: "
+                 "stabilize, break, contact)",
+                 arg[iarg]);
+    }
+  }
+
+  if (break_one && s00_one <= 0.0)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: s00 must be > 0 when bonds can break, got "
+               "{} (use 'break no' to turn bond breaking off)",
+               arg[6]);
+  if (break_one && alpha_one < 0.0)
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: alpha must be >= 0, got {}",
+               arg[7]);
+
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++) {
+    for (int j = std::max(jlo, i); j <= jhi; j++) {
+      model[i][j] = model_one;
+      bulk[i][j] = k_one;
+      shear[i][j] = g_one;
+      cut[i][j] = cut_one;
+      s00[i][j] = s00_one;
+      alpha[i][j] = alpha_one;
+      cs[i][j] = cs_one;
+      breakflag[i][j] = break_one;
+      contactflag[i][j] = contact_one;
+      setflag[i][j] = 1;
+      count++;
+    }
+  }
+  if (count == 0)
+    error->all(FLERR, "Incorrect args for pair_coeff peri/nosb command: no type pair in {} {}",
+               arg[0], arg[1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::init_style()
+{
+  if (!atom->peri_flag || !atom->vfrac_flag || !atom->x0)
+    error->all(FLERR, "Pair style peri/nosb requires atom_style peri");
+  if (atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "Pair style peri/nosb requires an atom map, see atom_modify map array");
+  if (!atom->tag_enable) error->all(FLERR, "Pair style peri/nosb requires atom IDs");
+  if (domain->dimension != 3) error->all(FLERR, "Pair style peri/nosb requires a 3d simulation");
+
+  const int n = atom->ntypes;
+
+  // mixing of unset I,J (I != J): bond parameters from both types
+
+  for (int i = 1; i <= n; i++) {
+    for (int j = i + 1; j <= n; j++) {
+      if (setflag[i][j]) continue;
+      // the critical stretch comes from the weaker of the types whose bonds can break (a
+      // 'break no' type has no meaningful s00)
+      int weak = (s00[i][i] <= s00[j][j]) ? i : j;
+      if (breakflag[i][i] != breakflag[j][j]) weak = breakflag[i][i] ? i : j;
+      model[i][j] = model[i][i];
+      bulk[i][j] = 0.5 * (bulk[i][i] + bulk[j][j]);
+      shear[i][j] = 0.5 * (shear[i][i] + shear[j][j]);
+      cut[i][j] = std::max(cut[i][i], cut[j][j]);
+      s00[i][j] = s00[weak][weak];
+      alpha[i][j] = alpha[weak][weak];
+      cs[i][j] = 0.0;    // not used: stabilization is per particle
+      breakflag[i][j] = breakflag[i][i] || breakflag[j][j];
+      contactflag[i][j] = contactflag[i][i] || contactflag[j][j];
+    }
+  }
+
+  // mirror, derived per-pair and per-type values, summary flags
+
+  any_break = any_stab = any_contact = 0;
+  for (int i = 1; i <= n; i++) {
+    for (int j = i; j <= n; j++) {
+      model[j][i] = model[i][j];
+      bulk[j][i] = bulk[i][j];
+      shear[j][i] = shear[i][j];
+      cut[j][i] = cut[i][j];
+      s00[j][i] = s00[i][j];
+      alpha[j][i] = alpha[i][j];
+      cs[j][i] = cs[i][j];
+      breakflag[j][i] = breakflag[i][j];
+      contactflag[j][i] = contactflag[i][j];
+      const double d2 = cut[i][j] * cut[i][j];
+      kcontact[i][j] = kcontact[j][i] = 15.0 * 18.0 * bulk[i][j] / (MY_PI * d2 * d2);
+      if (breakflag[i][j]) any_break = 1;
+      if (contactflag[i][j]) any_contact = 1;
+    }
+    const auto lame = PeriSISSM::lame_from_bulk_shear(bulk[i][i], shear[i][i]);
+    delete materials[i];
+    materials[i] =
+        PeriSISSM::make_material(PeriSISSM::material_names()[model[i][i]], lame.mu, lame.lambda)
+            .release();
+    if (cs[i][i] > 0.0) any_stab = 1;
+  }
+
+  uniform_break = 1;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      if (!breakflag[i][j] || s00[i][j] != s00[1][1] || alpha[i][j] != alpha[1][1])
+        uniform_break = 0;
+
+  // largest particle size, for the contact range
+
+  double hone = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) hone = std::max(hone, cbrt(atom->vfrac[i]));
+  MPI_Allreduce(&hone, &hmax, 1, MPI_DOUBLE, MPI_MAX, world);
+
+  // the bond-family fix, created once (or recreated from a restart file)
+
+  family = dynamic_cast<FixNosbFamily *>(modify->get_fix_by_id("NOSB_FAMILY"));
+  if (!family)
+    family = dynamic_cast<FixNosbFamily *>(modify->add_fix("NOSB_FAMILY all nosb/family"));
+
+  // a half neighbor list only for short-range contact
+
+  if (any_contact) neighbor->add_request(this);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairPeriNosb::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) did_mix = true;
+  return cut[i][j];
+}
+
+/* ----------------------------------------------------------------------
+   weight of a bond: influence function w = 1 times the partial-volume factor times V_j
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::bond_weight(double r, int itype, int jtype, double vi, double vj) const
+{
+  const double h = 0.5 * (cbrt(vi) + cbrt(vj));
+  return PeriSISSM::partial_volume_factor(r, cut[itype][jtype], h) * vj;
+}
+
+/* ----------------------------------------------------------------------
+   stabilization modulus C_i of local atom i: (8/5) Cs K tr(K_i^-1), 0 if K_i is singular
+   (PeriSISSM::stabilization_modulus; fixed between bond breaks, so W_i stays a potential)
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::particle_stabilization(int i) const
+{
+  if (!family->kregular[i]) return 0.0;
+  const int itype = atom->type[i];
+  return PeriSISSM::stabilization_modulus(cs[itype][itype], bulk[itype][itype], family->kinv[i]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::grow_peratom()
+{
+  if (atom->nmax <= nmax) return;
+  nmax = atom->nmax;
+  memory->destroy(gstate);
+  memory->destroy(hstate);
+  memory->destroy(kstate);
+  memory->destroy(wdens);
+  memory->destroy(s0_new);
+  memory->create(kstate, nmax, NKSTATE, "pair:kstate");
+  memory->create(gstate, nmax, NGSTATE, "pair:gstate");
+  memory->create(hstate, nmax, 9, "pair:hstate");
+  memory->create(wdens, nmax, "pair:wdens");
+  memory->create(s0_new, nmax, "pair:s0_new");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  grow_peratom();
+  if (!family->built) return;
+
+  if (any_contact) compute_contact(eflag, vflag);
+
+  // (1) F, A = P K^-1, W, C per owned atom, with the bond checks.
+  // Bonds break in every force evaluation of a run, but not in the setup evaluation at the
+  // start of a run (it only refreshes s0): a run split into several (or by a restart) then
+  // breaks exactly the bonds the unsplit run breaks.
+
+  const int pbc = family->any_periodic;
+  if (pbc) {
+    if (!any_break || external_breaking) compute_state<NOBREAK, 0, 1>();
+    else if (update->setupflag)
+      uniform_break ? compute_state<S0ONLY, 1, 1>() : compute_state<S0ONLY, 0, 1>();
+    else
+      uniform_break ? compute_state<BREAK, 1, 1>() : compute_state<BREAK, 0, 1>();
+  } else {
+    if (!any_break || external_breaking) compute_state<NOBREAK, 0, 0>();
+    else if (update->setupflag)
+      uniform_break ? compute_state<S0ONLY, 1, 0>() : compute_state<S0ONLY, 0, 0>();
+    else
+      uniform_break ? compute_state<BREAK, 1, 0>() : compute_state<BREAK, 0, 0>();
+  }
+
+  // (2) stabilization: needs F and C of the partners
+
+  const int ev = vflag_either;
+  if (any_stab) {
+    commflag = COMM_STATE;
+    comm->forward_comm(this);
+    if (pbc) ev ? compute_stabilization<1, 1>() : compute_stabilization<0, 1>();
+    else ev ? compute_stabilization<1, 0>() : compute_stabilization<0, 0>();
+  }
+
+  // (3) bond forces: needs H of the partners
+
+  commflag = COMM_H;
+  comm->forward_comm(this);
+  if (pbc) ev ? compute_forces<1, 1>() : compute_forces<0, 1>();
+  else ev ? compute_forces<1, 0>() : compute_forces<0, 0>();
+
+  if (eflag_either) {
+    const int nlocal = atom->nlocal;
+    for (int i = 0; i < nlocal; i++) {
+      if (eflag_global) eng_vdwl += wdens[i];
+      if (eflag_atom) eatom[i] += wdens[i];
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   bond check (MODE = BREAK: break and s0; S0ONLY: s0 only)
+   A bond breaks when its stretch (|eta| - |xi|)/|xi| exceeds min(s0_i, s0_j), with s0 from
+   the previous evaluation; both ends see the same stretch and the same s0 values, so both
+   families lose the bond in the same evaluation, and it no longer counts in this one.
+   s0_i = max over unbroken bonds of (s00_IJ - alpha_IJ stretch) applies from the next
+   evaluation. r2 = |eta|^2, q2 = |xi|^2. UNIFORM (all type pairs breakable with the same s00
+   and alpha): compared as r2 > (1 + s0)^2 q2, and the smallest r2/q2 kept as the fraction
+   acc/den, so s0_i = s00 - alpha (smallest stretch) costs no division or sqrt per bond.
+   Otherwise acc is the largest s00_IJ - alpha_IJ stretch. Returns true if the bond breaks.
+------------------------------------------------------------------------- */
+
+template <int MODE, int UNIFORM>
+inline bool PairPeriNosb::check_bond(double r2, double q2, int itype, int jtype, double s0min,
+                                     double &acc, double &den) const
+{
+  if (UNIFORM) {
+    if (MODE == BREAK) {
+      const double lim = 1.0 + s0min;
+      if (lim < 0.0 || r2 > lim * lim * q2) return true;
+    }
+    if (r2 * den < acc * q2) {
+      acc = r2;
+      den = q2;
+    }
+  } else {
+    const double stretch = sqrt(r2 / q2) - 1.0;
+    if (MODE == BREAK && breakflag[itype][jtype] && stretch > s0min) return true;
+    acc = std::max(acc, s00[itype][jtype] - alpha[itype][jtype] * stretch);
+    den = 1.0;
+  }
+  return false;
+}
+
+/* ----------------------------------------------------------------------
+   s0 from the accumulated bond checks; s0old if there was no unbroken bond
+------------------------------------------------------------------------- */
+
+template <int UNIFORM> inline double PairPeriNosb::s0_from(double acc, double den,
+                                                          double s0old) const
+{
+  if (den == 0.0) return s0old;
+  if (UNIFORM) return s00[1][1] - alpha[1][1] * (sqrt(acc / den) - 1.0);
+  return acc;
+}
+
+/* ----------------------------------------------------------------------
+   per owned atom: bond checks (see check_bond), F, P, W, G and C
+------------------------------------------------------------------------- */
+
+template <int MODE, int UNIFORM, int PBC> void PairPeriNosb::compute_state()
+{
+  const double *xf = atom->x[0];
+  const double *rf = atom->x0[0];
+  int *type = atom->type;
+  double *s0 = atom->s0;
+  const int nlocal = atom->nlocal;
+  int *npartner = family->npartner;
+  tagint **partner = family->partner;
+  double **omega = family->omega;
+  double **kinv = family->kinv;
+  int *kregular = family->kregular;
+  int **jlocal = family->jlocal;
+  constexpr double ACC0 = UNIFORM ? 1.0 : -DBL_MAX;
+
+  for (int i = 0; i < nlocal; i++) {
+    const int itype = type[i];
+    const double xi0 = xf[3 * i], xi1 = xf[3 * i + 1], xi2 = xf[3 * i + 2];
+    const double ri0 = rf[3 * i], ri1 = rf[3 * i + 1], ri2 = rf[3 * i + 2];
+    const int n = npartner[i];
+    int *jl = jlocal[i];
+    const double *om = omega[i];
+    double m00 = 0.0, m01 = 0.0, m02 = 0.0, m10 = 0.0, m11 = 0.0, m12 = 0.0, m20 = 0.0,
+           m21 = 0.0, m22 = 0.0;
+    double acc = ACC0, den = 0.0;
+    int broke = 0;
+    const double s0i = (MODE != NOBREAK) ? s0[i] : 0.0;
+
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *xj = xf + 3 * j;
+      const double e0 = xj[0] - xi0;
+      const double e1 = xj[1] - xi1;
+      const double e2 = xj[2] - xi2;
+      const double *rj = rf + 3 * j;
+      double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
+      if (PBC) family->reference_image(x0, x1, x2);
+      if (MODE != NOBREAK) {
+        const double r2 = e0 * e0 + e1 * e1 + e2 * e2;
+        const double q2 = x0 * x0 + x1 * x1 + x2 * x2;
+        const int jtype = UNIFORM ? 1 : type[j];
+        if (check_bond<MODE, UNIFORM>(r2, q2, itype, jtype, std::min(s0i, s0[j]), acc, den)) {
+          partner[i][b] = 0;
+          jl[b] = -1;
+          broke = 1;
+          continue;
+        }
+      }
+      const double w = om[b];
+      const double w0 = w * e0, w1 = w * e1, w2 = w * e2;
+      m00 += w0 * x0;
+      m01 += w0 * x1;
+      m02 += w0 * x2;
+      m10 += w1 * x0;
+      m11 += w1 * x1;
+      m12 += w1 * x2;
+      m20 += w2 * x0;
+      m21 += w2 * x1;
+      m22 += w2 * x2;
+    }
+
+    if (MODE != NOBREAK) {
+      s0_new[i] = s0_from<UNIFORM>(acc, den, s0i);
+      if (broke) family->update_shape(i);
+    }
+
+    double *g = gstate[i];
+    if (kregular[i]) {
+      const double M[9] = {m00, m01, m02, m10, m11, m12, m20, m21, m22};
+      if (stiffness_flag) {
+        wdens[i] = PeriSISSM::correspondence_state(*materials[itype], M, kinv[i], g, hstate[i],
+                                                   kstate[i]);
+        kstate[i][6] = particle_stabilization(i);
+      } else {
+        wdens[i] = PeriSISSM::correspondence_state(*materials[itype], M, kinv[i], g, hstate[i]);
+      }
+      g[GSTATE_C] = particle_stabilization(i);
+      g[GSTATE_REG] = 1.0;
+    } else {
+      // singular K (fewer than three independent bond directions, or flattened by
+      // fracture): F is undefined, the particle carries no force state of its own
+      // (H = 0, C = 0, W = 0) and F is reported as the identity; its remaining bonds still
+      // carry its partners' force states, and their stabilization uses the partner's F
+      for (int k = 0; k < 9; k++) g[k] = (k % 4 == 0) ? 1.0 : 0.0;
+      for (int k = 0; k < 9; k++) hstate[i][k] = 0.0;
+      if (stiffness_flag)
+        for (int k = 0; k < NKSTATE; k++) kstate[i][k] = 0.0;
+      g[GSTATE_C] = 0.0;
+      g[GSTATE_REG] = 0.0;
+      wdens[i] = 0.0;
+    }
+  }
+
+  if (MODE != NOBREAK)
+    for (int i = 0; i < nlocal; i++) s0[i] = s0_new[i];
+}
+
+/* ----------------------------------------------------------------------
+   stabilization of owned atoms (see the top of this file): for each bond
+     z = eta - Fbar xi,  Fbar = a_i F_i + a_j F_j  (a = 1/2 each; 1 and 0 when one end has a
+     singular K and no F; a bond between two such particles has no stabilization),
+   direct force density Cbar omega z on i, energy density 1/4 Cbar omega |z|^2 on i, and
+   Q_i = -sum_j a_i Cbar omega z (x) xi, so that H_i = A_i + Q_i K_i^-1.
+   EVFLAG: virial of the direct force (half of each bond to this end, as in compute_forces).
+------------------------------------------------------------------------- */
+
+template <int EVFLAG, int PBC> void PairPeriNosb::compute_stabilization()
+{
+  const double *xf = atom->x[0];
+  const double *rf = atom->x0[0];
+  double **f = atom->f;
+  double *vfrac = atom->vfrac;
+  const int nlocal = atom->nlocal;
+  int *npartner = family->npartner;
+  double **omega = family->omega;
+  double **kinv = family->kinv;
+  int **jlocal = family->jlocal;
+  const double *gf = gstate[0];
+
+  for (int i = 0; i < nlocal; i++) {
+    const double *gi = gf + NGSTATE * i;
+    const double *Fi = gi;
+    const double ci = gi[GSTATE_C];
+    const int regi = gi[GSTATE_REG] > 0.0;
+    const double xi0 = xf[3 * i], xi1 = xf[3 * i + 1], xi2 = xf[3 * i + 2];
+    const double ri0 = rf[3 * i], ri1 = rf[3 * i + 1], ri2 = rf[3 * i + 2];
+    const int n = npartner[i];
+    const int *jl = jlocal[i];
+    const double *om = omega[i];
+    double fx = 0.0, fy = 0.0, fz = 0.0, ws = 0.0;
+    double q00 = 0.0, q01 = 0.0, q02 = 0.0, q10 = 0.0, q11 = 0.0, q12 = 0.0, q20 = 0.0,
+           q21 = 0.0, q22 = 0.0;
+    double v0 = 0.0, v1 = 0.0, v2 = 0.0, v3 = 0.0, v4 = 0.0, v5 = 0.0;
+
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *gj = gf + NGSTATE * j;
+      const int regj = gj[GSTATE_REG] > 0.0;
+      const double *xj = xf + 3 * j;
+      const double *rj = rf + 3 * j;
+      const double e0 = xj[0] - xi0, e1 = xj[1] - xi1, e2 = xj[2] - xi2;
+      double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
+      if (PBC) family->reference_image(x0, x1, x2);
+      double z0, z1, z2, qa;    // qa = 2 a_i (weight of this bond in Q_i, times 2)
+      if (regi && regj) {
+        // Fbar = (F_i + F_j) / 2
+        z0 = e0 - 0.5 * ((Fi[0] + gj[0]) * x0 + (Fi[1] + gj[1]) * x1 + (Fi[2] + gj[2]) * x2);
+        z1 = e1 - 0.5 * ((Fi[3] + gj[3]) * x0 + (Fi[4] + gj[4]) * x1 + (Fi[5] + gj[5]) * x2);
+        z2 = e2 - 0.5 * ((Fi[6] + gj[6]) * x0 + (Fi[7] + gj[7]) * x1 + (Fi[8] + gj[8]) * x2);
+        qa = 1.0;
+      } else if (regi || regj) {
+        // one end without F: Fbar is the other end's F
+        const double *Fo = regi ? Fi : gj;
+        z0 = e0 - (Fo[0] * x0 + Fo[1] * x1 + Fo[2] * x2);
+        z1 = e1 - (Fo[3] * x0 + Fo[4] * x1 + Fo[5] * x2);
+        z2 = e2 - (Fo[6] * x0 + Fo[7] * x1 + Fo[8] * x2);
+        qa = regi ? 2.0 : 0.0;
+      } else {
+        continue;
+      }
+      const double cw = 0.5 * (ci + gj[GSTATE_C]) * om[b];
+      const double t0 = cw * z0, t1 = cw * z1, t2 = cw * z2;
+      fx += t0;
+      fy += t1;
+      fz += t2;
+      ws += t0 * z0 + t1 * z1 + t2 * z2;
+      const double u0 = qa * t0, u1 = qa * t1, u2 = qa * t2;
+      q00 += u0 * x0;
+      q01 += u0 * x1;
+      q02 += u0 * x2;
+      q10 += u1 * x0;
+      q11 += u1 * x1;
+      q12 += u1 * x2;
+      q20 += u2 * x0;
+      q21 += u2 * x1;
+      q22 += u2 * x2;
+      if (EVFLAG) {
+        v0 += e0 * t0;
+        v1 += e1 * t1;
+        v2 += e2 * t2;
+        v3 += e0 * t1;
+        v4 += e0 * t2;
+        v5 += e1 * t2;
+      }
+    }
+
+    f[i][0] += fx;
+    f[i][1] += fy;
+    f[i][2] += fz;
+    wdens[i] += 0.25 * ws;
+
+    if (regi) {
+      // H_i = A_i + Q_i K_i^-1 with Q_i = -(sum above)/2 (the sum carries 2 a_i)
+      const double *k = kinv[i];
+      double *h = hstate[i];
+      const double q[9] = {q00, q01, q02, q10, q11, q12, q20, q21, q22};
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+          h[3 * r + c] -=
+              0.5 * (q[3 * r] * k[c] + q[3 * r + 1] * k[3 + c] + q[3 * r + 2] * k[6 + c]);
+    }
+
+    if (EVFLAG) {
+      const double s = -0.5 * vfrac[i];
+      const double v[6] = {s * v0, s * v1, s * v2, s * v3, s * v4, s * v5};
+      if (vflag_global)
+        for (int k = 0; k < 6; k++) virial[k] += v[k];
+      if (vflag_atom)
+        for (int k = 0; k < 6; k++) vatom[i][k] += v[k];
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   bond forces on owned atoms: f_i += sum_j omega (H_i + H_j) xi
+   EVFLAG: virial. The force V_i f_ij of bond ij on atom i is equal and opposite to the force
+   V_j f_ji of the same bond on atom j; each end tallies half of its virial
+   (x_i - x_j) (x) V_i f_ij, as pair peri/lps does.
+------------------------------------------------------------------------- */
+
+template <int EVFLAG, int PBC> void PairPeriNosb::compute_forces()
+{
+  const double *xf = atom->x[0];
+  const double *rf = atom->x0[0];
+  double **f = atom->f;
+  double *vfrac = atom->vfrac;
+  const int nlocal = atom->nlocal;
+  int *npartner = family->npartner;
+  double **omega = family->omega;
+  int **jlocal = family->jlocal;
+  const double *hf = hstate[0];
+
+  for (int i = 0; i < nlocal; i++) {
+    const double *hi = hf + 9 * i;
+    const double xi0 = xf[3 * i], xi1 = xf[3 * i + 1], xi2 = xf[3 * i + 2];
+    const double ri0 = rf[3 * i], ri1 = rf[3 * i + 1], ri2 = rf[3 * i + 2];
+    const int n = npartner[i];
+    const int *jl = jlocal[i];
+    const double *om = omega[i];
+    double fx = 0.0, fy = 0.0, fz = 0.0;
+    double v0 = 0.0, v1 = 0.0, v2 = 0.0, v3 = 0.0, v4 = 0.0, v5 = 0.0;
+
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *hj = hf + 9 * j;
+      const double w = om[b];
+      const double *rj = rf + 3 * j;
+      double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
+      if (PBC) family->reference_image(x0, x1, x2);
+      const double t0 = w * ((hi[0] + hj[0]) * x0 + (hi[1] + hj[1]) * x1 + (hi[2] + hj[2]) * x2);
+      const double t1 = w * ((hi[3] + hj[3]) * x0 + (hi[4] + hj[4]) * x1 + (hi[5] + hj[5]) * x2);
+      const double t2 = w * ((hi[6] + hj[6]) * x0 + (hi[7] + hj[7]) * x1 + (hi[8] + hj[8]) * x2);
+      fx += t0;
+      fy += t1;
+      fz += t2;
+      if (EVFLAG) {
+        const double *xj = xf + 3 * j;
+        const double e0 = xj[0] - xi0, e1 = xj[1] - xi1, e2 = xj[2] - xi2;
+        v0 += e0 * t0;
+        v1 += e1 * t1;
+        v2 += e2 * t2;
+        v3 += e0 * t1;
+        v4 += e0 * t2;
+        v5 += e1 * t2;
+      }
+    }
+
+    f[i][0] += fx;
+    f[i][1] += fy;
+    f[i][2] += fz;
+
+    if (EVFLAG) {
+      // (x_i - x_j) = -eta; half of the bond to this end
+      const double s = -0.5 * vfrac[i];
+      const double v[6] = {s * v0, s * v1, s * v2, s * v3, s * v4, s * v5};
+      if (vflag_global)
+        for (int k = 0; k < 6; k++) virial[k] += v[k];
+      if (vflag_atom)
+        for (int k = 0; k < 6; k++) vatom[i][k] += v[k];
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   implicit 3x3 blocks of the SISSM iteration (math.md section 3), for every owned atom:
+     block_i = sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I)
+   H from the last compute() with stiffness_flag set; (C_i + C_j)/2 omega is the stiffness of
+   the bond-averaged stabilization force with respect to eta
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::implicit_blocks(double **block)
+{
+  commflag = COMM_K;
+  comm->forward_comm(this);
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    const double *ki = kstate[i];
+    const int n = family->npartner[i];
+    const int *jl = family->jlocal[i];
+    const double *om = family->omega[i];
+    double a[NKSTATE] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    double wsum = 0.0;
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *kj = kstate[j];
+      const double w = om[b];
+      wsum += w;
+      for (int k = 0; k < NKSTATE; k++) a[k] += w * kj[k];
+    }
+    double *out = block[i];
+    const double cdiag = 0.5 * (wsum * ki[6] + a[6]);
+    for (int k = 0; k < 6; k++) out[k] = wsum * ki[k] + a[k] + (k < 3 ? cdiag : 0.0);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   standalone bond check (for integrators that set external_breaking)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::break_bonds()
+{
+  grow_peratom();
+  if (!family->built || !any_break) return;
+  if (update->setupflag) {
+    if (uniform_break) check_bonds<S0ONLY, 1>();
+    else check_bonds<S0ONLY, 0>();
+  } else {
+    if (uniform_break) check_bonds<BREAK, 1>();
+    else check_bonds<BREAK, 0>();
+  }
+  // (check_bonds uses the minimum image for the reference bond in any box: not a hot path)
+}
+
+/* ---------------------------------------------------------------------- */
+
+template <int MODE, int UNIFORM> void PairPeriNosb::check_bonds()
+{
+  const double *xf = atom->x[0];
+  int *type = atom->type;
+  double *s0 = atom->s0;
+  const int nlocal = atom->nlocal;
+  constexpr double ACC0 = UNIFORM ? 1.0 : -DBL_MAX;
+
+  for (int i = 0; i < nlocal; i++) {
+    const int itype = type[i];
+    int *jl = family->jlocal[i];
+    double acc = ACC0, den = 0.0;
+    int broke = 0;
+    for (int b = 0; b < family->npartner[i]; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double e0 = xf[3 * j] - xf[3 * i];
+      const double e1 = xf[3 * j + 1] - xf[3 * i + 1];
+      const double e2 = xf[3 * j + 2] - xf[3 * i + 2];
+      const double r2 = e0 * e0 + e1 * e1 + e2 * e2;
+      double xi[3];
+      family->reference_bond(i, j, xi);
+      const double q2 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
+      const int jtype = UNIFORM ? 1 : type[j];
+      if (check_bond<MODE, UNIFORM>(r2, q2, itype, jtype, std::min(s0[i], s0[j]), acc, den)) {
+        family->partner[i][b] = 0;
+        jl[b] = -1;
+        broke = 1;
+      }
+    }
+    s0_new[i] = s0_from<UNIFORM>(acc, den, s0[i]);
+    if (broke) family->update_shape(i);
+  }
+  for (int i = 0; i < nlocal; i++) s0[i] = s0_new[i];
+}
+
+/* ----------------------------------------------------------------------
+   is tag jtag an unbroken bond partner of owned atom i
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::bonded(int i, tagint jtag) const
+{
+  const tagint *p = family->partner[i];
+  const int n = family->npartner[i];
+  for (int b = 0; b < n; b++)
+    if (p[b] == jtag) return true;
+  return false;
+}
+
+/* ----------------------------------------------------------------------
+   short-range contact between particles that are not bonded (never were, or whose bond
+   broke), as the built-in PERI styles do for all pairs: a repulsive spring acts when
+   r < d = min(0.9 |X_i - X_j|, 1.35 h), h = mean particle size V^(1/3), with stiffness
+   kc = 15 * 18 K / (pi delta^4): force density on i kc V_j (d - r)/delta along x_i - x_j,
+   energy 1/2 kc (V_i + V_j)/2 (d - r)^2 / delta per pair. Bonded pairs are left to the
+   material model, so that an affine deformation gives exactly W(F) also under compression.
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::compute_contact(int eflag, int /*vflag*/)
+{
+  double **x = atom->x;
+  double **x0 = atom->x0;
+  double **f = atom->f;
+  double *vfrac = atom->vfrac;
+  int *type = atom->type;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  const int periodic = family->any_periodic;
+  const double rmax = 1.35 * hmax;
+  const double rmaxsq = rmax * rmax;
+
+  // candidates from the short list made at the last neighbor list build
+  // (built here only if that did not happen, e.g. a compute without a run)
+
+  if (contact_inum != list->inum) build_contact_list();
+
+  const int *ilist = list->ilist;
+  for (int ii = 0; ii < contact_inum; ii++) {
+    const int i = ilist[ii];
+    const double xtmp = x[i][0], ytmp = x[i][1], ztmp = x[i][2];
+    const int itype = type[i];
+    for (int k = contact_first[ii]; k < contact_first[ii + 1]; k++) {
+      const int j = contact_neigh[k];
+      const double delx = xtmp - x[j][0];
+      const double dely = ytmp - x[j][1];
+      const double delz = ztmp - x[j][2];
+      const double rsq = delx * delx + dely * dely + delz * delz;
+      if (rsq >= rmaxsq) continue;
+      const int jtype = type[j];
+      if (!contactflag[itype][jtype]) continue;
+      double dx0 = x0[i][0] - x0[j][0];
+      double dy0 = x0[i][1] - x0[j][1];
+      double dz0 = x0[i][2] - x0[j][2];
+      if (periodic) family->reference_image(dx0, dy0, dz0);
+      const double r = sqrt(rsq);
+      const double d0 = 0.9 * sqrt(dx0 * dx0 + dy0 * dy0 + dz0 * dz0);
+      if (r >= d0 || r <= 0.0) continue;
+      const double d = std::min(d0, 0.675 * (cbrt(vfrac[i]) + cbrt(vfrac[j])));
+      if (r >= d) continue;
+      if (bonded(i, tag[j])) continue;
+
+      const double dr = r - d;    // < 0
+      const double kc = kcontact[itype][jtype] / cut[itype][jtype];
+      const double fpi = -kc * vfrac[j] * dr / r;
+      const double fpj = -kc * vfrac[i] * dr / r;
+      f[i][0] += delx * fpi;
+      f[i][1] += dely * fpi;
+      f[i][2] += delz * fpi;
+      if (newton_pair || j < nlocal) {
+        f[j][0] -= delx * fpj;
+        f[j][1] -= dely * fpj;
+        f[j][2] -= delz * fpj;
+      }
+      if (evflag) {
+        const double evdwl = eflag ? 0.25 * kc * (vfrac[i] + vfrac[j]) * dr * dr : 0.0;
+        ev_tally(i, j, nlocal, newton_pair, evdwl, 0.0, fpi * vfrac[i], delx, dely, delz);
+      }
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   called by fix nosb/family right after every neighbor list build
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::neighbor_rebuilt()
+{
+  if (any_contact && list) build_contact_list();
+}
+
+/* ----------------------------------------------------------------------
+   pairs of the neighbor list closer than the contact range + skin: the pair neighbor list
+   reaches horizon + skin, but only these pairs can come within the contact range before the
+   next neighbor list build (each atom moves less than skin/2 from where it was at the build)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::build_contact_list()
+{
+  double **x = atom->x;
+  const double rc = 1.35 * hmax + neighbor->skin;
+  const double rcsq = rc * rc;
+  const int inum = list->inum;
+  int *ilist = list->ilist;
+  int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  if (inum + 1 > contact_maxfirst) {
+    contact_maxfirst = inum + 1;
+    memory->destroy(contact_first);
+    memory->create(contact_first, contact_maxfirst, "pair:contact_first");
+  }
+  int n = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    contact_first[ii] = n;
+    if (n + jnum > contact_maxneigh) {
+      contact_maxneigh = std::max(2 * contact_maxneigh, n + jnum);
+      memory->grow(contact_neigh, contact_maxneigh, "pair:contact_neigh");
+    }
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = x[i][0] - x[j][0];
+      const double dy = x[i][1] - x[j][1];
+      const double dz = x[i][2] - x[j][2];
+      if (dx * dx + dy * dy + dz * dz < rcsq) contact_neigh[n++] = j;
+    }
+  }
+  contact_first[inum] = n;
+  contact_inum = inum;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairPeriNosb::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                    int * /*pbc*/)
+{
+  int m = 0;
+  if (commflag == COMM_STATE) {
+    for (int ii = 0; ii < n; ii++) {
+      const double *g = gstate[list[ii]];
+      for (int k = 0; k < NGSTATE; k++) buf[m++] = g[k];
+    }
+  } else if (commflag == COMM_K) {
+    for (int ii = 0; ii < n; ii++) {
+      const double *h = kstate[list[ii]];
+      for (int k = 0; k < NKSTATE; k++) buf[m++] = h[k];
+    }
+  } else {
+    for (int ii = 0; ii < n; ii++) {
+      const double *h = hstate[list[ii]];
+      for (int k = 0; k < 9; k++) buf[m++] = h[k];
+    }
+  }
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::unpack_forward_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  const int last = first + n;
+  if (commflag == COMM_STATE) {
+    for (int i = first; i < last; i++)
+      for (int k = 0; k < NGSTATE; k++) gstate[i][k] = buf[m++];
+  } else if (commflag == COMM_K) {
+    for (int i = first; i < last; i++)
+      for (int k = 0; k < NKSTATE; k++) kstate[i][k] = buf[m++];
+  } else {
+    for (int i = first; i < last; i++)
+      for (int k = 0; k < 9; k++) hstate[i][k] = buf[m++];
+  }
+}
+
+/* ----------------------------------------------------------------------
+   proc 0 writes to restart file
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::write_restart(FILE *fp)
+{
+  for (int i = 1; i <= atom->ntypes; i++) {
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      if (setflag[i][j]) {
+        fwrite(&model[i][j], sizeof(int), 1, fp);
+        fwrite(&breakflag[i][j], sizeof(int), 1, fp);
+        fwrite(&contactflag[i][j], sizeof(int), 1, fp);
+        fwrite(&bulk[i][j], sizeof(double), 1, fp);
+        fwrite(&shear[i][j], sizeof(double), 1, fp);
+        fwrite(&cut[i][j], sizeof(double), 1, fp);
+        fwrite(&s00[i][j], sizeof(double), 1, fp);
+        fwrite(&alpha[i][j], sizeof(double), 1, fp);
+        fwrite(&cs[i][j], sizeof(double), 1, fp);
+      }
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   proc 0 reads from restart file, bcasts
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::read_restart(FILE *fp)
+{
+  allocate();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++) {
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      if (!setflag[i][j]) continue;
+      int iv[3];
+      double dv[6];
+      if (me == 0) {
+        utils::sfread(FLERR, iv, sizeof(int), 3, fp, nullptr, error);
+        utils::sfread(FLERR, dv, sizeof(double), 6, fp, nullptr, error);
+      }
+      MPI_Bcast(iv, 3, MPI_INT, 0, world);
+      MPI_Bcast(dv, 6, MPI_DOUBLE, 0, world);
+      model[i][j] = iv[0];
+      breakflag[i][j] = iv[1];
+      contactflag[i][j] = iv[2];
+      bulk[i][j] = dv[0];
+      shear[i][j] = dv[1];
+      cut[i][j] = dv[2];
+      s00[i][j] = dv[3];
+      alpha[i][j] = dv[4];
+      cs[i][j] = dv[5];
+      if (model[i][j] < 0 || model[i][j] >= (int) PeriSISSM::material_names().size())
+        error->all(FLERR, "Pair peri/nosb: restart file has an unknown model index {}",
+                   model[i][j]);
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairPeriNosb::memory_usage()
+{
+  double bytes = (double) nmax * (NGSTATE + 9 + 2) * sizeof(double);
+  bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
+  const double n = atom->ntypes + 1;
+  bytes += n * n * (11.0 * sizeof(double) + 4.0 * sizeof(int));
+  return bytes;
+}

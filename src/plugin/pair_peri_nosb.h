@@ -1,0 +1,114 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   pair_style peri/nosb: non-ordinary state-based (correspondence) peridynamics with
+   isotropic hyperelastic models, zero-energy-mode stabilization, bond breaking and
+   short-range contact.
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(peri/nosb,PairPeriNosb);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_PERI_NOSB_H
+#define LMP_PAIR_PERI_NOSB_H
+
+#include "pair.h"
+
+namespace PeriSISSM {
+class Material;
+}
+
+namespace LAMMPS_NS {
+
+class PairPeriNosb : public Pair {
+ public:
+  // per-atom doubles in gstate[i]: F (row-major 3x3), C, regular flag (1.0 or 0.0)
+  enum { GSTATE_C = 9, GSTATE_REG = 10, NGSTATE = 11 };
+
+  PairPeriNosb(class LAMMPS *);
+  ~PairPeriNosb() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  double memory_usage() override;
+
+  // ---- interface for fix nosb/family, compute nosb/atom and integrators ----
+
+  // weight omega = w * beta * V_j of a bond of reference length r between types itype, jtype
+  // (influence function w = 1, beta the partial-volume factor)
+  double bond_weight(double r, int itype, int jtype, double vi, double vj) const;
+  // horizon of a bond between types itype and jtype
+  double horizon(int itype, int jtype) const { return cut[itype][jtype]; }
+  // material of particles of type itype (valid after init)
+  const PeriSISSM::Material &material(int itype) const { return *materials[itype]; }
+  // stabilization modulus C_i of local atom i (0 if its shape tensor is singular)
+  double particle_stabilization(int i) const;
+  // check the bonds of all owned atoms once and break those beyond their critical stretch,
+  // updating s0 (what compute() does itself unless external_breaking is set)
+  void break_bonds();
+  // called by fix nosb/family right after every neighbor list build
+  void neighbor_rebuilt();
+
+  // SISSM support (fix sissm): with stiffness_flag set, compute() also stores each particle's
+  // implicit stiffness H = kappa U diag(c) U^T and C in kstate; implicit_blocks() then sums
+  // for every owned atom  sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I)  (xx yy zz xy xz yz)
+  void implicit_blocks(double **block);
+
+  class FixNosbFamily *family;
+  int external_breaking;    // 1: compute() does not break bonds (an integrator calls break_bonds)
+  int stiffness_flag;       // 1: compute() fills kstate (an integrator needs implicit blocks)
+  double **kstate;          // per atom: H (xx yy zz xy xz yz) and C, see implicit_blocks()
+  // per-atom results of the last compute() (owned atoms; ghosts as communicated):
+  double **gstate;          // F, C, regular flag (see above)
+  double **hstate;          // H = (P + Q) K^-1 (row-major 3x3), 0 if K is singular
+  double *wdens;            // W(F) + stabilization energy density (what pe tallies per atom)
+
+ protected:
+  // per type pair (as given for i <= j; mixed and mirrored in init_style)
+  int **model;              // index into PeriSISSM::material_names()
+  double **bulk, **shear, **cut, **s00, **alpha, **cs;
+  int **breakflag, **contactflag;
+  double **kcontact;        // short-range contact stiffness 15 * 18 K / (pi delta^4)
+  // per type
+  PeriSISSM::Material **materials;
+  // summary flags
+  int any_break, any_stab, any_contact;
+  int uniform_break;        // all type pairs breakable with the same s00 and alpha
+  double hmax;              // largest particle size V^(1/3) (contact range)
+  int *contact_first, *contact_neigh;    // short list of contact candidates
+  int contact_maxfirst, contact_maxneigh, contact_inum;
+
+  int nmax;
+  enum { COMM_STATE, COMM_H, COMM_K };
+  enum { NKSTATE = 7 };
+  int commflag;
+  double *s0_new;
+
+  void allocate();
+  void grow_peratom();
+  void compute_contact(int, int);
+  void build_contact_list();
+  enum { NOBREAK = 0, S0ONLY, BREAK };
+  template <int MODE, int UNIFORM, int PBC> void compute_state();
+  template <int MODE, int UNIFORM> void check_bonds();
+  template <int MODE, int UNIFORM>
+  bool check_bond(double, double, int, int, double, double &, double &) const;
+  template <int UNIFORM> double s0_from(double, double, double) const;
+  template <int EVFLAG, int PBC> void compute_stabilization();
+  template <int EVFLAG, int PBC> void compute_forces();
+  bool bonded(int i, tagint jtag) const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,88 @@
+"""peri/nosb on several MPI ranks and across restart files (issue 3, interface.md 'Restart and
+parallel runs'): results do not depend on the number of ranks beyond round-off, and a run split
+by write_restart/read_restart continues as if it had not been split."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lammps_run import read_dump, relative_difference, run_deck
+
+DECKS = Path(__file__).parent / "decks"
+BLOCK = DECKS / "nosb_block.lmp"
+CONTINUE = DECKS / "nosb_continue.lmp"
+
+# A 10^3 block vibrating at ~3% strain with a random velocity pattern on top: every particle
+# moves differently, so every bond is exercised.
+ELASTIC = {"n": 10, "vib": 40.0, "vrand": 4.0, "nsteps": 200, "dt": 1e-7,
+           "thermo_every": 10, "dump_every": 100}
+# The same with breakable bonds (s00 = 1%): about 650 of the 1000 particles lose bonds, so
+# the families, s0 and the shape tensors change during the run.
+FRACTURE = {**ELASTIC, "brk": "yes", "s00": 0.01}
+
+
+def damage_column(frame):
+    return frame["c_nosb[1]"]
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("case", ["elastic", "fracture"])
+def test_one_and_two_ranks_agree(tmp_path, case):
+    # Families are sorted by atom ID and each owned atom sums its own bonds, so the per-atom
+    # arithmetic is the same on any number of ranks; only the global sums of the thermo
+    # output are reduced in another order (round-off 1e-16 relative). The issue asks for 1e-8
+    # over 200 steps; that also leaves room for round-off growth in the chaotic fracture case.
+    args = ELASTIC if case == "elastic" else FRACTURE
+    one = run_deck(BLOCK, tmp_path / "np1", nprocs=1, variables=args)
+    two = run_deck(BLOCK, tmp_path / "np2", nprocs=2, variables=args)
+    assert "with 2 MPI tasks" in two.log
+    t1, t2 = one.thermo[-1], two.thermo[-1]
+    assert np.array_equal(t1["Step"], t2["Step"]) and t1["Step"][-1] == 200
+    for col in ("PotEng", "KinEng", "TotEng"):
+        assert relative_difference(t1[col], t2[col]) < 1e-8, col
+    d1, d2 = read_dump(tmp_path / "np1/dump.atoms"), read_dump(tmp_path / "np2/dump.atoms")
+    assert [f["step"] for f in d1] == [0, 100, 200] == [f["step"] for f in d2]
+    for col in ("id", "x", "y", "z", "vx", "fx", "c_nosb[1]", "c_nosb[2]", "c_nosb[3]"):
+        assert relative_difference(d1[-1][col], d2[-1][col]) < 1e-8, col
+    damage = damage_column(d1[-1])
+    if case == "fracture":
+        assert np.count_nonzero(damage) > 100  # bonds did break, on both rank counts alike
+    else:
+        assert not np.any(damage)
+
+
+@pytest.mark.parametrize("case,write_ranks,read_ranks", [
+    ("elastic", 1, 1),
+    ("fracture", 1, 1),
+    pytest.param("fracture", 2, 1, marks=pytest.mark.mpi),
+    pytest.param("fracture", 1, 2, marks=pytest.mark.mpi),
+])
+def test_restart_continues_the_run(tmp_path, case, write_ranks, read_ranks):
+    # Unsplit: 200 steps. Split: 100 steps, write_restart, then a new LAMMPS reads the file
+    # and runs up to step 200. Families, broken bonds, s0, x0, velocities and the time step
+    # all come from the file, so the continued run repeats the unsplit one operation by
+    # operation: 1e-12 (round-off of the thermo reduction) on the same rank count. Across
+    # rank counts the comparison is that of test_one_and_two_ranks_agree (1e-8).
+    args = ELASTIC if case == "elastic" else FRACTURE
+    unsplit = run_deck(BLOCK, tmp_path / "unsplit", nprocs=read_ranks, variables=args)
+    first = run_deck(BLOCK, tmp_path / "split", nprocs=write_ranks,
+                     variables={**args, "restart_at": 100})
+    assert (tmp_path / "split/restart.block").exists()
+    assert first.thermo[-1]["Step"][-1] == 100
+    (tmp_path / "split/dump.atoms").rename(tmp_path / "split/dump.first")
+    second = run_deck(CONTINUE, tmp_path / "split", nprocs=read_ranks,
+                      variables={"nsteps": 200, "thermo_every": 10, "dump_every": 100})
+    tol = 1e-12 if write_ranks == read_ranks else 1e-8
+    t_all, t_cont = unsplit.thermo[-1], second.thermo[-1]
+    assert t_cont["Step"][0] == 100 and t_cont["Step"][-1] == 200
+    rows = np.searchsorted(t_all["Step"], t_cont["Step"])
+    assert np.array_equal(t_all["Step"][rows], t_cont["Step"])
+    for col in ("PotEng", "KinEng", "TotEng"):
+        assert relative_difference(t_all[col][rows], t_cont[col]) < tol, col
+    whole = read_dump(tmp_path / "unsplit/dump.atoms")[-1]
+    cont = read_dump(tmp_path / "split/dump.atoms")[-1]
+    assert whole["step"] == cont["step"] == 200
+    for col in ("id", "x", "y", "z", "vx", "vy", "vz", "c_nosb[1]", "c_nosb[2]"):
+        assert relative_difference(whole[col], cont[col]) < tol, col
+    if case == "fracture":
+        assert np.count_nonzero(damage_column(cont)) > 100
