@@ -98,11 +98,24 @@ Eigen::Vector3d NeoHookeanMaterial::principal_stress(const Eigen::Vector3d& s) c
   return mu_ * s + dg * cof;
 }
 
-// Phat_k = mu s_k (shear, implicit: c_k = mu) + g'(J) J/s_k (volumetric: its sign and slope
-// depend on J and on the other two singular values, explicit).
-Eigen::Vector3d NeoHookeanMaterial::implicit_coefficient(const Eigen::Vector3d& /*s*/) const
+// g''(J) = (mu + lambda (1 - ln J)) / J^2 above J0; the constant g''(J0) below.
+double NeoHookeanMaterial::volumetric_curvature(double J) const
 {
-  return Eigen::Vector3d::Constant(std::max(mu_, 0.0));
+  if (J >= j0_) return (mu_ + lambda_ * (1.0 - std::log(J))) / (J * J);
+  return g2_;
+}
+
+// Phat_k = mu s_k + g'(J) s_l s_m. Its slope in s_k is mu + g''(J) (s_l s_m)^2 (s_l s_m does
+// not depend on s_k). Both parts grow with s_k where g'' > 0, so c_k holds the whole tangent
+// there: c_k = mu + max(g''(J), 0) (s_l s_m)^2 >= 0, which at rest is the P-wave modulus
+// 2 mu + lambda, as for the linear model (with c_k = mu alone the SISSM block missed the
+// volumetric stiffness and the iteration diverged beyond twice the explicit time step).
+// The rest, g'(J) s_l s_m - max(g'', 0) (s_l s_m)^2 s_k, is explicit.
+Eigen::Vector3d NeoHookeanMaterial::implicit_coefficient(const Eigen::Vector3d& s) const
+{
+  const double curv = std::max(volumetric_curvature(s.prod()), 0.0);
+  const Eigen::Vector3d cof(s(1) * s(2), s(0) * s(2), s(0) * s(1));
+  return Eigen::Vector3d::Constant(std::max(mu_, 0.0)) + curv * cof.cwiseProduct(cof);
 }
 
 }  // namespace PeriSISSM

@@ -62,6 +62,8 @@ class NeoHookeanMaterial : public Material {
   // Its slope g'(J) (continued below J0).
   // Inputs: J = det F, any real. Outputs: dg/dJ (stress units).
   double volumetric_slope(double J) const;
+  // g''(J), the volumetric curvature (the constant g''(J0) below J0).
+  double volumetric_curvature(double J) const;
 
  private:
   double j0_;  // continuation threshold

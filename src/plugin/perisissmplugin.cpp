@@ -9,6 +9,7 @@
 
 #include "compute_nosb_atom.h"
 #include "fix_nosb_family.h"
+#include "fix_sissm.h"
 #include "pair_peri_nosb.h"
 
 using namespace LAMMPS_NS;
@@ -21,6 +22,11 @@ static Pair *peri_nosb_creator(LAMMPS *lmp)
 static Fix *nosb_family_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixNosbFamily(lmp, argc, argv);
+}
+
+static Fix *sissm_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixSissm(lmp, argc, argv);
 }
 
 static Compute *nosb_atom_creator(LAMMPS *lmp, int argc, char **argv)
@@ -47,6 +53,12 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "nosb/family";
   plugin.info = "PERI-SISSM bond families of pair_style peri/nosb";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &nosb_family_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "sissm";
+  plugin.info = "PERI-SISSM semi-implicit successive substitution integrator";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &sissm_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "compute";

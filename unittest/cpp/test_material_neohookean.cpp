@@ -125,11 +125,33 @@ TEST(NeoHookeanMaterial, EnergyContinuousAtSeriesSwitch)
   }
 }
 
-TEST(NeoHookeanMaterial, ImplicitCoefficientIsMu)
+// c_k is the whole tangent dPhat_k/ds_k where the volumetric curvature is positive: the
+// P-wave modulus 2 mu + lambda at rest (what the SISSM block needs to contract), and a central
+// difference of Phat_k in s_k elsewhere (Phat_k is quadratic-free in s_k only through g, so the
+// difference is accurate to ~1e-7 relative with step 1e-6).
+TEST(NeoHookeanMaterial, ImplicitCoefficientIsTheTangentWhereCurvatureIsPositive)
 {
   const NeoHookeanMaterial m(2.5, 1.0);
-  for (const Vector3d& s : {Vector3d(1, 1, 1), Vector3d(3, 2, -1), Vector3d(0, 0, 0)})
-    EXPECT_EQ(m.implicit_coefficient(s), Vector3d::Constant(2.5));
+  const Vector3d rest = m.implicit_coefficient(Vector3d(1, 1, 1));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(rest(k), 2 * 2.5 + 1.0, 1e-14);
+  for (const Vector3d& s : {Vector3d(1.2, 0.9, 0.8), Vector3d(2.0, 1.5, 0.3),
+                            Vector3d(0.6, 0.5, 0.4), Vector3d(0.5, 0.4, 0.2)}) {
+    const Vector3d c = m.implicit_coefficient(s);
+    for (int k = 0; k < 3; ++k) {
+      Vector3d sp = s, sm = s;
+      const double e = 1e-6;
+      sp(k) += e;
+      sm(k) -= e;
+      const double slope = (m.principal_stress(sp)(k) - m.principal_stress(sm)(k)) / (2 * e);
+      EXPECT_NEAR(c(k), slope, 1e-6 * std::abs(slope)) << "s = " << s.transpose();
+    }
+  }
+  // finite and at least mu for degenerate and inverted states
+  for (const Vector3d& s : {Vector3d(3, 2, -1), Vector3d(0, 0, 0), Vector3d(1e3, 1e3, 1e3)}) {
+    const Vector3d c = m.implicit_coefficient(s);
+    EXPECT_TRUE(c.allFinite());
+    EXPECT_GE(c.minCoeff(), 2.5);
+  }
 }
 
 // J0 = 0.1 for lambda >= 0; raised to exp(1 + mu/lambda) for lambda < 0 when that is larger,

@@ -1,0 +1,87 @@
+"""Shared pieces of the fix sissm tests (issue 4): measured explicit stability limits, a check
+that they still bracket the limit of the current build, and small array helpers."""
+from __future__ import annotations
+
+import functools
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from lammps_run import run_deck
+
+DECKS = Path(__file__).parent / "decks"
+BLOCK = DECKS / "sissm_block.lmp"
+CANTILEVER = DECKS / "sissm_cantilever.lmp"
+CONTINUE = DECKS / "sissm_continue.lmp"
+PRESCRIBED = DECKS / "sissm_prescribed.lmp"
+
+A = 1.0e-3  # lattice spacing of every deck (m)
+
+STEEL = {"K": 160e9, "Gr": 0.5, "rho": 7800}  # G = 80 GPa
+
+# Explicit (fix nve, velocity Verlet) stability limits of the decks, measured by bisection:
+# fix nve at growing dt from a pseudo-random velocity field (vrand = 0.01 m/s excites every
+# mode), 3000 steps, "stable" = finite and etotal below twice its initial value (cantilevers:
+# 6000 steps under gravity, bisection between 4e-7 and 9e-7). Values are the largest stable
+# dt found (the smallest unstable one is within 0.3 %). Small blocks are limited by their
+# corner/edge particles, whose shape tensors are small (large K^-1), so the limit is not
+# monotonic in the block size. explicit_limit_brackets() re-checks them cheaply.
+EXPLICIT_LIMIT = {
+    "block 2x2x2": 5.72e-7,
+    "block 3x3x3": 9.35e-7,
+    "block 4x3x3": 9.70e-7,
+    "block 6x6x6": 1.54e-6,
+    "steel 4x3x3": 2.15e-7,
+    "steel 6x6x6": 3.48e-7,
+    "cantilever 16x4x4": 7.15e-7,
+    "cantilever 10x3x3": 5.95e-7,
+}
+
+
+def block_variables(name: str) -> dict:
+    """sissm_block.lmp variables of the systems named in EXPLICIT_LIMIT ("block"/"steel")."""
+    kind, dims = name.split()
+    nx, ny, nz = (int(d) for d in dims.split("x"))
+    v = {"nx": nx, "ny": ny, "nz": nz}
+    if kind == "steel":
+        v.update(STEEL)
+    return v
+
+
+def nve_is_stable(variables: dict, dt: float, workdir, nsteps: int = 3000) -> bool:
+    # initial ke of the vrand field ~ N rho/2 * 3 * (0.01 m/s)^2 / 12: halt the run at 1000
+    # times that, so that a blow-up ends early instead of running into huge boxes
+    natoms = variables["nx"] * variables["ny"] * variables["nz"]
+    halt = 1000.0 * natoms * variables.get("rho", 1000) * 1.25e-5
+    run = run_deck(BLOCK, workdir, variables={**variables, "integ": "nve", "dt": dt,
+                                              "nsteps": nsteps, "vrand": 0.01, "halt": halt,
+                                              "thermo_every": 100}, check=False)
+    if not run.ok:  # a blow-up stops the run (atoms lost, too many neighbor bins, ...)
+        return False
+    t = run.thermo[-1]
+    e = t["TotEng"]
+    return bool(t["Step"][-1] == nsteps and np.all(np.isfinite(e)) and e.max() < 2.0 * e[0])
+
+
+@functools.lru_cache(maxsize=None)
+def explicit_limit_brackets(name: str) -> bool:
+    """fix nve is stable at 0.9 and unstable at 1.15 times the tabulated limit (checked once
+    per session and system)."""
+    v = block_variables(name)
+    dt = EXPLICIT_LIMIT[name]
+    with tempfile.TemporaryDirectory(prefix="sissm-limit-") as workdir:
+        return (nve_is_stable(v, 0.9 * dt, Path(workdir) / "below")
+                and not nve_is_stable(v, 1.15 * dt, Path(workdir) / "above"))
+
+
+def positions(frame) -> np.ndarray:
+    return np.column_stack([frame["x"], frame["y"], frame["z"]])
+
+
+def velocities(frame) -> np.ndarray:
+    return np.column_stack([frame["vx"], frame["vy"], frame["vz"]])
+
+
+def forces(frame) -> np.ndarray:
+    return np.column_stack([frame["fx"], frame["fy"], frame["fz"]])

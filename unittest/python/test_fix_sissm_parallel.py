@@ -1,0 +1,90 @@
+"""fix sissm on several MPI ranks and across restart files (issue 4): every sweep communicates
+what ghost particles need, so results do not depend on the number of ranks beyond round-off,
+and a run split by write_restart/read_restart continues as if it had not been split."""
+import numpy as np
+import pytest
+
+from lammps_run import read_dump, relative_difference, run_deck
+from sissm_support import BLOCK, CONTINUE, EXPLICIT_LIMIT, explicit_limit_brackets
+
+# A 6^3 block at ~10x its explicit limit (1.5e-5 s), with the default iterations and
+# tolerance (so steps stop at different sweep counts, ~3 on average, and the iteration limit
+# is hit in some steps), vibrating (20 m/s at the ends) with a random velocity field (2 m/s)
+# under strong gravity (1000 m/s^2), its first layer held: ghosts, the lagged external force,
+# held partners and the non-convergence path are all exercised.
+ELASTIC = {"nx": 6, "ny": 6, "nz": 6, "dt": 1.5e-5, "vib": 20.0, "vrand": 2.0, "grav": 1000.0,
+           "held": 1, "nsteps": 100, "thermo_every": 10}
+# Breakable bonds (s00 = 1 %) and a violent vibration (100 m/s): every particle loses bonds,
+# fragments collide (peri/nosb short-range contact acts between them, on ghosts too).
+FRACTURE = {"nx": 6, "ny": 6, "nz": 6, "dt": 1.5e-5, "vib": 100.0, "vrand": 2.0, "brk": "yes",
+            "s00": 0.01, "nsteps": 100, "thermo_every": 10}
+CASES = {"elastic": ELASTIC, "fracture": FRACTURE}
+COLUMNS = ("PotEng", "KinEng", "TotEng", "f_integrate[1]", "f_integrate[2]")
+
+
+def test_the_cases_are_what_they_claim():
+    assert explicit_limit_brackets("block 6x6x6")
+    assert ELASTIC["dt"] == pytest.approx(10 * EXPLICIT_LIMIT["block 6x6x6"], rel=0.03)
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("case", ["elastic", "fracture"])
+def test_one_and_two_ranks_agree(tmp_path, case):
+    # Per-particle sums run over the bond families in tag order on any rank count, the
+    # convergence measure is a global max (exact), and ghosts get positions and stress data
+    # every sweep; only the thermo sums are reduced in another order (1e-16 relative). The
+    # issue's 1e-8 over 100 steps leaves room for round-off growth (measured: positions
+    # bit-identical, thermo 2e-16).
+    args = {**CASES[case], "dump_every": 100}
+    one = run_deck(BLOCK, tmp_path / "np1", nprocs=1, variables=args)
+    two = run_deck(BLOCK, tmp_path / "np2", nprocs=2, variables=args)
+    assert "with 2 MPI tasks" in two.log
+    t1, t2 = one.thermo[-1], two.thermo[-1]
+    assert np.array_equal(t1["Step"], t2["Step"]) and t1["Step"][-1] == 100
+    for col in COLUMNS:
+        assert relative_difference(t1[col], t2[col]) < 1e-8, col
+    assert np.array_equal(t1["f_integrate[1]"], t2["f_integrate[1]"])  # same sweep counts
+    d1, d2 = read_dump(tmp_path / "np1/dump.atoms"), read_dump(tmp_path / "np2/dump.atoms")
+    assert [f["step"] for f in d1] == [0, 100] == [f["step"] for f in d2]
+    for col in ("id", "x", "y", "z", "vx", "vy", "vz", "fx", "c_nosb[1]", "c_nosb[2]"):
+        assert relative_difference(d1[-1][col], d2[-1][col]) < 1e-8, col
+    damage = d1[-1]["c_nosb[1]"]
+    if case == "fracture":
+        assert np.count_nonzero(damage) > 100  # bonds did break, on both rank counts alike
+        assert np.all(t1["f_integrate[3]"][1:] > 1)
+    else:
+        assert not np.any(damage)
+        assert t1["f_integrate[4]"][-1] > 0  # some steps stopped at the limit
+
+
+@pytest.mark.parametrize("case,write_ranks,read_ranks", [
+    ("elastic", 1, 1),
+    ("fracture", 1, 1),
+    pytest.param("fracture", 2, 2, marks=pytest.mark.mpi),
+])
+def test_restart_continues_the_run(tmp_path, case, write_ranks, read_ranks):
+    # The fix keeps no state between steps but positions, velocities and the external force
+    # of the last evaluation, which the setup of the continued run recomputes at the same
+    # positions (bonds are not broken in that setup evaluation); so the continued run is the
+    # unsplit one, to round-off (measured: bit-identical). f[3] and f[4] restart with the run
+    # (interface: "since the run started") and are not compared.
+    args = CASES[case]
+    full = run_deck(BLOCK, tmp_path / "full", nprocs=write_ranks,
+                    variables={**args, "dump_every": 50})
+    run_deck(BLOCK, tmp_path / "split", nprocs=write_ranks, variables={**args, "restart_at": 50})
+    keep = {k: args[k] for k in ("nsteps", "grav", "thermo_every") if k in args}
+    cont = run_deck(CONTINUE, tmp_path / "split", nprocs=read_ranks,
+                    variables={**keep, "dump_every": 50})
+    a, b = full.thermo[-1], cont.thermo[-1]
+    assert b["Step"][0] == 50 and b["Step"][-1] == 100
+    i = int(np.searchsorted(a["Step"], 50))
+    assert np.array_equal(a["Step"][i:], b["Step"])
+    for col in ("PotEng", "KinEng", "TotEng"):
+        assert relative_difference(a[col][i:], b[col]) < 1e-12, col
+    for col in ("f_integrate[1]", "f_integrate[2]"):  # step 50 itself: no step taken yet
+        assert relative_difference(a[col][i + 1:], b[col][1:]) < 1e-12, col
+    fa = read_dump(tmp_path / "full/dump.atoms")[-1]
+    fb = read_dump(tmp_path / "split/dump.atoms")[-1]
+    assert fa["step"] == fb["step"] == 100
+    for col in ("id", "x", "y", "z", "vx", "vy", "vz", "c_nosb[1]"):
+        assert relative_difference(fa[col], fb[col]) < 1e-12, col
