@@ -5,6 +5,12 @@ Runs each deck with build/lmp, serial and on 2 MPI ranks, and prints the cost in
 per particle-step (LAMMPS's "Loop time" divided by steps x particles) and the ratio to peri/lps
 measured in the same invocation, so machine speed cancels out.
 
+peri/nosb+sissm is the nosb deck integrated by fix sissm with exactly 5 iterations per step
+(in.impact.sissm); its row is per step (5 iterations + the regular force evaluation). A separate
+line gives the cost of ONE SISSM iteration relative to one peri/nosb explicit step:
+(time per SISSM step / iterations per step) / (time per peri/nosb step), at each rank count
+(goal of issue 4: at most 1.5).
+
     /usr/bin/python3 examples/benchmarks/speed/bench_impact.py [--steps 1000] [--ranks 1 2]
 """
 import argparse
@@ -20,18 +26,28 @@ from lammps_run import run_deck  # noqa: E402
 
 IMPACT = REPO / "examples" / "impact"
 # column name -> deck; later styles add their decks here
-STYLES = {"peri/pmb": "in.impact.pmb", "peri/lps": "in.impact.lps", "peri/nosb": "in.impact.nosb"}
+STYLES = {"peri/pmb": "in.impact.pmb", "peri/lps": "in.impact.lps", "peri/nosb": "in.impact.nosb",
+          "peri/nosb+sissm": "in.impact.sissm"}
+SISSM = "peri/nosb+sissm"
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 
 
-def cost(deck: str, ranks: int, steps: int, workdir: Path) -> float:
-    """Microseconds per particle-step of one run."""
+def measure(deck: str, ranks: int, steps: int, workdir: Path) -> tuple:
+    """Microseconds per particle-step of one run, and fix sissm's mean iterations per step
+    (f_integrate[3] in the last thermo line; None for decks without fix sissm)."""
     shutil.copy(IMPACT / "impact.geometry", workdir)
     run = run_deck(IMPACT / deck, workdir, nprocs=ranks,
                    variables={"nsteps": steps, "thermo_every": steps})
     seconds, procs, nsteps, atoms = LOOP.findall(run.log)[-1]
     assert int(procs) == ranks
-    return float(seconds) / (int(nsteps) * int(atoms)) * 1e6
+    table = run.thermo[-1]
+    iterations = float(table["f_integrate[3]"][-1]) if "f_integrate[3]" in table else None
+    return float(seconds) / (int(nsteps) * int(atoms)) * 1e6, iterations
+
+
+def cost(deck: str, ranks: int, steps: int, workdir: Path) -> float:
+    """Microseconds per particle-step of one run."""
+    return measure(deck, ranks, steps, workdir)[0]
 
 
 def main():
@@ -41,24 +57,34 @@ def main():
     parser.add_argument("--styles", nargs="+", default=list(STYLES), choices=list(STYLES))
     args = parser.parse_args()
 
-    results = {}
+    results, iterations = {}, {}
     with tempfile.TemporaryDirectory() as tmp:
         for ranks in args.ranks:
             for style in args.styles:
-                work = Path(tmp) / f"{style.replace('/', '_')}-{ranks}"
+                work = Path(tmp) / f"{style.replace('/', '_').replace('+', '_')}-{ranks}"
                 work.mkdir()
-                results[style, ranks] = cost(STYLES[style], ranks, args.steps, work)
+                results[style, ranks], iterations[style, ranks] = measure(
+                    STYLES[style], ranks, args.steps, work)
 
     print(f"impact deck, {args.steps} steps: microseconds per particle-step "
           "(ratio to peri/lps at the same rank count)")
-    print(f"{'style':<12}" + "".join(f"{f'{r} rank(s)':>24}" for r in args.ranks))
+    print(f"{'style':<16}" + "".join(f"{f'{r} rank(s)':>24}" for r in args.ranks))
     for style in args.styles:
         cells = []
         for r in args.ranks:
             us = results[style, r]
             ref = results.get(("peri/lps", r))
             cells.append(f"{us:10.3f} us" + (f" ({us / ref:5.2f}x)" if ref else ""))
-        print(f"{style:<12}" + "".join(f"{c:>24}" for c in cells))
+        print(f"{style:<16}" + "".join(f"{c:>24}" for c in cells))
+
+    if SISSM in args.styles and "peri/nosb" in args.styles:
+        cells = []
+        for r in args.ranks:
+            per_iteration = results[SISSM, r] / iterations[SISSM, r]
+            cells.append(f"{per_iteration / results['peri/nosb', r]:10.2f}x")
+        print("\nfix sissm: one iteration per particle relative to one peri/nosb explicit step "
+              "((time per step / iterations per step) / peri/nosb time per step; goal <= 1.5)")
+        print(f"{'iteration':<16}" + "".join(f"{c:>24}" for c in cells))
 
 
 if __name__ == "__main__":
