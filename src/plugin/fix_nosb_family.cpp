@@ -366,12 +366,13 @@ void FixNosbFamily::refresh_local_indices()
 }
 
 /* ----------------------------------------------------------------------
-   new atoms that got the ID of a deleted bond partner: those bonds are broken
+   the tags of every rank, concatenated in rank order (the same vector on all ranks);
+   offset (if given) receives where this rank's tags start in it
 ------------------------------------------------------------------------- */
 
-void FixNosbFamily::break_reused(const std::vector<tagint> &reused)
+std::vector<tagint> FixNosbFamily::allgather_tags(const std::vector<tagint> &mine, int *offset)
 {
-  int nme = (int) reused.size();
+  const int nme = (int) mine.size();
   std::vector<int> counts(comm->nprocs), displs(comm->nprocs);
   MPI_Allgather(&nme, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
   int ntotal = 0;
@@ -380,8 +381,20 @@ void FixNosbFamily::break_reused(const std::vector<tagint> &reused)
     ntotal += counts[p];
   }
   std::vector<tagint> all(ntotal);
-  MPI_Allgatherv(reused.data(), nme, MPI_LMP_TAGINT, all.data(), counts.data(), displs.data(),
+  MPI_Allgatherv(mine.data(), nme, MPI_LMP_TAGINT, all.data(), counts.data(), displs.data(),
                  MPI_LMP_TAGINT, world);
+  if (offset) *offset = displs[comm->me];
+  return all;
+}
+
+/* ----------------------------------------------------------------------
+   new atoms that got the ID of a deleted bond partner: those bonds are broken
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::break_reused(const std::vector<tagint> &reused)
+{
+  std::vector<tagint> all = allgather_tags(reused);
+  const int ntotal = (int) all.size();
   std::sort(all.begin(), all.end());
 
   int nbroken = 0;
@@ -413,18 +426,12 @@ void FixNosbFamily::break_reused(const std::vector<tagint> &reused)
 
 void FixNosbFamily::resolve_missing(const std::vector<std::pair<int, int>> &missing)
 {
-  int nme = (int) missing.size();
-  std::vector<int> counts(comm->nprocs), displs(comm->nprocs);
-  MPI_Allgather(&nme, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
-  int ntotal = 0;
-  for (int p = 0; p < comm->nprocs; p++) {
-    displs[p] = ntotal;
-    ntotal += counts[p];
-  }
-  std::vector<tagint> mine(nme), all(ntotal);
+  const int nme = (int) missing.size();
+  std::vector<tagint> mine(nme);
   for (int k = 0; k < nme; k++) mine[k] = partner[missing[k].first][missing[k].second];
-  MPI_Allgatherv(mine.data(), nme, MPI_LMP_TAGINT, all.data(), counts.data(), displs.data(),
-                 MPI_LMP_TAGINT, world);
+  int first = 0;
+  const std::vector<tagint> all = allgather_tags(mine, &first);
+  const int ntotal = (int) all.size();
 
   // which of the wanted tags are owned somewhere
 
@@ -438,7 +445,7 @@ void FixNosbFamily::resolve_missing(const std::vector<std::pair<int, int>> &miss
   int nbroken = 0;
   for (int k = 0; k < nme; k++) {
     const int i = missing[k].first;
-    if (exists[displs[comm->me] + k]) missing_partner(i, all[displs[comm->me] + k]);
+    if (exists[first + k]) missing_partner(i, all[first + k]);
     partner[i][missing[k].second] = 0;
     nbroken++;
   }

@@ -114,6 +114,7 @@ class FixNosbFamily : public Fix {
   void refresh_local_indices();
   void resolve_missing(const std::vector<std::pair<int, int>> &);
   void break_reused(const std::vector<tagint> &);
+  std::vector<tagint> allgather_tags(const std::vector<tagint> &, int *offset = nullptr);
   std::vector<int> reshape;    // atoms whose K must be recomputed after a refresh
   void missing_partner(int i, tagint jtag);
   int local_index(tagint) const;
