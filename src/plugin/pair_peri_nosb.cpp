@@ -606,14 +606,14 @@ template <int MODE, int UNIFORM, int PBC> void PairPeriNosb::compute_state()
     double *g = gstate[i];
     if (kregular[i]) {
       const double M[9] = {m00, m01, m02, m10, m11, m12, m20, m21, m22};
+      g[GSTATE_C] = particle_stabilization(i);
       if (stiffness_flag) {
         wdens[i] = PeriSISSM::correspondence_state(*materials[itype], M, kinv[i], g, hstate[i],
                                                    kstate[i]);
-        kstate[i][6] = particle_stabilization(i);
+        kstate[i][6] = g[GSTATE_C];
       } else {
         wdens[i] = PeriSISSM::correspondence_state(*materials[itype], M, kinv[i], g, hstate[i]);
       }
-      g[GSTATE_C] = particle_stabilization(i);
       g[GSTATE_REG] = 1.0;
     } else {
       // singular K (fewer than three independent bond directions, or flattened by
