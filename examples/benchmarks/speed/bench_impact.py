@@ -6,8 +6,10 @@ per particle-step (LAMMPS's "Loop time" divided by steps x particles) and the ra
 measured in the same invocation, so machine speed cancels out.
 
 peri/nosb+sissm is the nosb deck integrated by fix sissm with exactly 5 iterations per step
-(in.impact.sissm); its row is per step (5 iterations + the regular force evaluation). A separate
-line gives the cost of ONE SISSM iteration relative to one peri/nosb explicit step:
+(in.impact.sissm: plain SISSM sweeps, solver jacobi); peri/nosb+krylov the same with solver
+krylov (1 Newton residual + 4 conjugate-gradient products per step). Their rows are per step
+(5 iterations + the regular force evaluation). A separate line gives the cost of ONE
+iteration relative to one peri/nosb explicit step:
 (time per SISSM step / iterations per step) / (time per peri/nosb step), at each rank count
 (goal of issue 4: at most 1.5).
 
@@ -27,17 +29,18 @@ from lammps_run import run_deck  # noqa: E402
 IMPACT = REPO / "examples" / "impact"
 # column name -> deck; later styles add their decks here
 STYLES = {"peri/pmb": "in.impact.pmb", "peri/lps": "in.impact.lps", "peri/nosb": "in.impact.nosb",
-          "peri/nosb+sissm": "in.impact.sissm"}
-SISSM = "peri/nosb+sissm"
+          "peri/nosb+sissm": "in.impact.sissm", "peri/nosb+krylov": "in.impact.sissm"}
+EXTRA = {"peri/nosb+krylov": {"opts": "solver krylov"}}
+SISSM = ("peri/nosb+sissm", "peri/nosb+krylov")
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 
 
-def measure(deck: str, ranks: int, steps: int, workdir: Path) -> tuple:
+def measure(deck: str, ranks: int, steps: int, workdir: Path, extra=None) -> tuple:
     """Microseconds per particle-step of one run, and fix sissm's mean iterations per step
     (f_integrate[3] in the last thermo line; None for decks without fix sissm)."""
     shutil.copy(IMPACT / "impact.geometry", workdir)
     run = run_deck(IMPACT / deck, workdir, nprocs=ranks,
-                   variables={"nsteps": steps, "thermo_every": steps})
+                   variables={"nsteps": steps, "thermo_every": steps, **(extra or {})})
     seconds, procs, nsteps, atoms = LOOP.findall(run.log)[-1]
     assert int(procs) == ranks
     table = run.thermo[-1]
@@ -64,7 +67,7 @@ def main():
                 work = Path(tmp) / f"{style.replace('/', '_').replace('+', '_')}-{ranks}"
                 work.mkdir()
                 results[style, ranks], iterations[style, ranks] = measure(
-                    STYLES[style], ranks, args.steps, work)
+                    STYLES[style], ranks, args.steps, work, EXTRA.get(style))
 
     print(f"impact deck, {args.steps} steps: microseconds per particle-step "
           "(ratio to peri/lps at the same rank count)")
@@ -77,14 +80,16 @@ def main():
             cells.append(f"{us:10.3f} us" + (f" ({us / ref:5.2f}x)" if ref else ""))
         print(f"{style:<16}" + "".join(f"{c:>24}" for c in cells))
 
-    if SISSM in args.styles and "peri/nosb" in args.styles:
-        cells = []
-        for r in args.ranks:
-            per_iteration = results[SISSM, r] / iterations[SISSM, r]
-            cells.append(f"{per_iteration / results['peri/nosb', r]:10.2f}x")
+    solvers = [s for s in SISSM if s in args.styles]
+    if solvers and "peri/nosb" in args.styles:
         print("\nfix sissm: one iteration per particle relative to one peri/nosb explicit step "
               "((time per step / iterations per step) / peri/nosb time per step; goal <= 1.5)")
-        print(f"{'iteration':<16}" + "".join(f"{c:>24}" for c in cells))
+        for style in solvers:
+            cells = []
+            for r in args.ranks:
+                per_iteration = results[style, r] / iterations[style, r]
+                cells.append(f"{per_iteration / results['peri/nosb', r]:10.2f}x")
+            print(f"{style:<16}" + "".join(f"{c:>24}" for c in cells))
 
 
 if __name__ == "__main__":
