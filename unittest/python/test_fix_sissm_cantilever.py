@@ -36,13 +36,14 @@ def explicit_limit_brackets(name, workdir):
     return stable(0.9 * dt, "below") and not stable(1.15 * dt, "above")
 
 
-def test_static_equilibrium_is_a_fixed_point(tmp_path):
+@pytest.mark.parametrize("solver", ["jacobi", "krylov"])
+def test_static_equilibrium_is_a_fixed_point(tmp_path, solver):
     name = "cantilever 16x4x4"
     assert explicit_limit_brackets(name, tmp_path / "limit")
     run = run_deck(CANTILEVER, tmp_path / "run", variables={
         **cantilever(name), "nrelax": 3000, "gamma": GAMMA, "dt_nve": 0.7 * EXPLICIT_LIMIT[name],
         "nsissm": 20, "dt_sissm": 100.0 * EXPLICIT_LIMIT[name], "iters": 5,
-        "thermo_every": 100, "dump_every": 1})
+        "solver": solver, "thermo_every": 100, "dump_every": 1})
     relax, sissm = run.thermo[0], run.thermo[1]
     # the explicit relaxation is at rest: the tip moved by less than 1e-6 of its deflection
     # over the last 1000 steps (measured 1e-9)
@@ -62,7 +63,8 @@ def test_static_equilibrium_is_a_fixed_point(tmp_path):
     assert np.all(sissm["f_integrate[4]"] == 0)
 
 
-def test_converged_steps_reach_the_explicit_rest_deflection(tmp_path):
+@pytest.mark.parametrize("solver", ["jacobi", "krylov"])
+def test_converged_steps_reach_the_explicit_rest_deflection(tmp_path, solver):
     # The 10x3x3 beam (the 16x4x4 one costs ~1.7e5 sweeps of 256 particles to settle). Each
     # SISSM step is converged (residual tolerance 1e-10 of the spacing): backward Euler at 100x damps the fundamental
     # (omega h ~ 3) by ~8 per step, so 4 steps reach the rest deflection to ~1e-3 (measured
@@ -77,7 +79,7 @@ def test_converged_steps_reach_the_explicit_rest_deflection(tmp_path):
     assert abs(tip[-1] - tip[-11]) < 1e-6 * abs(tip[-1])
     sissm = run_deck(CANTILEVER, tmp_path / "sissm", variables={
         **cantilever(name), "nsissm": 4, "dt_sissm": 100.0 * EXPLICIT_LIMIT[name],
-        "iters": 1000000, "tol": 1e-10, "thermo_every": 1})
+        "iters": 1000000, "tol": 1e-10, "solver": solver, "thermo_every": 1})
     t = sissm.thermo[0]
     assert np.all(t["f_integrate[4]"] == 0)
     assert t["c_tipdz"][-1] == pytest.approx(tip[-1], rel=0.01)
