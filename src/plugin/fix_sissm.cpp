@@ -64,7 +64,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     relax(0), implicit_external(1), dtv(0.0), last_iterations(0), last_measure(0.0),
     nsteps_run(0), iterations_run(0), unconverged_run(0), warned(0), nmax(0), evaluations(0),
     fint(nullptr), yn(nullptr), yhat(nullptr), res(nullptr), block(nullptr), rprev(nullptr),
-    dprev(nullptr), xbase(nullptr), rbase(nullptr), cres(nullptr), zdir(nullptr),
+    dprev(nullptr), xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr),
     pdir(nullptr), sdir(nullptr), term(nullptr)
 {
   time_integrate = 1;
@@ -164,8 +164,8 @@ void FixSissm::reset_dt()
 
 void FixSissm::destroy_arrays()
 {
-  for (double ***a : {&fint, &yn, &yhat, &res, &block, &rprev, &dprev, &xbase, &rbase, &cres,
-                      &zdir, &pdir, &sdir})
+  for (double ***a : {&fint, &yn, &yhat, &res, &block, &rprev, &dprev, &xbase, &rbase, &jbase,
+                      &cres, &zdir, &pdir, &sdir})
     memory->destroy(*a);
   memory->destroy(term);
 }
@@ -185,7 +185,7 @@ void FixSissm::grow()
     memory->create(dprev, nmax, 3, "sissm:dprev");
   }
   if (solver == KRYLOV) {
-    for (double ***a : {&xbase, &rbase, &cres, &zdir, &pdir, &sdir})
+    for (double ***a : {&xbase, &rbase, &jbase, &cres, &zdir, &pdir, &sdir})
       memory->create(*a, nmax, 3, "sissm:krylov");
     memory->create(term, nmax, "sissm:term");
   }
@@ -481,8 +481,11 @@ double FixSissm::solve_jacobi()
    max(tolerance/4, eta * measure) (eta: Eisenstat-Walker), at non-positive curvature (then
    the SISSM correction is used if CG has no step yet) or at the evaluation budget.
    Safeguard: a Newton step that increases phi = sum_i V_i |r_i|^2 / rho_i is halved (at most
-   4 times). When the budget ends at a fresh evaluation, one SISSM sweep uses it, so krylov
-   with iterations 1 equals jacobi with iterations 1.
+   4 times). Budget (maxiter evaluations, never more): CG keeps one evaluation to check its
+   Newton iterate; when that check finds it worse than its base and no budget is left, the
+   step ends at the base plus its SISSM correction D^-1 r; when the budget ends at an accepted
+   evaluation, one SISSM sweep uses it, so krylov with iterations 1 equals jacobi with
+   iterations 1.
 ------------------------------------------------------------------------- */
 
 double FixSissm::solve_krylov()
@@ -504,12 +507,22 @@ double FixSissm::solve_krylov()
     MPI_Allreduce(&local, &measure, 1, MPI_DOUBLE, MPI_MAX, world);
     if (measure <= tolerance) break;
     const double phi = merit();
-    if (have_base && phi > phi_base && halvings < 4 && evaluations < maxiter) {
+    const int worse = have_base && phi > phi_base;
+    if (worse && halvings < 4 && evaluations < maxiter) {
       halvings++;
       axpy_positions(xbase, ldexp(1.0, -halvings), sdir);
       continue;
     }
-    if (evaluations >= maxiter) {
+    if (worse && evaluations >= maxiter) {
+      // the budget ends on a Newton iterate worse than its base: take the SISSM correction
+      // of the base instead (the plain sweep, robust where a truncated Newton step is not)
+      axpy_positions(xbase, 1.0, jbase);
+      check_finite();
+      measure = measure_prev;
+      break;
+    }
+    if (evaluations >= maxiter - 1) {
+      // no budget left for a CG product and the check of its Newton iterate
       sweep(1);
       break;
     }
@@ -531,12 +544,12 @@ double FixSissm::solve_krylov()
     precondition(cres, zdir);
     for (int i = 0; i < nlocal; i++)
       if (mask[i] & groupbit)
-        for (int k = 0; k < 3; k++) pdir[i][k] = zdir[i][k];
+        for (int k = 0; k < 3; k++) pdir[i][k] = jbase[i][k] = zdir[i][k];
     double rz = dot(cres, zdir);
     const double target = fmax(0.25 * tolerance, eta * measure);
     int cg = 0;
 
-    while (evaluations < maxiter && rz > 0.0) {
+    while (evaluations < maxiter - 1 && rz > 0.0) {
       const double e = 1.0e-7 / scaled_max(pdir, 0);
       axpy_positions(xbase, e, pdir);
       evaluate(0);
@@ -662,6 +675,6 @@ double FixSissm::memory_usage()
   int arrays = 3 * 3 + 6;    // yn, yhat, res, block
   if (!implicit_external) arrays += 3;
   if (relax) arrays += 6;
-  if (solver == KRYLOV) arrays += 19;
+  if (solver == KRYLOV) arrays += 22;
   return (double) arrays * nmax * sizeof(double);
 }

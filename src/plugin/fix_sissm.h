@@ -60,7 +60,7 @@ class FixSissm : public Fix {
   double **res;         // backward-Euler residual of the last evaluation
   double **block;       // implicit block sum_j omega_ij (H_i + H_j + S_ij) per owned atom
   double **rprev, **dprev;   // relax: residual and correction of the previous sweep
-  double **xbase, **rbase, **cres, **zdir, **pdir, **sdir;   // krylov work vectors
+  double **xbase, **rbase, **jbase, **cres, **zdir, **pdir, **sdir;   // krylov vectors
   double *term;         // krylov: per-atom terms of a global sum
 
   void grow();

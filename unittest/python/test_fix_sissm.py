@@ -402,6 +402,23 @@ def test_too_few_iterations_are_counted_and_warned_once_per_run(tmp_path):
     assert all("f_integrate[4]" in w for w in warnings)
 
 
+@pytest.mark.parametrize("solver", ["jacobi", "krylov"])
+@pytest.mark.parametrize("iters", [1, 2, 5, 10])
+def test_the_iteration_limit_is_the_number_of_force_evaluations(tmp_path, solver, iters):
+    # an iteration is one force evaluation for both solvers, and a step never uses more than
+    # `iterations` of them (krylov keeps one for checking its last Newton iterate); with a
+    # tolerance that cannot be met, jacobi uses them all, krylov all or all but one (a Newton
+    # residual evaluated with one left over gets a SISSM correction instead of a CG product
+    # that could not be checked)
+    run = run_deck(BLOCK, tmp_path, variables={**COUNTER_STATE, "iters": iters, "tol": 1e-14,
+                                               "solver": solver})
+    t = run.thermo[-1]
+    used = t["f_integrate[1]"][1:]
+    assert np.all(used <= iters)
+    assert np.all(used >= (iters if solver == "jacobi" else max(iters - 1, 1)))
+    assert np.all(t["f_integrate[4]"][1:] == t["Step"][1:])
+
+
 def test_enough_iterations_are_not_counted(tmp_path):
     run = run_deck(BLOCK, tmp_path, variables={**COUNTER_STATE, "iters": 100000,
                                                "tol": 1e-8})
