@@ -311,20 +311,28 @@ double FixSissm::evaluate(int blocks)
 }
 
 /* ----------------------------------------------------------------------
+   D_i = rho_i I + h^2 block_i of owned atom i (xx yy zz xy xz yz)
+------------------------------------------------------------------------- */
+
+void FixSissm::particle_block(int i, double D[6]) const
+{
+  const double rho = atom->rmass[i], h2 = dtv * dtv;
+  const double *a = block[i];
+  for (int k = 0; k < 6; k++) D[k] = (k < 3 ? rho : 0.0) + h2 * a[k];
+}
+
+/* ----------------------------------------------------------------------
    z_i = D_i^-1 r_i for the owned atoms of the group (the SISSM correction of r)
 ------------------------------------------------------------------------- */
 
 void FixSissm::precondition(double **r, double **z)
 {
-  double *rho = atom->rmass;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const double h2 = dtv * dtv;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    const double *a = block[i];
-    const double D[6] = {rho[i] + h2 * a[0], rho[i] + h2 * a[1], rho[i] + h2 * a[2],
-                         h2 * a[3],          h2 * a[4],          h2 * a[5]};
+    double D[6];
+    particle_block(i, D);
     solve_spd3(D, r[i], z[i]);
   }
 }
@@ -417,17 +425,14 @@ void FixSissm::check_finite()
 void FixSissm::sweep(int first)
 {
   double **x = atom->x;
-  double *rho = atom->rmass;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const double h2 = dtv * dtv;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     const double *r = res[i];
-    const double *a = block[i];
-    const double D[6] = {rho[i] + h2 * a[0], rho[i] + h2 * a[1], rho[i] + h2 * a[2],
-                         h2 * a[3],          h2 * a[4],          h2 * a[5]};
+    double D[6];
+    particle_block(i, D);
     double d[3];
     solve_spd3(D, r, d);
 

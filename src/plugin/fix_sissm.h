@@ -67,6 +67,7 @@ class FixSissm : public Fix {
   void destroy_arrays();
   void capture_internal_force();
   double evaluate(int blocks);
+  void particle_block(int i, double D[6]) const;
   void precondition(double **r, double **z);
   double dot(double **a, double **b);
   double reproducible_sum(const double *t, int n);
