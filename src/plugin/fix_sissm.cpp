@@ -490,7 +490,7 @@ double FixSissm::solve_jacobi()
    Newton iterate; when that check finds it worse than its base and no budget is left, the
    step ends at the base plus its SISSM correction D^-1 r; when the budget ends at an accepted
    evaluation, one SISSM sweep uses it, so krylov with iterations 1 equals jacobi with
-   iterations 1.
+   iterations 1. The evaluation that meets the tolerance also gives its SISSM correction.
 ------------------------------------------------------------------------- */
 
 double FixSissm::solve_krylov()
@@ -510,7 +510,13 @@ double FixSissm::solve_krylov()
   while (true) {
     const double local = evaluate(1);
     MPI_Allreduce(&local, &measure, 1, MPI_DOUBLE, MPI_MAX, world);
-    if (measure <= tolerance) break;
+    if (measure <= tolerance) {
+      // as jacobi does: the evaluation that meets the tolerance still gives its SISSM
+      // correction (free, and at small steps, where the start y^n + h v^n may already meet a
+      // loose tolerance, it is what moves the body by h^2 f / rho)
+      sweep(1);
+      break;
+    }
     const double phi = merit();
     const int worse = have_base && phi > phi_base;
     if (worse && halvings < 4 && evaluations < maxiter) {
