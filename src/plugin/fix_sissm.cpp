@@ -261,12 +261,13 @@ void FixSissm::unpack_reverse_comm(int n, int *list, double *buf)
    external implicit the post_force of the other fixes (with v = (y - y^n)/h, so velocity
    dependent forces such as fix viscous are implicit too), then the backward-Euler residual
    r_i = rho_i (yhat_i - y_i) + h^2 f_i of the owned atoms of the group into res.
-   Returns the local convergence measure max_i |r_i| / (rho_i V_i^(1/3)): the residual as a
-   length relative to the particle size. Near a stable state the Jacobian rho I + h^2 K is at
-   least rho, so |r|/rho bounds the distance to the solution; the size of a correction does not
+   Its convergence measure is scaled_max(res, 1) = max_i |r_i| / (rho_i V_i^(1/3)): the
+   residual as a length relative to the particle size. Near a stable state the Jacobian
+   rho I + h^2 K is at least rho, so |r|/rho bounds the distance to the solution; the size of
+   a correction does not
 ------------------------------------------------------------------------- */
 
-double FixSissm::evaluate(int blocks)
+void FixSissm::evaluate(int blocks)
 {
   evaluations++;
   comm->forward_comm();
@@ -274,7 +275,6 @@ double FixSissm::evaluate(int blocks)
   double **v = atom->v;
   double **f = atom->f;
   double *rho = atom->rmass;
-  double *vfrac = atom->vfrac;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -293,7 +293,6 @@ double FixSissm::evaluate(int blocks)
   }
   if (blocks) pair->implicit_blocks(block);
 
-  double measure = 0.0;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     double r2 = 0.0;
@@ -301,13 +300,10 @@ double FixSissm::evaluate(int blocks)
       res[i][k] = rho[i] * (yhat[i][k] - x[i][k]) + h2 * f[i][k];
       r2 += res[i][k] * res[i][k];
     }
-    const double m = sqrt(r2) / (rho[i] * cbrt(vfrac[i]));
-    if (!(m < HUGE_VAL))
+    if (!std::isfinite(r2))
       error->one(FLERR, "Fix sissm: non-finite position or force of atom {} at step {}",
                  atom->tag[i], update->ntimestep);
-    if (m > measure) measure = m;
   }
-  return measure;
 }
 
 /* ----------------------------------------------------------------------
@@ -393,8 +389,8 @@ double FixSissm::scaled_max(double **a, int per_density)
   double local = 0.0, all = 0.0;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    double m = sqrt(a[i][0] * a[i][0] + a[i][1] * a[i][1] + a[i][2] * a[i][2]) / cbrt(vfrac[i]);
-    if (per_density) m /= rho[i];
+    const double size = per_density ? rho[i] * cbrt(vfrac[i]) : cbrt(vfrac[i]);
+    const double m = sqrt(a[i][0] * a[i][0] + a[i][1] * a[i][1] + a[i][2] * a[i][2]) / size;
     if (m > local) local = m;
   }
   MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -469,8 +465,8 @@ double FixSissm::solve_jacobi()
 {
   double measure = 0.0;
   for (int k = 0; k < maxiter; k++) {
-    const double local = evaluate(1);
-    MPI_Allreduce(&local, &measure, 1, MPI_DOUBLE, MPI_MAX, world);
+    evaluate(1);
+    measure = scaled_max(res, 1);
     sweep(k == 0);
     if (measure <= tolerance) break;
   }
@@ -508,8 +504,8 @@ double FixSissm::solve_krylov()
   };
 
   while (true) {
-    const double local = evaluate(1);
-    MPI_Allreduce(&local, &measure, 1, MPI_DOUBLE, MPI_MAX, world);
+    evaluate(1);
+    measure = scaled_max(res, 1);
     if (measure <= tolerance) {
       // as jacobi does: the evaluation that meets the tolerance still gives its SISSM
       // correction (free, and at small steps, where the start y^n + h v^n may already meet a

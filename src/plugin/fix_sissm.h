@@ -66,7 +66,7 @@ class FixSissm : public Fix {
   void grow();
   void destroy_arrays();
   void capture_internal_force();
-  double evaluate(int blocks);
+  void evaluate(int blocks);
   void particle_block(int i, double D[6]) const;
   void precondition(double **r, double **z);
   double dot(double **a, double **b);
