@@ -76,6 +76,12 @@ void ComputeNosbAtom::compute_peratom()
   int *type = atom->type;
   FixNosbFamily *family = pair->family;
   const bool ready = family && family->built;
+  // after read_restart, or after atoms were added or removed, the pair has no state for the
+  // current atoms until it has evaluated its forces
+  if (ready && !pair->state_current())
+    error->all(FLERR,
+               "Compute nosb/atom: pair peri/nosb has not evaluated the current atoms yet (the "
+               "compute reports the state of the last force evaluation; use 'run 0' first)");
 
   for (int i = 0; i < nlocal; i++) {
     double *v = values[i];

@@ -47,13 +47,17 @@ using namespace FixConst;
 static constexpr int NATOMDATA = 13;
 // doubles per bond in exchange and restart buffers: partner tag, omega
 static constexpr int NBONDDATA = 2;
+// global restart data: format version, built, maxpartner, periodic (3), box0 (6), tagmax0
+static constexpr int NGLOBAL = 13;
+// format of the restart data (global and per atom); 2: the first one with a version
+static constexpr int RESTART_VERSION = 2;
 
 /* ---------------------------------------------------------------------- */
 
 FixNosbFamily::FixNosbFamily(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), built(0), maxpartner(1), npartner(nullptr), partner(nullptr),
     omega(nullptr), kinv(nullptr), kregular(nullptr), vinit(nullptr), lamref(nullptr),
-    owntag(nullptr), jlocal(nullptr), nrefresh(0), any_periodic(0), tagmax0(0), pair(nullptr),
+    owntag(nullptr), jlocal(nullptr), any_periodic(0), tagmax0(0), pair(nullptr),
     list(nullptr)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix nosb/family command: no arguments expected");
@@ -312,7 +316,6 @@ double FixNosbFamily::damage(int i) const
 
 void FixNosbFamily::refresh_local_indices()
 {
-  nrefresh++;
   pair->neighbor_rebuilt();
   if (!built) return;
   const int nlocal = atom->nlocal;
@@ -474,17 +477,6 @@ int FixNosbFamily::local_index(tagint jtag) const
 
 /* ---------------------------------------------------------------------- */
 
-int FixNosbFamily::partner_index(int i, int b)
-{
-  const tagint jtag = partner[i][b];
-  if (jtag == 0) return -1;
-  const int j = local_index(jtag);
-  if (j < 0) missing_partner(i, jtag);
-  return domain->closest_image(i, j);
-}
-
-/* ---------------------------------------------------------------------- */
-
 void FixNosbFamily::missing_partner(int i, tagint jtag)
 {
   error->one(FLERR,
@@ -597,26 +589,35 @@ int FixNosbFamily::unpack_exchange(int nlocal, double *buf)
 
 void FixNosbFamily::write_restart(FILE *fp)
 {
-  double list[12] = {(double) built, (double) maxpartner, (double) periodic[0],
-                     (double) periodic[1], (double) periodic[2], box0[0], box0[1], box0[2],
-                     box0[3], box0[4], box0[5], ubuf(tagmax0).d};
+  double list[NGLOBAL] = {(double) RESTART_VERSION, (double) built, (double) maxpartner,
+                          (double) periodic[0], (double) periodic[1], (double) periodic[2],
+                          box0[0], box0[1], box0[2], box0[3], box0[4], box0[5],
+                          ubuf(tagmax0).d};
   if (comm->me == 0) {
-    int size = 12 * sizeof(double);
+    int size = NGLOBAL * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 12, fp);
+    fwrite(list, sizeof(double), NGLOBAL, fp);
   }
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   a file of another format version is refused before its per-atom data are read
+------------------------------------------------------------------------- */
 
 void FixNosbFamily::restart(char *buf)
 {
   auto list = (double *) buf;
-  built = static_cast<int>(list[0]);
-  maxpartner = std::max(static_cast<int>(list[1]), 1);
-  for (int k = 0; k < 3; k++) periodic[k] = static_cast<int>(list[2 + k]);
-  for (int k = 0; k < 6; k++) box0[k] = list[5 + k];
-  tagmax0 = (tagint) ubuf(list[11]).i;
+  if (list[0] != (double) RESTART_VERSION)
+    error->all(FLERR,
+               "Pair peri/nosb: the restart file holds bond families of another format version "
+               "({} instead of {}): write the restart file again with this build (or use the "
+               "build that wrote it)",
+               list[0], (int) RESTART_VERSION);
+  built = static_cast<int>(list[1]);
+  maxpartner = std::max(static_cast<int>(list[2]), 1);
+  for (int k = 0; k < 3; k++) periodic[k] = static_cast<int>(list[3 + k]);
+  for (int k = 0; k < 6; k++) box0[k] = list[6 + k];
+  tagmax0 = (tagint) ubuf(list[12]).i;
   any_periodic = periodic[0] || periodic[1] || periodic[2];
   maxexchange = 1 + NATOMDATA + NBONDDATA * maxpartner;
 

@@ -80,9 +80,6 @@ class FixNosbFamily : public Fix {
       else if (dx < -0.5 * box0[0]) dx += box0[0];
     }
   }
-  // local index of the partner in slot b of local atom i (closest image), -1 if broken;
-  // uses the atom map (valid at any time, unlike jlocal), errors if the partner is missing
-  int partner_index(int i, int b);
 
   // state (read by pair peri/nosb, compute nosb/atom and integrators)
   // The reference bond is not stored: xi = x0_j - x0_i (x0 = positions when the families
@@ -100,7 +97,6 @@ class FixNosbFamily : public Fix {
   tagint *owntag;     // the atom's own ID when its family was stored (detects renumbering)
   int **jlocal;       // local index (closest image) of each partner of each owned atom,
                       //   -1 for broken bonds; refreshed after every neighbor list build
-  bigint nrefresh;    // incremented whenever jlocal is refreshed
   int periodic[3];    // periodicity of the box when the families were built
   double box0[6];     // that box: xprd yprd zprd yz xz xy
   int any_periodic;

@@ -30,8 +30,10 @@
      force state of its own, W = 0; its bonds carry the partners' force states, and their
      stabilization uses the partner's F alone (a bond between two such particles is inert).
    - breaking: every force evaluation of a run checks every bond once, before F is formed,
-     with s0 of the previous evaluation; a broken bond already counts as broken in that
-     evaluation. The setup evaluation at the start of a run breaks nothing (refreshes s0).
+     against the critical stretch of its type pair, s00_IJ - alpha_IJ max(s_min,i, s_min,j),
+     with the smallest bond stretches s_min of the previous evaluation (kept in atom->s0); a
+     broken bond already counts as broken in that evaluation. The setup evaluation at the
+     start of a run breaks nothing (refreshes s_min).
    - short-range contact as the built-ins, but only between particles that are not bonded.
    - per-atom virial: each bond's force is equal and opposite at its two ends; each end
      tallies half of (x_i - x_j) (x) (force on i), as pair peri/lps does; sum over atoms of
@@ -64,6 +66,8 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <string>
+#include <vector>
 
 using namespace LAMMPS_NS;
 
@@ -86,8 +90,11 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     alpha(nullptr), cs(nullptr), breakflag(nullptr), contactflag(nullptr), kcontact(nullptr),
     materials(nullptr), any_break(0), any_stab(0), any_contact(0), uniform_break(0), hmax(0.0),
     contact_first(nullptr), contact_neigh(nullptr), contact_maxfirst(0), contact_maxneigh(0),
-    contact_inum(-1), nmax(0), commflag(COMM_STATE), s0_new(nullptr)
+    contact_inum(-1), contact_margin(0.0), track_motion(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
+    state_nlocal(-1), nmax(0), commflag(COMM_STATE), s0_new(nullptr)
 {
+  contact_groupbit = 0;
+  contact_crossings = 0;
   single_enable = 0;
   no_virial_fdotr_compute = 1;    // forces are densities: f.r is not the virial
   restartinfo = 1;
@@ -107,6 +114,8 @@ PairPeriNosb::~PairPeriNosb()
   memory->destroy(s0_new);
   memory->destroy(contact_first);
   memory->destroy(contact_neigh);
+  memory->destroy(xneigh);
+  memory->destroy(xcontact);
 
   if (allocated) {
     memory->destroy(setflag);
@@ -377,9 +386,11 @@ void PairPeriNosb::init_style()
   if (!family)
     family = dynamic_cast<FixNosbFamily *>(modify->add_fix("NOSB_FAMILY all nosb/family"));
 
-  // a half neighbor list only for short-range contact
+  // a half neighbor list only for short-range contact (an implicit integrator asks again
+  // for the motion tracking in its own init, which follows this one)
 
   if (any_contact) neighbor->add_request(this);
+  track_contact_motion(0);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -442,7 +453,7 @@ void PairPeriNosb::compute(int eflag, int vflag)
 
   // (1) F, A = P K^-1, W, C per owned atom, with the bond checks.
   // Bonds break in every force evaluation of a run, but not in the setup evaluation at the
-  // start of a run (it only refreshes s0): a run split into several (or by a restart) then
+  // start of a run (it only refreshes s_min): a run split into several (or by a restart) then
   // breaks exactly the bonds the unsplit run breaks.
 
   const int pbc = family->any_periodic;
@@ -484,27 +495,39 @@ void PairPeriNosb::compute(int eflag, int vflag)
       if (eflag_atom) eatom[i] += wdens[i];
     }
   }
+  state_nlocal = atom->nlocal;
+}
+
+/* ---------------------------------------------------------------------- */
+
+bool PairPeriNosb::state_current() const
+{
+  return gstate && state_nlocal == atom->nlocal;
 }
 
 /* ----------------------------------------------------------------------
-   bond check (MODE = BREAK: break and s0; S0ONLY: s0 only)
-   A bond breaks when its stretch (|eta| - |xi|)/|xi| exceeds min(s0_i, s0_j), with s0 from
-   the previous evaluation; both ends see the same stretch and the same s0 values, so both
-   families lose the bond in the same evaluation, and it no longer counts in this one.
-   s0_i = max over unbroken bonds of (s00_IJ - alpha_IJ stretch) applies from the next
-   evaluation. r2 = |eta|^2, q2 = |xi|^2. UNIFORM (all type pairs breakable with the same s00
-   and alpha): compared as r2 > (1 + s0)^2 q2, and the smallest r2/q2 kept as the fraction
-   acc/den, so s0_i = s00 - alpha (smallest stretch) costs no division or sqrt per bond.
-   Otherwise acc is the largest s00_IJ - alpha_IJ stretch. Returns true if the bond breaks.
+   bond check (MODE = BREAK: break and update s_min; S0ONLY: s_min only)
+   The critical stretch of bond ij is the one its type pair gives (pair_coeff I J):
+     s0_ij = s00_IJ - alpha_IJ max(s_min,i, s_min,j)
+   where s_min,i is the smallest stretch among the unbroken bonds of i at the previous
+   evaluation (kept in atom->s0, which atom_style peri communicates to ghosts, migrates and
+   writes to restart files). For a single pair of s00 and alpha this is the rule of peri/lps,
+   min(s0_i, s0_j) with s0_i = s00 - alpha s_min,i. A bond breaks when its stretch
+   (|eta| - |xi|)/|xi| exceeds s0_ij; both ends see the same stretch and the same s_min values,
+   so both families lose the bond in the same evaluation, and it no longer counts in this one.
+   r2 = |eta|^2, q2 = |xi|^2, smax = max(s_min,i, s_min,j). UNIFORM (all type pairs breakable
+   with the same s00 and alpha): compared as r2 > (1 + s0_ij)^2 q2, and the smallest r2/q2
+   kept as the fraction acc/den, so that s_min costs no division or sqrt per bond. Otherwise
+   acc is the smallest stretch. Returns true if the bond breaks.
 ------------------------------------------------------------------------- */
 
 template <int MODE, int UNIFORM>
-inline bool PairPeriNosb::check_bond(double r2, double q2, int itype, int jtype, double s0min,
+inline bool PairPeriNosb::check_bond(double r2, double q2, int itype, int jtype, double smax,
                                      double &acc, double &den) const
 {
   if (UNIFORM) {
     if (MODE == BREAK) {
-      const double lim = 1.0 + s0min;
+      const double lim = 1.0 + s00[1][1] - alpha[1][1] * smax;
       if (lim < 0.0 || r2 > lim * lim * q2) return true;
     }
     if (r2 * den < acc * q2) {
@@ -513,22 +536,24 @@ inline bool PairPeriNosb::check_bond(double r2, double q2, int itype, int jtype,
     }
   } else {
     const double stretch = sqrt(r2 / q2) - 1.0;
-    if (MODE == BREAK && breakflag[itype][jtype] && stretch > s0min) return true;
-    acc = std::max(acc, s00[itype][jtype] - alpha[itype][jtype] * stretch);
+    if (MODE == BREAK && breakflag[itype][jtype] &&
+        stretch > s00[itype][jtype] - alpha[itype][jtype] * smax)
+      return true;
+    acc = std::min(acc, stretch);
     den = 1.0;
   }
   return false;
 }
 
 /* ----------------------------------------------------------------------
-   s0 from the accumulated bond checks; s0old if there was no unbroken bond
+   s_min from the accumulated bond checks; sold if there was no unbroken bond
 ------------------------------------------------------------------------- */
 
-template <int UNIFORM> inline double PairPeriNosb::s0_from(double acc, double den,
-                                                          double s0old) const
+template <int UNIFORM> inline double PairPeriNosb::smin_from(double acc, double den,
+                                                            double sold) const
 {
-  if (den == 0.0) return s0old;
-  if (UNIFORM) return s00[1][1] - alpha[1][1] * (sqrt(acc / den) - 1.0);
+  if (den == 0.0) return sold;
+  if (UNIFORM) return sqrt(acc / den) - 1.0;
   return acc;
 }
 
@@ -549,7 +574,7 @@ template <int MODE, int UNIFORM, int PBC> void PairPeriNosb::compute_state()
   double **kinv = family->kinv;
   int *kregular = family->kregular;
   int **jlocal = family->jlocal;
-  constexpr double ACC0 = UNIFORM ? 1.0 : -DBL_MAX;
+  constexpr double ACC0 = UNIFORM ? 1.0 : DBL_MAX;
 
   for (int i = 0; i < nlocal; i++) {
     const int itype = type[i];
@@ -562,7 +587,7 @@ template <int MODE, int UNIFORM, int PBC> void PairPeriNosb::compute_state()
            m21 = 0.0, m22 = 0.0;
     double acc = ACC0, den = 0.0;
     int broke = 0;
-    const double s0i = (MODE != NOBREAK) ? s0[i] : 0.0;
+    const double smini = (MODE != NOBREAK) ? s0[i] : 0.0;    // s_min of i (see check_bond)
 
     for (int b = 0; b < n; b++) {
       const int j = jl[b];
@@ -578,7 +603,7 @@ template <int MODE, int UNIFORM, int PBC> void PairPeriNosb::compute_state()
         const double r2 = e0 * e0 + e1 * e1 + e2 * e2;
         const double q2 = x0 * x0 + x1 * x1 + x2 * x2;
         const int jtype = UNIFORM ? 1 : type[j];
-        if (check_bond<MODE, UNIFORM>(r2, q2, itype, jtype, std::min(s0i, s0[j]), acc, den)) {
+        if (check_bond<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, s0[j]), acc, den)) {
           partner[i][b] = 0;
           jl[b] = -1;
           broke = 1;
@@ -599,7 +624,7 @@ template <int MODE, int UNIFORM, int PBC> void PairPeriNosb::compute_state()
     }
 
     if (MODE != NOBREAK) {
-      s0_new[i] = s0_from<UNIFORM>(acc, den, s0i);
+      s0_new[i] = smin_from<UNIFORM>(acc, den, smini);
       if (broke) family->update_shape(i);
     }
 
@@ -856,62 +881,6 @@ void PairPeriNosb::implicit_blocks(double **block)
 }
 
 /* ----------------------------------------------------------------------
-   standalone bond check (for integrators that set external_breaking)
-------------------------------------------------------------------------- */
-
-void PairPeriNosb::break_bonds()
-{
-  grow_peratom();
-  if (!family->built || !any_break) return;
-  if (update->setupflag) {
-    if (uniform_break) check_bonds<S0ONLY, 1>();
-    else check_bonds<S0ONLY, 0>();
-  } else {
-    if (uniform_break) check_bonds<BREAK, 1>();
-    else check_bonds<BREAK, 0>();
-  }
-  // (check_bonds uses the minimum image for the reference bond in any box: not a hot path)
-}
-
-/* ---------------------------------------------------------------------- */
-
-template <int MODE, int UNIFORM> void PairPeriNosb::check_bonds()
-{
-  const double *xf = atom->x[0];
-  int *type = atom->type;
-  double *s0 = atom->s0;
-  const int nlocal = atom->nlocal;
-  constexpr double ACC0 = UNIFORM ? 1.0 : -DBL_MAX;
-
-  for (int i = 0; i < nlocal; i++) {
-    const int itype = type[i];
-    int *jl = family->jlocal[i];
-    double acc = ACC0, den = 0.0;
-    int broke = 0;
-    for (int b = 0; b < family->npartner[i]; b++) {
-      const int j = jl[b];
-      if (j < 0) continue;
-      const double e0 = xf[3 * j] - xf[3 * i];
-      const double e1 = xf[3 * j + 1] - xf[3 * i + 1];
-      const double e2 = xf[3 * j + 2] - xf[3 * i + 2];
-      const double r2 = e0 * e0 + e1 * e1 + e2 * e2;
-      double xi[3];
-      family->reference_bond(i, j, xi);
-      const double q2 = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2];
-      const int jtype = UNIFORM ? 1 : type[j];
-      if (check_bond<MODE, UNIFORM>(r2, q2, itype, jtype, std::min(s0[i], s0[j]), acc, den)) {
-        family->partner[i][b] = 0;
-        jl[b] = -1;
-        broke = 1;
-      }
-    }
-    s0_new[i] = s0_from<UNIFORM>(acc, den, s0[i]);
-    if (broke) family->update_shape(i);
-  }
-  for (int i = 0; i < nlocal; i++) s0[i] = s0_new[i];
-}
-
-/* ----------------------------------------------------------------------
    is tag jtag an unbroken bond partner of owned atom i
 ------------------------------------------------------------------------- */
 
@@ -940,17 +909,18 @@ void PairPeriNosb::compute_contact(int eflag, int /*vflag*/)
   double **f = atom->f;
   double *vfrac = atom->vfrac;
   int *type = atom->type;
+  int *mask = atom->mask;
   tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
   const int periodic = family->any_periodic;
-  const double rmax = 1.35 * hmax;
+  const double rmax = contact_reach();
   const double rmaxsq = rmax * rmax;
 
   // candidates from the short list made at the last neighbor list build
   // (built here only if that did not happen, e.g. a compute without a run)
 
-  if (contact_inum != list->inum) build_contact_list();
+  if (contact_inum != list->inum) build_contact_list(neighbor->skin);
 
   const int *ilist = list->ilist;
   for (int ii = 0; ii < contact_inum; ii++) {
@@ -976,6 +946,7 @@ void PairPeriNosb::compute_contact(int eflag, int /*vflag*/)
       const double d = std::min(d0, 0.675 * (cbrt(vfrac[i]) + cbrt(vfrac[j])));
       if (r >= d) continue;
       if (bonded(i, tag[j])) continue;
+      if ((mask[i] ^ mask[j]) & contact_groupbit) contact_crossings++;
 
       const double dr = r - d;    // < 0
       const double kc = kcontact[itype][jtype] / cut[itype][jtype];
@@ -1003,19 +974,151 @@ void PairPeriNosb::compute_contact(int eflag, int /*vflag*/)
 
 void PairPeriNosb::neighbor_rebuilt()
 {
-  if (any_contact && list) build_contact_list();
+  if (!any_contact || !list) return;
+  if (track_motion) {
+    grow_motion();
+    double **x = atom->x;
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < 3; k++) xneigh[i][k] = x[i][k];
+  }
+  build_contact_list(neighbor->skin);
 }
 
 /* ----------------------------------------------------------------------
-   pairs of the neighbor list closer than the contact range + skin: the pair neighbor list
-   reaches horizon + skin, but only these pairs can come within the contact range before the
-   next neighbor list build (each atom moves less than skin/2 from where it was at the build)
+   largest distance at which two particles touch: 1.35 x the largest particle size
 ------------------------------------------------------------------------- */
 
-void PairPeriNosb::build_contact_list()
+double PairPeriNosb::contact_reach() const
+{
+  return 1.35 * hmax;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::track_contact_motion(int flag)
+{
+  track_motion = flag && any_contact;
+  if (!track_motion) {
+    memory->destroy(xneigh);
+    memory->destroy(xcontact);
+    nmotion = 0;
+  }
+}
+
+void PairPeriNosb::grow_motion()
+{
+  if (atom->nmax <= nmotion) return;
+  nmotion = atom->nmax;
+  memory->grow(xneigh, nmotion, 3, "pair:xneigh");
+  memory->grow(xcontact, nmotion, 3, "pair:xcontact");
+}
+
+/* ----------------------------------------------------------------------
+   keep the contact candidates complete while an implicit step moves the atoms (see the
+   header). Candidates chosen at positions x_c with a margin m (all pairs of the neighbor list
+   within reach + m) cover every pair within contact reach while no atom has moved m/2 from
+   x_c. Beyond that they are chosen again, at the current positions, with the margin skin/4;
+   the neighbor list holds the pairs within horizon + skin of its build (positions x_n), so the
+   new choice is complete only while reach + skin/4 + 2 max|x - x_n| <= horizon + skin. Farther
+   motion within one step is an error (a pair could touch that the list does not hold, or
+   that is not even a ghost). The integrator asks for a neighbor list build after every step
+   that moved an atom more than skin/8 (contact_reneighbor_wanted()), so a step starts with
+   max|x - x_n| <= skin/8 and may move atoms by (horizon - reach)/2 + skin/4.
+   One global max per call (two values).
+------------------------------------------------------------------------- */
+
+int PairPeriNosb::contact_follow_motion()
+{
+  if (!track_motion || !list || contact_inum != list->inum) return 0;
+  double moved;
+  tagint worst;
+  const double dc = motion_since(xcontact, &moved, &worst);
+  // (non-finite positions are the integrator's to report)
+  if (!(dc >= 0.5 * contact_margin) || !std::isfinite(moved)) return 0;
+
+  // the smallest horizon among the type pairs with contact bounds the neighbor list's reach
+  const double skin = neighbor->skin;
+  double hzmin = DBL_MAX;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (contactflag[i][j]) hzmin = std::min(hzmin, cut[i][j]);
+  const double margin = 0.25 * skin;
+  if (contact_reach() + margin + 2.0 * moved > hzmin + skin) {
+    // name the atom that moved farthest (the smallest ID among equals, on any rank count)
+    tagint idall;
+    MPI_Allreduce(&worst, &idall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+    error->all(FLERR,
+               "Pair peri/nosb: within the implicit step {} atom {} moved {:.4g} from where it "
+               "was at the last neighbor list build, farther than short-range contact can "
+               "follow inside one step with neighbor skin {:.4g} (a step may move atoms by "
+               "(horizon - 1.35 x particle size) / 2 + skin / 4 = {:.4g}); use a smaller time "
+               "step, a neighbor skin of at least {:.4g}, or turn contact off for these types "
+               "(pair_coeff ... contact no)",
+               update->ntimestep, idall, moved, skin,
+               0.5 * (hzmin - contact_reach()) + 0.25 * skin,
+               2.0 * (2.0 * moved + contact_reach() - hzmin));
+  }
+  build_contact_list(margin);
+  return 1;
+}
+
+/* ----------------------------------------------------------------------
+   largest distance of an owned atom from its position in ref (all ranks); also the largest
+   distance from the last neighbor list build and (in *worst) the ID of the atom that moved
+   farthest from it on this rank if that is the global largest, else MAXTAGINT
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::motion_since(double **ref, double *moved, tagint *worst)
+{
+  grow_motion();
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  double local[2] = {0.0, 0.0}, all[2];
+  int iworst = -1;
+  for (int i = 0; i < nlocal; i++) {
+    double dr = 0.0, dn = 0.0;
+    for (int k = 0; k < 3; k++) {
+      dr += (x[i][k] - ref[i][k]) * (x[i][k] - ref[i][k]);
+      dn += (x[i][k] - xneigh[i][k]) * (x[i][k] - xneigh[i][k]);
+    }
+    local[0] = std::max(local[0], dr);
+    if (dn > local[1]) {
+      local[1] = dn;
+      iworst = i;
+    }
+  }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  *moved = sqrt(all[1]);
+  *worst = (iworst >= 0 && local[1] == all[1]) ? atom->tag[iworst] : MAXTAGINT;
+  return sqrt(all[0]);
+}
+
+/* ----------------------------------------------------------------------
+   true when an atom has moved more than skin/8 since the last neighbor list build (all
+   ranks agree): an implicit integrator then asks for a build before its next step
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_reneighbor_wanted()
+{
+  if (!track_motion || !list) return false;
+  double moved;
+  tagint worst;
+  motion_since(xneigh, &moved, &worst);
+  return moved > 0.125 * neighbor->skin;
+}
+
+/* ----------------------------------------------------------------------
+   pairs of the neighbor list closer than the contact range + margin (the skin at a neighbor
+   list build): the pair neighbor list reaches horizon + skin, but only these pairs can come
+   within the contact range before the next neighbor list build (each atom moves less than
+   skin/2 from where it was at the build)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::build_contact_list(double margin)
 {
   double **x = atom->x;
-  const double rc = 1.35 * hmax + neighbor->skin;
+  contact_margin = margin;
+  const double rc = contact_reach() + margin;
   const double rcsq = rc * rc;
   const int inum = list->inum;
   int *ilist = list->ilist;
@@ -1047,6 +1150,11 @@ void PairPeriNosb::build_contact_list()
   }
   contact_first[inum] = n;
   contact_inum = inum;
+  if (track_motion) {
+    grow_motion();
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < 3; k++) xcontact[i][k] = x[i][k];
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -1098,11 +1206,16 @@ void PairPeriNosb::unpack_forward_comm(int n, int first, double *buf)
 
 void PairPeriNosb::write_restart(FILE *fp)
 {
+  const int version = RESTART_VERSION;
+  fwrite(&version, sizeof(int), 1, fp);
   for (int i = 1; i <= atom->ntypes; i++) {
     for (int j = i; j <= atom->ntypes; j++) {
       fwrite(&setflag[i][j], sizeof(int), 1, fp);
       if (setflag[i][j]) {
-        fwrite(&model[i][j], sizeof(int), 1, fp);
+        const std::string &name = PeriSISSM::material_names()[model[i][j]];
+        const int len = (int) name.size() + 1;
+        fwrite(&len, sizeof(int), 1, fp);
+        fwrite(name.c_str(), sizeof(char), len, fp);
         fwrite(&breakflag[i][j], sizeof(int), 1, fp);
         fwrite(&contactflag[i][j], sizeof(int), 1, fp);
         fwrite(&bulk[i][j], sizeof(double), 1, fp);
@@ -1117,38 +1230,61 @@ void PairPeriNosb::write_restart(FILE *fp)
 }
 
 /* ----------------------------------------------------------------------
-   proc 0 reads from restart file, bcasts
+   proc 0 reads from restart file, bcasts; the model is stored by name, and a file of another
+   format version is refused (rather than read as garbage)
 ------------------------------------------------------------------------- */
 
 void PairPeriNosb::read_restart(FILE *fp)
 {
   allocate();
   const int me = comm->me;
+  int version = 0;
+  if (me == 0) utils::sfread(FLERR, &version, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&version, 1, MPI_INT, 0, world);
+  if (version != RESTART_VERSION)
+    error->all(FLERR,
+               "Pair peri/nosb: the restart file holds pair data of format version {}, this "
+               "build reads version {}: write the restart file again with this build (or use "
+               "the build that wrote it)",
+               version, (int) RESTART_VERSION);
   for (int i = 1; i <= atom->ntypes; i++) {
     for (int j = i; j <= atom->ntypes; j++) {
       if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
       MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
       if (!setflag[i][j]) continue;
-      int iv[3];
+      int len = 0;
+      if (me == 0) utils::sfread(FLERR, &len, sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&len, 1, MPI_INT, 0, world);
+      if (len < 1 || len > 256)
+        error->all(FLERR, "Pair peri/nosb: restart file is corrupt (model name of {} chars)", len);
+      std::vector<char> name(len);
+      int iv[2];
       double dv[6];
       if (me == 0) {
-        utils::sfread(FLERR, iv, sizeof(int), 3, fp, nullptr, error);
+        utils::sfread(FLERR, name.data(), sizeof(char), len, fp, nullptr, error);
+        utils::sfread(FLERR, iv, sizeof(int), 2, fp, nullptr, error);
         utils::sfread(FLERR, dv, sizeof(double), 6, fp, nullptr, error);
       }
-      MPI_Bcast(iv, 3, MPI_INT, 0, world);
+      MPI_Bcast(name.data(), len, MPI_CHAR, 0, world);
+      MPI_Bcast(iv, 2, MPI_INT, 0, world);
       MPI_Bcast(dv, 6, MPI_DOUBLE, 0, world);
-      model[i][j] = iv[0];
-      breakflag[i][j] = iv[1];
-      contactflag[i][j] = iv[2];
+      name[len - 1] = '\0';
+      const auto &names = PeriSISSM::material_names();
+      const auto found = std::find(names.begin(), names.end(), std::string(name.data()));
+      if (found == names.end())
+        error->all(FLERR,
+                   "Pair peri/nosb: restart file names model '{}', which this build does not "
+                   "have (allowed: {})",
+                   name.data(), PeriSISSM::material_names_joined());
+      model[i][j] = (int) (found - names.begin());
+      breakflag[i][j] = iv[0];
+      contactflag[i][j] = iv[1];
       bulk[i][j] = dv[0];
       shear[i][j] = dv[1];
       cut[i][j] = dv[2];
       s00[i][j] = dv[3];
       alpha[i][j] = dv[4];
       cs[i][j] = dv[5];
-      if (model[i][j] < 0 || model[i][j] >= (int) PeriSISSM::material_names().size())
-        error->all(FLERR, "Pair peri/nosb: restart file has an unknown model index {}",
-                   model[i][j]);
     }
   }
 }

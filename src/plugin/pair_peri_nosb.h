@@ -52,19 +52,32 @@ class PairPeriNosb : public Pair {
   const PeriSISSM::Material &material(int itype) const { return *materials[itype]; }
   // stabilization modulus C_i of local atom i (0 if its shape tensor is singular)
   double particle_stabilization(int i) const;
-  // check the bonds of all owned atoms once and break those beyond their critical stretch,
-  // updating s0 (what compute() does itself unless external_breaking is set)
-  void break_bonds();
   // called by fix nosb/family right after every neighbor list build
   void neighbor_rebuilt();
+  // true when compute() has filled the per-atom state of the current owned atoms
+  bool state_current() const;
 
   // SISSM support (fix sissm): with stiffness_flag set, compute() also stores each particle's
   // implicit stiffness H = kappa U diag(c) U^T and C in kstate; implicit_blocks() then sums
   // for every owned atom  sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I)  (xx yy zz xy xz yz)
   void implicit_blocks(double **block);
 
+  // Implicit steps (fix sissm) move atoms many times between neighbor list builds. With
+  // track_contact_motion(1), contact_follow_motion() (call it after every move, with ghost
+  // positions current) keeps the short-range contact candidates complete: it re-selects them
+  // from the neighbor list when an atom has moved more than half their margin since they were
+  // selected, and stops with an error when the motion since the neighbor list build exceeds
+  // what the list covers. Returns the number of re-selections (0 or 1).
+  void track_contact_motion(int flag);
+  int contact_follow_motion();
+  bool contact_reneighbor_wanted();
+  // contact pairs that coupled an atom of contact_groupbit with one outside it, counted over
+  // this rank's evaluations since the counter was last reset (0: not counted)
+  int contact_groupbit;
+  bigint contact_crossings;
+
   class FixNosbFamily *family;
-  int external_breaking;    // 1: compute() does not break bonds (an integrator calls break_bonds)
+  int external_breaking;    // 1: compute() does not break bonds (inside an implicit step)
   int stiffness_flag;       // 1: compute() fills kstate (an integrator needs implicit blocks)
   double **kstate;          // per atom: H (xx yy zz xy xz yz) and C, see implicit_blocks()
   // per-atom results of the last compute() (owned atoms; ghosts as communicated):
@@ -86,6 +99,16 @@ class PairPeriNosb : public Pair {
   double hmax;              // largest particle size V^(1/3) (contact range)
   int *contact_first, *contact_neigh;    // short list of contact candidates
   int contact_maxfirst, contact_maxneigh, contact_inum;
+  double contact_margin;    // the candidates hold the pairs within contact_reach() + this
+  int track_motion;         // keep the positions below (fix sissm)
+  int nmotion;              // their allocated length
+  double **xneigh;          // positions of owned atoms at the last neighbor list build
+  double **xcontact;        // positions of owned atoms when the contact candidates were chosen
+  double contact_reach() const;    // largest contact range, 1.35 hmax
+  void grow_motion();
+  double motion_since(double **ref, double *moved, tagint *worst);
+  int state_nlocal;         // nlocal when compute() last filled the per-atom state
+  enum { RESTART_VERSION = 2 };
 
   int nmax;
   enum { COMM_STATE, COMM_H, COMM_K };
@@ -96,13 +119,12 @@ class PairPeriNosb : public Pair {
   void allocate();
   void grow_peratom();
   void compute_contact(int, int);
-  void build_contact_list();
+  void build_contact_list(double margin);
   enum { NOBREAK = 0, S0ONLY, BREAK };
   template <int MODE, int UNIFORM, int PBC> void compute_state();
-  template <int MODE, int UNIFORM> void check_bonds();
   template <int MODE, int UNIFORM>
   bool check_bond(double, double, int, int, double, double &, double &) const;
-  template <int UNIFORM> double s0_from(double, double, double) const;
+  template <int UNIFORM> double smin_from(double, double, double) const;
   template <int EVFLAG, int PBC> void compute_stabilization();
   template <int EVFLAG, int PBC> void compute_forces();
   bool bonded(int i, tagint jtag) const;

@@ -340,13 +340,13 @@ TYPE_COEFFS = {(1, 1): ("linear", 1.0e9, 0.6e9, 0.05, 0.25),
                (1, 2): ("linear", 1.5e9, 0.55e9, 0.08, 0.25)}
 
 
-def expected_damage(X, Y, types, horizon=3.0002 * A_TEST):
+def expected_damage(X, Y, types, horizon=3.0002 * A_TEST, coeffs=TYPE_COEFFS):
     """Damage after the first breaking evaluation of peri/nosb for positions Y held since the
-    setup evaluation (interface.md: s0 = s00 - alpha s_min, a bond breaks when its stretch
-    exceeds min(s0_i, s0_j); s00 and alpha of the bond's type pair): s0_i = max over i's bonds
-    of (s00_IJ - alpha_IJ stretch_ij) from the setup evaluation, then every bond with
-    stretch > min(s0_i, s0_j) breaks; damage = broken fraction of the family weighted by the
-    bond weights omega = beta V_j (fix_nosb_family.h; uniform volumes here)."""
+    setup evaluation (doc/pair_peri_nosb.rst: a bond between types I and J breaks when its
+    stretch exceeds s00_IJ - alpha_IJ max(s_min,i, s_min,j), s_min,i the smallest stretch
+    among i's bonds, here from the setup evaluation at the same positions); damage = broken
+    fraction of the family weighted by the bond weights omega = beta V_j (fix_nosb_family.h;
+    uniform volumes here)."""
     xi = X[None, :, :] - X[:, None, :]
     r0 = np.linalg.norm(xi, axis=2)
     bonded = (r0 > 0) & (r0 <= horizon)
@@ -355,11 +355,11 @@ def expected_damage(X, Y, types, horizon=3.0002 * A_TEST):
     lo, hi = np.minimum.outer(types, types), np.maximum.outer(types, types)
     s00 = np.empty_like(r0)
     alpha = np.empty_like(r0)
-    for (a, b), coeffs in TYPE_COEFFS.items():
+    for (a, b), c in coeffs.items():
         pair = (lo == a) & (hi == b)
-        s00[pair], alpha[pair] = coeffs[3], coeffs[4]
-    s0 = np.max(np.where(bonded, s00 - alpha * stretch, -np.inf), axis=1)
-    broken = bonded & (stretch > np.minimum.outer(s0, s0))
+        s00[pair], alpha[pair] = c[3], c[4]
+    smin = np.min(np.where(bonded, stretch, np.inf), axis=1)
+    broken = bonded & (stretch > s00 - alpha * np.maximum.outer(smin, smin))
     _, omega = bond_weights(X, np.full(len(X), A_TEST ** 3), horizon)
     return np.sum(omega * broken, axis=1) / np.sum(omega, axis=1)
 
@@ -370,8 +370,9 @@ def test_per_type_coefficients_apply_per_type(tmp_path):
     # 1) gives pe = N1 W_linear(F; K1, G1) + N2 W_neohookean(F; K2, G2): each particle's energy
     #    uses its own type's model and moduli (1e-9 as in test_affine_energy_is_n_times_w);
     # 2) breaks exactly the bonds the critical-stretch rule with per-type s00 predicts
-    #    (LAMMPS's built-in styles ignore per-type s00: LAMMPS issue 984): about a quarter of
-    #    the type-1 families, none of the bonds between type-2 particles. The per-particle
+    #    (LAMMPS's built-in styles ignore per-type s00: LAMMPS issue 984): each bond at the
+    #    s00 and alpha of its own type pair; some of every type-1 family, none of the bonds
+    #    between type-2 particles. The per-particle
     #    damage is a ratio of sums of ~100 bond weights, compared to 1e-12;
     # 3) breaks each bond at both ends in the same evaluation: momentum stays zero (1e-12 of
     #    sum |V f| as in test_internal_forces_conserve_momentum) after the families changed;
