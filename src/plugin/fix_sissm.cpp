@@ -23,6 +23,7 @@
 
 #include "fix_sissm.h"
 
+#include "fix_nosb_family.h"
 #include "pair_peri_nosb.h"
 
 #include "atom.h"
@@ -33,9 +34,11 @@
 #include "modify.h"
 #include "update.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
+#include <vector>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -54,20 +57,48 @@ void solve_spd3(const double D[6], const double r[3], double d[3])
   d[2] = inv * (c02 * r[0] + c12 * r[1] + c22 * r[2]);
 }
 
-}    // namespace
+// Per-atom columns of the momentum balance (balance_momentum; 18..20 unused).
+constexpr int NMOMENT = 36;
 
+// The pair flags of an implicit step, reset however the step ends (also when an error is
+// thrown inside it and the caller of LAMMPS carries on).
+class ImplicitStepFlags {
+ public:
+  explicit ImplicitStepFlags(PairPeriNosb *pair, int groupbit) : pair_(pair)
+  {
+    pair_->external_breaking = 1;
+    pair_->contact_groupbit = groupbit;
+    pair_->contact_crossings = 0;
+  }
+  ~ImplicitStepFlags()
+  {
+    pair_->external_breaking = 0;
+    pair_->stiffness_flag = 0;
+    pair_->contact_groupbit = 0;
+  }
+  ImplicitStepFlags(const ImplicitStepFlags &) = delete;
+  ImplicitStepFlags &operator=(const ImplicitStepFlags &) = delete;
+
+ private:
+  PairPeriNosb *pair_;
+};
+
+}    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), pair(nullptr), solver(KRYLOV), maxiter(100), tolerance(1.0e-6),
-    relax(0), implicit_external(1), dtv(0.0), last_iterations(0), last_measure(0.0),
-    nsteps_run(0), iterations_run(0), unconverged_run(0), warned(0), nmax(0), evaluations(0),
-    fint(nullptr), yn(nullptr), yhat(nullptr), res(nullptr), block(nullptr), rprev(nullptr),
-    dprev(nullptr), xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr),
-    pdir(nullptr), sdir(nullptr), term(nullptr)
+    relax(0), implicit_external(1), external_mode(EXT_NONE), dtv(0.0), tol_step(1.0e-6),
+    last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
+    warned(0), warned_roundoff(0), nmax(0), evaluations(0), fint(nullptr), fext(nullptr), flagged(nullptr),
+    yn(nullptr), yhat(nullptr), res(nullptr), block(nullptr), rprev(nullptr), dprev(nullptr),
+    xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
+    sdir(nullptr), term(nullptr), moment(nullptr)
 {
   time_integrate = 1;
+  force_reneighbor = 1;    // after steps that moved atoms far (short-range contact)
+  next_reneighbor = -1;
   vector_flag = 1;
   size_vector = 4;
   global_freq = 1;
@@ -149,6 +180,90 @@ void FixSissm::init()
     error->all(FLERR, "Fix sissm does not support run_style respa");
   dtv = update->dt;
   comm_reverse = 3;
+  choose_external();
+  pair->track_contact_motion(1);
+  // the options of this run decide which work arrays exist: allocate them anew
+  destroy_arrays();
+  nmax = 0;
+}
+
+/* ----------------------------------------------------------------------
+   the forces of the other fixes (those that add forces after the pair style, in post_force).
+   Re-evaluating a fix at every iterate is right only for a fix whose force is a pure function
+   of the positions, velocities and forces at that moment: the known ones are listed below.
+   A fix with state or random numbers (langevin, smd, python/invoke, external, a dynamic
+   group, unknown styles) must run exactly once per step: its force is lagged, taken from the
+   evaluation that ended the previous step. When the pure ones all add a force that does not
+   depend on the force so far, the two kinds mix (MIXED); a pure fix that rewrites the force
+   (setforce, aveforce, lineforce, planeforce) next to a lagged one leaves only the fully
+   lagged treatment. What is decided is written to the log when it changes.
+------------------------------------------------------------------------- */
+
+namespace {
+bool is_pure_additive(const std::string &style)
+{
+  static const char *const names[] = {
+      "gravity",    "addforce",     "viscous",     "indent",     "wall/lj93",   "wall/lj126",
+      "wall/lj1043", "wall/colloid", "wall/harmonic", "wall/morse", "wall/table", "wall/region",
+      "spring",     "spring/self",  "drag",        "efield"};
+  for (const char *n : names)
+    if (style == n) return true;
+  return false;
+}
+
+bool is_pure_rewriting(const std::string &style)
+{
+  return style == "setforce" || style == "aveforce" || style == "lineforce" ||
+      style == "planeforce";
+}
+}    // namespace
+
+void FixSissm::choose_external()
+{
+  implicit_fixes.clear();
+  std::vector<Fix *> lagged;
+  int rewriting = 0;
+  const auto &fixes = modify->get_fix_list();
+  // Modify::post_force calls the dynamic-group fixes (style GROUP) first, then the others
+  for (int pass = 0; pass < 2; pass++) {
+    for (Fix *f : fixes) {
+      if (f == this || !(modify->get_fix_mask(f) & POST_FORCE)) continue;
+      if ((strcmp(f->style, "GROUP") == 0) != (pass == 0)) continue;
+      const std::string style(f->style);
+      if (is_pure_additive(style)) implicit_fixes.push_back(f);
+      else if (is_pure_rewriting(style)) {
+        implicit_fixes.push_back(f);
+        rewriting = 1;
+      } else
+        lagged.push_back(f);
+    }
+  }
+
+  std::string note;
+  if (implicit_fixes.empty() && lagged.empty()) external_mode = EXT_NONE;
+  else if (!implicit_external) external_mode = EXT_LAGGED;
+  else if (lagged.empty()) external_mode = EXT_IMPLICIT;
+  else {
+    std::string names;
+    for (Fix *f : lagged) names += fmt::format("{}{} ({})", names.empty() ? "" : ", ", f->id,
+                                                f->style);
+    if (rewriting) {
+      external_mode = EXT_LAGGED;
+      note = fmt::format("Fix sissm {}: fix {} may hold state or random numbers and must act once "
+                         "per step, and a fix that rewrites forces (setforce, aveforce, lineforce, "
+                         "planeforce) is present: the forces of all other fixes are lagged (taken "
+                         "at the start of each step, as with 'external lagged')\n",
+                         id, names);
+    } else {
+      external_mode = EXT_MIXED;
+      note = fmt::format("Fix sissm {}: fix {} may hold state or random numbers and must act once "
+                         "per step: its force is lagged (taken at the start of each step); the "
+                         "other fixes' forces are implicit\n",
+                         id, names);
+    }
+  }
+  if (note != external_note && comm->me == 0 && !note.empty()) utils::logmesg(lmp, note);
+  external_note = note;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -164,8 +279,8 @@ void FixSissm::reset_dt()
 
 void FixSissm::destroy_arrays()
 {
-  for (double ***a : {&fint, &yn, &yhat, &res, &block, &rprev, &dprev, &xbase, &rbase, &jbase,
-                      &cres, &zdir, &pdir, &sdir})
+  for (double ***a : {&fint, &fext, &flagged, &yn, &yhat, &res, &block, &rprev, &dprev, &xbase,
+                      &rbase, &jbase, &cres, &zdir, &pdir, &sdir, &moment})
     memory->destroy(*a);
   memory->destroy(term);
 }
@@ -179,7 +294,11 @@ void FixSissm::grow()
   memory->create(yn, nmax, 3, "sissm:yn");
   memory->create(yhat, nmax, 3, "sissm:yhat");
   memory->create(res, nmax, 3, "sissm:res");
-  if (!implicit_external) memory->create(fint, nmax, 3, "sissm:fint");
+  memory->create(fext, nmax, 3, "sissm:fext");
+  memory->create(moment, nmax, NMOMENT, "sissm:moment");
+  if (external_mode == EXT_LAGGED || external_mode == EXT_MIXED)
+    memory->create(fint, nmax, 3, "sissm:fint");
+  if (external_mode == EXT_MIXED) memory->create(flagged, nmax, 3, "sissm:flagged");
   if (relax) {
     memory->create(rprev, nmax, 3, "sissm:rprev");
     memory->create(dprev, nmax, 3, "sissm:dprev");
@@ -198,7 +317,7 @@ void FixSissm::setup(int /*vflag*/)
   last_iterations = 0;
   last_measure = 0.0;
   nsteps_run = iterations_run = unconverged_run = 0;
-  warned = 0;
+  warned = warned_roundoff = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -210,7 +329,7 @@ void FixSissm::setup(int /*vflag*/)
 
 void FixSissm::capture_internal_force()
 {
-  if (implicit_external) return;
+  if (external_mode != EXT_LAGGED && external_mode != EXT_MIXED) return;
   grow();
   double **f = atom->f;
   const int nall = atom->nlocal + atom->nghost;
@@ -280,16 +399,27 @@ void FixSissm::evaluate(int blocks)
   const int nall = nlocal + atom->nghost;
   const double h2 = dtv * dtv;
 
+  pair->contact_follow_motion();
   for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
   pair->stiffness_flag = blocks;
   pair->compute(0, 0);
   if (force->newton_pair) comm->reverse_comm();
-  if (implicit_external && modify->n_post_force_any) {
+  if (external_mode == EXT_IMPLICIT || external_mode == EXT_MIXED) {
+    // the other fixes' force at this iterate, kept in fext (f after minus f before)
     const double hinv = 1.0 / dtv;
     for (int i = 0; i < nlocal; i++)
       if (mask[i] & groupbit)
-        for (int k = 0; k < 3; k++) v[i][k] = (x[i][k] - yn[i][k]) * hinv;
-    modify->post_force(0);
+        for (int k = 0; k < 3; k++) {
+          v[i][k] = (x[i][k] - yn[i][k]) * hinv;
+          fext[i][k] = f[i][k];
+        }
+    for (Fix *fix : implicit_fixes) fix->post_force(0);
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) {
+          if (external_mode == EXT_MIXED) f[i][k] += flagged[i][k];
+          fext[i][k] = f[i][k] - fext[i][k];
+        }
   }
   if (blocks) pair->implicit_blocks(block);
 
@@ -362,18 +492,37 @@ double FixSissm::dot(double **a, double **b)
 
 double FixSissm::reproducible_sum(const double *t, int n)
 {
-  double local = 0.0, big = 0.0;
-  for (int i = 0; i < n; i++) local = fmax(local, fabs(t[i]));
-  MPI_Allreduce(&local, &big, 1, MPI_DOUBLE, MPI_MAX, world);
-  if (!(big > 0.0)) return 0.0;
-  int ebig, ecount;
-  frexp(big, &ebig);                        // big < 2^ebig
+  double sum;
+  reproducible_sums(t, n, 1, 1, &sum);
+  return sum;
+}
+
+/* ----------------------------------------------------------------------
+   the same for ncol columns at once: column k of row i is t[i * stride + k] (two global
+   reductions of ncol values, whatever ncol)
+------------------------------------------------------------------------- */
+
+void FixSissm::reproducible_sums(const double *t, int n, int stride, int ncol, double *out)
+{
+  std::vector<double> local(ncol, 0.0), big(ncol);
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < ncol; k++) local[k] = fmax(local[k], fabs(t[i * stride + k]));
+  MPI_Allreduce(local.data(), big.data(), ncol, MPI_DOUBLE, MPI_MAX, world);
+  int ecount;
   frexp((double) atom->natoms, &ecount);    // natoms < 2^ecount
-  const int q = 61 - ebig - ecount;
-  long long sum_local = 0, sum = 0;
-  for (int i = 0; i < n; i++) sum_local += llrint(ldexp(t[i], q));
-  MPI_Allreduce(&sum_local, &sum, 1, MPI_LONG_LONG, MPI_SUM, world);
-  return ldexp((double) sum, -q);
+  std::vector<int> q(ncol, 0);
+  for (int k = 0; k < ncol; k++) {
+    if (!(big[k] > 0.0)) continue;
+    int ebig;
+    frexp(big[k], &ebig);    // big < 2^ebig
+    q[k] = 61 - ebig - ecount;
+  }
+  std::vector<long long> sum_local(ncol, 0), sum(ncol);
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < ncol; k++)
+      if (big[k] > 0.0) sum_local[k] += llrint(ldexp(t[i * stride + k], q[k]));
+  MPI_Allreduce(sum_local.data(), sum.data(), ncol, MPI_LONG_LONG, MPI_SUM, world);
+  for (int k = 0; k < ncol; k++) out[k] = (big[k] > 0.0) ? ldexp((double) sum[k], -q[k]) : 0.0;
 }
 
 /* ----------------------------------------------------------------------
@@ -467,8 +616,9 @@ double FixSissm::solve_jacobi()
   for (int k = 0; k < maxiter; k++) {
     evaluate(1);
     measure = scaled_max(res, 1);
+    if (k == 0) attainable_tolerance();
     sweep(k == 0);
-    if (measure <= tolerance) break;
+    if (measure <= tol_step) break;
   }
   return measure;
 }
@@ -506,7 +656,8 @@ double FixSissm::solve_krylov()
   while (true) {
     evaluate(1);
     measure = scaled_max(res, 1);
-    if (measure <= tolerance) {
+    if (evaluations == 1) attainable_tolerance();
+    if (measure <= tol_step) {
       // as jacobi does: the evaluation that meets the tolerance still gives its SISSM
       // correction (free, and at small steps, where the start y^n + h v^n may already meet a
       // loose tolerance, it is what moves the body by h^2 f / rho)
@@ -553,7 +704,7 @@ double FixSissm::solve_krylov()
       if (mask[i] & groupbit)
         for (int k = 0; k < 3; k++) pdir[i][k] = jbase[i][k] = zdir[i][k];
     double rz = dot(cres, zdir);
-    const double target = fmax(0.25 * tolerance, eta * measure);
+    const double target = fmax(0.25 * tol_step, eta * measure);
     int cg = 0;
 
     while (evaluations < maxiter - 1 && rz > 0.0) {
@@ -596,6 +747,52 @@ double FixSissm::solve_krylov()
 }
 
 /* ----------------------------------------------------------------------
+   the tolerance this step can meet. Positions are absolute coordinates: an atom at |x| from
+   the origin is known to eps |x| (eps the machine epsilon), and so are its bond vectors, so
+   the force density of particle i is known to about |block_i| eps |x|, and the convergence
+   measure to
+     floor_i = eps (|x_i| / l_i) (1 + h^2 |block_i| / rho_i)      (l_i = V_i^(1/3)),
+   |x| the largest coordinate, |block| the largest diagonal entry of the SISSM block (the row
+   sum of the bond stiffnesses). Measured on a 4x3x3 block at 20 and 100 x the explicit limit
+   (neo-Hookean, random velocities), at the origin and moved 4e4 particle sizes away, the
+   measure stalls at 0.2 to 0.4 x this estimate (1e-12 at the origin, 2e-8 far away, at
+   20 x). A step whose measure is below the larger of the tolerance and half the largest
+   estimate counts as converged; the first time in a run that this exceeds the tolerance, a
+   warning says so.
+   One global max, at the first evaluation of a step.
+------------------------------------------------------------------------- */
+
+void FixSissm::attainable_tolerance()
+{
+  double **x = atom->x;
+  double *rho = atom->rmass;
+  double *vfrac = atom->vfrac;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double h2 = dtv * dtv;
+  double local[2] = {0.0, 0.0}, all[2];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double xmax = fmax(fabs(x[i][0]), fmax(fabs(x[i][1]), fabs(x[i][2])));
+    const double bmax = fmax(block[i][0], fmax(block[i][1], block[i][2]));
+    local[0] = fmax(local[0], xmax / cbrt(vfrac[i]) * (1.0 + h2 * bmax / rho[i]));
+    local[1] = fmax(local[1], xmax);
+  }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  const double floor = 0.5 * DBL_EPSILON * all[0];
+  tol_step = fmax(tolerance, floor);
+  if (floor > tolerance && !warned_roundoff && comm->me == 0)
+    error->warning(FLERR,
+                   "Fix sissm: at step {} round-off in the atom coordinates (up to {:.3g} from "
+                   "the origin) limits the convergence measure to about {:.3g}, above the "
+                   "tolerance {:.3g}: steps that reach it count as converged (a body nearer the "
+                   "origin, or a smaller time step, allows a tighter tolerance; reported once "
+                   "per run)",
+                   update->ntimestep, all[1], floor, tolerance);
+  if (floor > tolerance) warned_roundoff = 1;
+}
+
+/* ----------------------------------------------------------------------
    merit of the last evaluation: sum_i V_i |r_i|^2 / rho_i (all ranks)
 ------------------------------------------------------------------------- */
 
@@ -624,25 +821,35 @@ void FixSissm::post_integrate()
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const double h = dtv, h2 = dtv * dtv;
+  const int lagged = external_mode == EXT_LAGGED, mixed = external_mode == EXT_MIXED;
 
   // lagged: fint of ghosts belongs to their owners (short-range contact with newton on)
-  if (!implicit_external && force->newton_pair) comm->reverse_comm(this);
+  if ((lagged || mixed) && force->newton_pair) comm->reverse_comm(this);
+  if (mixed) lagged_external_force();
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     for (int k = 0; k < 3; k++) {
       yn[i][k] = x[i][k];
       yhat[i][k] = x[i][k] + h * v[i][k];
-      if (!implicit_external) yhat[i][k] += h2 * (f[i][k] - fint[i][k]) / rho[i];
+      if (lagged) yhat[i][k] += h2 * (f[i][k] - fint[i][k]) / rho[i];
+      fext[i][k] = 0.0;
       x[i][k] += h * v[i][k];
     }
   }
 
   evaluations = 0;
-  pair->external_breaking = 1;
-  const double measure = (solver == KRYLOV) ? solve_krylov() : solve_jacobi();
-  pair->external_breaking = 0;
-  pair->stiffness_flag = 0;
+  double measure;
+  int free_group;
+  {
+    ImplicitStepFlags flags(pair, groupbit);
+    measure = (solver == KRYLOV) ? solve_krylov() : solve_jacobi();
+    free_group = group_is_free();
+  }
+  if (free_group) balance_momentum();
+  // contact candidates: the next step starts from a fresh neighbor list if this one moved
+  // atoms far (PairPeriNosb::contact_follow_motion())
+  if (pair->contact_reneighbor_wanted()) next_reneighbor = update->ntimestep;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -654,7 +861,7 @@ void FixSissm::post_integrate()
   last_measure = measure;
   nsteps_run++;
   iterations_run += k;
-  if (measure > tolerance) {
+  if (measure > tol_step) {
     unconverged_run++;
     if (!warned && comm->me == 0)
       error->warning(FLERR,
@@ -662,6 +869,189 @@ void FixSissm::post_integrate()
                      "> tolerance {:.3g} (counted in f_{}[4]; reported once per run)",
                      update->ntimestep, k, measure, tolerance, id);
     warned = 1;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   external mixed, at the start of a step (positions y^n, velocities v^n): the force of the
+   lagged fixes is what the evaluation that ended the previous step added beyond the pair
+   force (f - fint, at y^n and v^n) minus what the re-evaluated fixes give at y^n and v^n
+   (all of them add forces independent of the force so far, choose_external())
+------------------------------------------------------------------------- */
+
+void FixSissm::lagged_external_force()
+{
+  double **f = atom->f;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < 3; k++) flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
+  for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
+  for (Fix *fix : implicit_fixes) fix->post_force(0);
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit)
+      for (int k = 0; k < 3; k++) flagged[i][k] -= f[i][k];
+}
+
+/* ----------------------------------------------------------------------
+   a free group: no unbroken bond joins an atom of the group with one outside it, and no
+   short-range contact of peri/nosb acted between them in the evaluations of this step.
+   Then the pair forces on the group sum to zero and have no net torque at any positions
+   (they derive from a translation and rotation invariant energy)
+------------------------------------------------------------------------- */
+
+bool FixSissm::group_is_free()
+{
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const FixNosbFamily *family = pair->family;
+  int coupled = pair->contact_crossings > 0;
+  for (int i = 0; i < nlocal && !coupled; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const int *jl = family->jlocal[i];
+    for (int b = 0; b < family->npartner[i]; b++)
+      if (jl[b] >= 0 && !(mask[jl[b]] & groupbit)) {
+        coupled = 1;
+        break;
+      }
+  }
+  int any;
+  MPI_Allreduce(&coupled, &any, 1, MPI_INT, MPI_MAX, world);
+  return !any;
+}
+
+/* ----------------------------------------------------------------------
+   momentum balance of a free group, for every step, converged or not:
+     P^{n+1} = P^n + h F,        F = sum_i V_i fext_i,
+     L^{n+1} = L^n + h T,        T = sum_i V_i q_i^{n+1} x fext_i,
+   P = sum_i m_i v_i, L = sum_i m_i q_i x v_i the angular momentum about the centre of mass
+   (q_i = y_i - c), m_i = rho_i V_i, fext the other fixes' force density of the last evaluation
+   (zero under external lagged: then it is in yhat, and P^n + h F is sum_i m_i (yhat_i -
+   y_i^n) / h). With v^{n+1} = (y^{n+1} - y^n)/h and sum_i m_i q_i^n = 0, both are linear in
+   y^{n+1}: sum_i m_i (y_i^{n+1} - y_i^n) = h P^{n+1} and
+     L^{n+1} = (1/h) sum_i m_i q_i^n x y_i^{n+1} = (1/h) sum_i m_i q_i^n x (y_i^{n+1} - y_i^n)
+   (the last form loses no digits far from the origin). The internal forces of a free group
+   have zero sum and zero torque at any positions (their energy is invariant under
+   translation and rotation), so a converged
+   backward-Euler step keeps P exactly; a truncated solve does not, and a free body at rest
+   would pick up a rigid velocity. Backward Euler itself changes L by h sum_i m_i v_i^{n+1} x
+   v_i^n (it damps rotation). The rigid correction y_i += a + b x q_i^n restores both
+   balances exactly: a from the first, and b from
+     (I^n - h^2 C) b = h (L^n + h T - L),   C = sum_i V_i (q_i^n fext_i^T - (q_i^n.fext_i) I),
+   I^n the inertia tensor about c^n, T and L those of the uncorrected step (a does not change
+   T). The correction is a rigid motion to first order in b: it does not touch the force
+   balance of the deformation. Sums are order-independent, so every rank count corrects alike.
+------------------------------------------------------------------------- */
+
+void FixSissm::balance_momentum()
+{
+  double **x = atom->x;
+  double *rho = atom->rmass;
+  double *vfrac = atom->vfrac;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double h = dtv;
+  const int lagged = external_mode == EXT_LAGGED;
+  double *t = (nlocal > 0) ? moment[0] : nullptr;
+  auto cross = [](const double *u, const double *v, double *w) {
+    w[0] = u[1] * v[2] - u[2] * v[1];
+    w[1] = u[2] * v[0] - u[0] * v[2];
+    w[2] = u[0] * v[1] - u[1] * v[0];
+  };
+
+  // mass and centre of mass c^n of the step's start
+  double s[NMOMENT];
+  for (int i = 0; i < nlocal; i++) {
+    double *row = moment[i];
+    const double m = (mask[i] & groupbit) ? rho[i] * vfrac[i] : 0.0;
+    row[0] = m;
+    for (int k = 0; k < 3; k++) row[1 + k] = m * yn[i][k];
+  }
+  reproducible_sums(t, nlocal, NMOMENT, 4, s);
+  const double mass = s[0];
+  if (!(mass > 0.0)) return;
+  const double cn[3] = {s[1] / mass, s[2] / mass, s[3] / mass};
+
+  for (int i = 0; i < nlocal; i++) {
+    double *row = moment[i];
+    for (int k = 0; k < NMOMENT; k++) row[k] = 0.0;
+    if (!(mask[i] & groupbit)) continue;
+    const double m = rho[i] * vfrac[i];
+    const double *fe = fext[i];
+    double q[3], u[3], r[3], mv[3], w[3];
+    for (int k = 0; k < 3; k++) {
+      q[k] = yn[i][k] - cn[k];
+      u[k] = x[i][k] - yn[i][k];    // the step's displacement
+      r[k] = x[i][k] - cn[k];
+      // m v^n (+ h m fext / rho when lagged, which is in yhat)
+      mv[k] = m * (yhat[i][k] - yn[i][k]) / h;
+      row[k] = m * u[k];
+      row[3 + k] = mv[k];
+      row[6 + k] = lagged ? 0.0 : vfrac[i] * fe[k];
+    }
+    cross(q, mv, w);
+    for (int k = 0; k < 3; k++) row[9 + k] = w[k];
+    cross(q, u, w);
+    for (int k = 0; k < 3; k++) row[12 + k] = m * w[k];
+    if (!lagged) {
+      cross(r, fe, w);
+      for (int k = 0; k < 3; k++) row[15 + k] = vfrac[i] * w[k];
+    }
+    const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+    row[21] = m * (qq - q[0] * q[0]);
+    row[22] = m * (qq - q[1] * q[1]);
+    row[23] = m * (qq - q[2] * q[2]);
+    row[24] = -m * q[0] * q[1];
+    row[25] = -m * q[0] * q[2];
+    row[26] = -m * q[1] * q[2];
+    if (!lagged) {
+      const double qf = q[0] * fe[0] + q[1] * fe[1] + q[2] * fe[2];
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+          row[27 + 3 * r + c] = vfrac[i] * (q[r] * fe[c] - (r == c ? qf : 0.0));
+    }
+  }
+  reproducible_sums(t, nlocal, NMOMENT, NMOMENT, s);
+
+  // linear: sum m (y' - y^n) = h (P^n + h F)
+  double a[3];
+  for (int k = 0; k < 3; k++) a[k] = (h * (s[3 + k] + h * s[6 + k]) - s[k]) / mass;
+
+  // angular: T of the uncorrected step about its own centre of mass c = c^n + dc (all terms
+  // relative to c^n or y^n: absolute coordinates far from the origin would cost digits)
+  const double *F = s + 6, *Ln = s + 9, *hL = s + 12;
+  const double dc[3] = {s[0] / mass, s[1] / mass, s[2] / mass};
+  double cF[3];
+  cross(dc, F, cF);
+  double rhs[3];
+  for (int k = 0; k < 3; k++) rhs[k] = h * (Ln[k] + h * (s[15 + k] - cF[k])) - hL[k];
+  const double h2 = h * h;
+  const double M[9] = {s[21] - h2 * s[27], s[24] - h2 * s[28], s[25] - h2 * s[29],
+                       s[24] - h2 * s[30], s[22] - h2 * s[31], s[26] - h2 * s[32],
+                       s[25] - h2 * s[33], s[26] - h2 * s[34], s[23] - h2 * s[35]};
+  double b[3] = {0.0, 0.0, 0.0};
+  const double c00 = M[4] * M[8] - M[5] * M[7], c01 = M[5] * M[6] - M[3] * M[8],
+               c02 = M[3] * M[7] - M[4] * M[6];
+  const double det = M[0] * c00 + M[1] * c01 + M[2] * c02;
+  const double itrace = s[21] + s[22] + s[23];
+  // (a group on a line or at a point has no inertia to correct in some direction)
+  if (std::fabs(det) > 1.0e-12 * itrace * itrace * itrace) {
+    const double c10 = M[2] * M[7] - M[1] * M[8], c11 = M[0] * M[8] - M[2] * M[6],
+                 c12 = M[1] * M[6] - M[0] * M[7];
+    const double c20 = M[1] * M[5] - M[2] * M[4], c21 = M[2] * M[3] - M[0] * M[5],
+                 c22 = M[0] * M[4] - M[1] * M[3];
+    b[0] = (c00 * rhs[0] + c10 * rhs[1] + c20 * rhs[2]) / det;
+    b[1] = (c01 * rhs[0] + c11 * rhs[1] + c21 * rhs[2]) / det;
+    b[2] = (c02 * rhs[0] + c12 * rhs[1] + c22 * rhs[2]) / det;
+  }
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double q[3] = {yn[i][0] - cn[0], yn[i][1] - cn[1], yn[i][2] - cn[2]};
+    double w[3];
+    cross(b, q, w);
+    for (int k = 0; k < 3; k++) x[i][k] += a[k] + w[k];
   }
 }
 

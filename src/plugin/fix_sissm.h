@@ -18,6 +18,9 @@ FixStyle(sissm,FixSissm);
 
 #include "fix.h"
 
+#include <string>
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class FixSissm : public Fix {
@@ -38,13 +41,23 @@ class FixSissm : public Fix {
 
  protected:
   enum { JACOBI, KRYLOV };
+  // how the forces of the other fixes enter the step (decided in init from the keyword
+  // external and the fixes present): NONE there are none; IMPLICIT all re-evaluated at every
+  // iterate; MIXED those known to be pure functions of positions and velocities re-evaluated,
+  // the others lagged (their force of the evaluation that ended the previous step); LAGGED all
+  // lagged
+  enum { EXT_NONE, EXT_IMPLICIT, EXT_MIXED, EXT_LAGGED };
   class PairPeriNosb *pair;
   int solver;           // JACOBI sweeps or KRYLOV (Newton-CG, SISSM blocks as preconditioner)
   int maxiter;          // force evaluations per step at most
   double tolerance;     // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
   int relax;            // 1: per-particle step factor alpha_i, 0: alpha_i = 1 (jacobi)
-  int implicit_external;    // 1: other fixes' post_force re-evaluated at every iterate
+  int implicit_external;    // keyword external: 1 implicit, 0 lagged
+  int external_mode;        // EXT_*, see above
+  std::vector<class Fix *> implicit_fixes;    // re-evaluated at every iterate, in LAMMPS order
+  std::string external_note;                  // what was last logged about them
   double dtv;
+  double tol_step;      // the tolerance of the current step (attainable_tolerance())
 
   // statistics (global vector)
   int last_iterations;
@@ -52,9 +65,13 @@ class FixSissm : public Fix {
   bigint nsteps_run, iterations_run, unconverged_run;
 
   int warned;           // non-convergence already reported in this run
+  int warned_roundoff;  // round-off limit of the tolerance already reported in this run
   int nmax;
   int evaluations;      // force evaluations of the current step
-  double **fint;        // internal force density at y^n (captured in pre_reverse; lagged)
+  double **fint;        // internal force density at y^n (captured in pre_reverse; lagged, mixed)
+  double **fext;        // force density of the other fixes at the last evaluation (implicit,
+                        //   mixed: used by the momentum balance; lagged: zero, it is in yhat)
+  double **flagged;     // mixed: force density of the lagged fixes for this step
   double **yn;          // y^n of owned atoms
   double **yhat;        // predictor y^n + h v^n (+ h^2 f_ext / rho when lagged)
   double **res;         // backward-Euler residual of the last evaluation
@@ -62,21 +79,28 @@ class FixSissm : public Fix {
   double **rprev, **dprev;   // relax: residual and correction of the previous sweep
   double **xbase, **rbase, **jbase, **cres, **zdir, **pdir, **sdir;   // krylov vectors
   double *term;         // krylov: per-atom terms of a global sum
+  double **moment;      // per-atom terms of the momentum balance
 
   void grow();
   void destroy_arrays();
+  void choose_external();
   void capture_internal_force();
+  void lagged_external_force();
   void evaluate(int blocks);
   void particle_block(int i, double D[6]) const;
   void precondition(double **r, double **z);
   double dot(double **a, double **b);
   double reproducible_sum(const double *t, int n);
+  void reproducible_sums(const double *t, int n, int stride, int ncol, double *out);
   double scaled_max(double **a, int per_density);
   double merit();
   void check_finite();
+  void attainable_tolerance();
   void sweep(int first);
   double solve_jacobi();
   double solve_krylov();
+  bool group_is_free();
+  void balance_momentum();
 };
 
 }    // namespace LAMMPS_NS

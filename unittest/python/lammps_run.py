@@ -90,6 +90,28 @@ def run_deck(deck, workdir, nprocs: int = 1, variables: dict | None = None,
     return run
 
 
+def library_environment() -> dict:
+    """Environment for a Python process that drives the same LAMMPS through its library
+    interface (`from lammps import lammps`) with the plugin auto-loaded: the variables the
+    build/lmp wrapper exports, and PYTHONPATH to the python/ folder of the LAMMPS tree the
+    project was built against (LAMMPS_SOURCE_DIR in the build's CMakeCache.txt)."""
+    env = dict(os.environ)
+    for line in LMP.read_text().splitlines():
+        if line.startswith("export ") and "=" in line:
+            name, value = line[len("export "):].split("=", 1)
+            value = value.strip('"')
+            # the wrapper appends the caller's value as ${NAME:+:$NAME}
+            value = value.split("${")[0]
+            old = os.environ.get(name)
+            env[name] = value + (":" + old if old else "")
+    cache = (LMP.parent / "CMakeCache.txt").read_text()
+    src = next(ln.split("=", 1)[1] for ln in cache.splitlines()
+               if ln.startswith("LAMMPS_SOURCE_DIR:"))
+    python = str(Path(src).parent / "python")
+    env["PYTHONPATH"] = python + (":" + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    return env
+
+
 def _numbers(line: str):
     try:
         return [float(tok) for tok in line.split()]

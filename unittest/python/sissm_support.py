@@ -85,3 +85,21 @@ def velocities(frame) -> np.ndarray:
 
 def forces(frame) -> np.ndarray:
     return np.column_stack([frame["fx"], frame["fy"], frame["fz"]])
+
+
+def balance_momentum(yn, vn, y, m, h):
+    """The rigid correction fix sissm applies to the step y of a free group without external
+    forces (doc/fix_sissm.rst, "Momentum"): y + a + b x (y^n - c^n) such that the momentum
+    sum m (y' - y^n)/h equals sum m v^n and the angular momentum about the centre of mass,
+    (1/h) sum m q^n x y', equals sum m q^n x v^n. Written here independently of the C++ code,
+    from the two balances, by solving the linear system for (a, b) directly."""
+    m = np.broadcast_to(np.asarray(m, float), (len(y),))
+    mass = m.sum()
+    cn = (m[:, None] * yn).sum(0) / mass
+    q = yn - cn
+    a = (h * (m[:, None] * vn).sum(0) - (m[:, None] * (y - yn)).sum(0)) / mass
+    inertia = sum(mi * (qi @ qi * np.eye(3) - np.outer(qi, qi)) for mi, qi in zip(m, q))
+    l_target = (m[:, None] * np.cross(q, vn)).sum(0)
+    l_now = (m[:, None] * np.cross(q, y)).sum(0) / h
+    b = np.linalg.solve(inertia, h * (l_target - l_now))
+    return y + a + np.cross(b, q)
