@@ -1,0 +1,237 @@
+"""LAMMPS combinations a user may try with pair_style peri/nosb and fix sissm (issue 9, item 5):
+each one either works, shown against a reference run, or stops with an ERROR that names what
+is not supported and what to do instead.
+
+Most runs use decks/combo_blocks.lmp: two 4^3 blocks pressed into each other, so that the
+short-range contact of peri/nosb acts between particles of different blocks (and, with two
+or more ranks, between owned and ghost particles). Its atom IDs do not depend on the number
+of ranks or the processor layout, so runs compare atom by atom.
+
+Agreement to expect. Every per-particle bond sum runs over the family in tag order, fix sissm
+reduces its global sums exactly (FixSissm::reproducible_sum) and its convergence measure is a
+maximum; so the trajectory does not depend on the number or the layout of the ranks, nor on
+the order of the atoms in memory, down to the last bit - with one exception, measured here:
+with newton on, the contact force of a pair split between two ranks reaches the ghost's owner
+through the reverse communication, after the owner's own forces, so its floating-point sum
+runs in another order than on one rank (round-off, 1e-16 relative per evaluation). With
+newton off each rank computes such a pair for its own particle, in the serial order.
+"""
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lammps_run import read_dump, relative_difference, run_deck
+
+DECKS = Path(__file__).parent / "decks"
+BLOCKS = DECKS / "combo_blocks.lmp"
+
+NVE = {"nsteps": 40, "dt": 2e-7, "dump_every": 40, "thermo_every": 10}
+# ~5x the explicit limit of a 4^3 block (fix sissm's default is krylov; both solvers are run)
+SISSM = {"integ": "sissm", "nsteps": 20, "dt": 1e-6, "dump_every": 20, "thermo_every": 2}
+# s00 = 0.5 %, pushed at 50 m/s: every particle loses bonds within the run
+FRACTURE = {"brk": "yes", "s00": 0.005, "vpush": 50}
+CASES = {
+    "nve": NVE,
+    "nve-fracture": {**NVE, **FRACTURE},
+    "jacobi": {**SISSM, "solver": "jacobi"},
+    "jacobi-lagged": {**SISSM, "solver": "jacobi", "external": "lagged", "grav": 1e5},
+    "krylov": {**SISSM, "solver": "krylov"},
+    # lagged external force (fix gravity) with contact: fix sissm's own reverse communication
+    "krylov-lagged": {**SISSM, "solver": "krylov", "external": "lagged", "grav": 1e5},
+    "krylov-fracture": {**SISSM, "solver": "krylov", **FRACTURE},
+}
+STATE = ("x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "c_nosb[1]")
+# newton on, contact pairs split between ranks (see the top of the file): measured over these
+# runs, up to 1e-12 relative to the largest value without fracture and 1.2e-9 with it (the
+# round-off of single evaluations grows through the fracture dynamics and the solver's
+# iterations; a bond that broke on one side only, or one more solver iteration, would give
+# 1e-3 or more). 1e-8 is the cross-rank tolerance of the other parallel tests.
+ROUND_OFF = 1e-8
+
+
+def blocks(workdir, case, nprocs=1, **changes):
+    """Run combo_blocks.lmp for CASES[case] (plus changes); return (run, frames of dump.atoms)."""
+    run = run_deck(BLOCKS, workdir, nprocs=nprocs, variables={**CASES[case], **changes})
+    if nprocs > 1:
+        assert f"with {nprocs} MPI tasks" in run.log
+    return run, read_dump(Path(workdir) / "dump.atoms")
+
+
+def contact_acted(run):
+    # the facing layers start 1.3 spacings apart; contact acts below 1.35 (1.35 h, h = a); a
+    # thermo row after step 0 inside that range shows that the blocks were pushed together
+    sep = run.thermo[-1]["v_sep"]
+    return bool(np.any(sep[1:] < 1.35))
+
+
+def assert_identical(a, b, columns=STATE):
+    assert np.array_equal(a["id"], b["id"])
+    for col in columns:
+        assert np.array_equal(a[col], b[col]), (col, np.max(np.abs(a[col] - b[col])))
+
+
+def assert_round_off(a, b, columns=STATE):
+    assert np.array_equal(a["id"], b["id"])
+    for col in columns:
+        assert relative_difference(a[col], b[col]) < ROUND_OFF, col
+
+
+def assert_clean_error(run):
+    assert run.returncode > 0, run.describe()  # an error exit, not a signal, not success
+    assert run.errors, run.describe()
+    assert not re.search(r"Signal: |signal \d+|Segmentation", run.stdout + run.stderr)
+    return run.errors[0]
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    """The serial newton-on run of each case, made once per module."""
+    done = {}
+
+    def get(case):
+        if case not in done:
+            run, frames = blocks(tmp_path_factory.mktemp(f"serial-{case}"), case)
+            assert contact_acted(run)
+            if "fracture" in case:
+                assert np.count_nonzero(frames[-1]["c_nosb[1]"]) > 100
+            done[case] = (run, frames)
+        return done[case]
+
+    return get
+
+
+# ---------------------------------------------------------------------------------------------
+# (b) newton off
+
+NEWTON_CASES = ["nve", "nve-fracture", "jacobi", "krylov-lagged", "krylov-fracture",
+                "jacobi-lagged"]
+
+
+@pytest.mark.parametrize("case", NEWTON_CASES)
+def test_newton_off_on_one_rank(tmp_path, serial, case):
+    # one rank, no ghosts: the contact pairs are the same and are summed in the same order
+    # with either half list, so newton off repeats newton on bit for bit (measured)
+    _, on = serial(case)
+    run, off = blocks(tmp_path, case, newton="off")
+    assert contact_acted(run)
+    assert "attributes: half, newton off" in run.log  # the contact list is a newton-off list
+    assert_identical(on[-1], off[-1])
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("case", NEWTON_CASES)
+def test_newton_on_and_off_on_two_ranks(tmp_path, serial, case):
+    # the two blocks sit on either side of the rank boundary, so every contact pair is split
+    # between the ranks: newton off is bit-identical to one rank, newton on is round-off
+    _, one = serial(case)
+    run, off = blocks(tmp_path / "off", case, nprocs=2, newton="off")
+    assert contact_acted(run)
+    assert_identical(one[-1], off[-1])
+    _, on = blocks(tmp_path / "on", case, nprocs=2, newton="on")
+    assert_round_off(one[-1], on[-1])
+
+
+# ---------------------------------------------------------------------------------------------
+# (d) atom_modify sort
+
+SORT_CASES = ["nve", "nve-fracture", "jacobi", "krylov", "krylov-lagged", "krylov-fracture"]
+
+
+def local_order(path):
+    """Atom IDs of the last frame of an (unsorted) dump, in the order they were written."""
+    lines = Path(path).read_text().splitlines()
+    start = max(k for k, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
+    return [int(line.split()[0]) for line in lines[start + 1:]]
+
+
+@pytest.mark.parametrize("case,nprocs", [(c, 1) for c in SORT_CASES] + [
+    pytest.param("krylov-fracture", 2, marks=pytest.mark.mpi),
+    pytest.param("jacobi-lagged", 2, marks=pytest.mark.mpi)])
+def test_atom_sort_changes_nothing(tmp_path, case, nprocs):
+    # Reneighbor every step; sort the atoms at every reneighboring (bins of 2.5 spacings) or
+    # never. Families are sorted by tag and jlocal is refreshed after every neighbor build, so
+    # the bond sums do not see the order. The contact sums follow the neighbor list, whose
+    # order does change; they are still bit-identical here because no particle has more than
+    # two contact partners at a time (a + b = b + a exactly; three terms in another order
+    # would give round-off). Measured: bit-identical, also on two ranks.
+    args = {"reneigh": 1}
+    run0, never = blocks(tmp_path / "never", case, nprocs, sortfreq=0, sortbin=0, **args)
+    run1, always = blocks(tmp_path / "always", case, nprocs, sortfreq=1, sortbin=0.0025, **args)
+    assert contact_acted(run1)
+    assert local_order(tmp_path / "never/dump.atoms") != local_order(tmp_path / "always/dump.atoms")
+    assert_identical(never[-1], always[-1])
+    if "fracture" in case:
+        assert np.count_nonzero(always[-1]["c_nosb[1]"]) > 100
+
+
+# ---------------------------------------------------------------------------------------------
+# (e) comm_style tiled with balance rcb and fix balance; (f) three and four ranks
+
+def changed_ranks(frames):
+    return int(np.count_nonzero(frames[0]["proc"] != frames[-1]["proc"]))
+
+
+TILED = [(case, nprocs, newton) for case in ("nve-fracture", "jacobi-lagged", "krylov-fracture")
+         for nprocs in (2, 3) for newton in ("on", "off")]
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("case,nprocs,newton", TILED)
+def test_comm_tiled_with_rcb_balancing(tmp_path, serial, case, nprocs, newton):
+    # weighted rcb cuts through the first block, then, from step 10, through the second
+    # (decks/combo_blocks.lmp): particles change ranks with their families mid-run
+    _, one = serial(case)
+    run, frames = blocks(tmp_path, case, nprocs, newton=newton, tiled=1)
+    assert "comm_style tiled" in run.log and "weight variable: wbal" in run.log
+    assert changed_ranks(frames) > 0
+    if newton == "off":
+        assert_identical(one[-1], frames[-1])
+    else:
+        assert_round_off(one[-1], frames[-1])
+
+
+MANY = [(case, nprocs, newton) for case in ("nve-fracture", "jacobi-lagged", "krylov-fracture")
+        for nprocs in (3, 4) for newton in ("on", "off")]
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("case,nprocs,newton", MANY)
+def test_three_and_four_ranks(tmp_path, serial, case, nprocs, newton):
+    # 3 ranks: the rank boundaries fall between the blocks' layers away from the contact
+    # plane; 4 ranks: a boundary falls between the blocks (see the top of the file)
+    _, one = serial(case)
+    _, frames = blocks(tmp_path, case, nprocs, newton=newton)
+    if newton == "off":
+        assert_identical(one[-1], frames[-1])
+    else:
+        assert_round_off(one[-1], frames[-1])
+
+
+# ---------------------------------------------------------------------------------------------
+# (g) other commands between runs
+
+@pytest.mark.parametrize("case", ["nve-fracture", "krylov-fracture"])
+def test_run_pre_no_continues_the_run(tmp_path, serial, case):
+    # run N/2 then run N/2 pre no (no setup, no setup force evaluation) repeats the unsplit
+    # run bit for bit, bonds breaking included
+    _, unsplit = serial(case)
+    half = CASES[case]["nsteps"] // 2
+    run = run_deck(BLOCKS, tmp_path, variables={**CASES[case], "nsteps": f"{half} pre no",
+                                                "before_run": "split"},
+                   files={"split": f"run {half}\n"})
+    assert re.search(rf"^run\s+{half} pre no", run.log, re.M)
+    frames = read_dump(tmp_path / "dump.atoms")
+    assert frames[-1]["step"] == unsplit[-1]["step"] == 2 * half
+    assert_identical(unsplit[-1], frames[-1])
+
+
+def test_change_box_to_a_long_periodic_direction_changes_nothing(tmp_path, serial):
+    # x made periodic, 20 mm long (the bodies span 7.3 mm): no partner, no contact pair sees
+    # another image, so the run is the one without change_box
+    _, plain = serial("jacobi")
+    run = run_deck(BLOCKS, tmp_path, variables={**CASES["jacobi"], "before_run": "cbox"},
+                   files={"cbox": "change_box all x final -0.005 0.015 boundary p s s "
+                                  "units box\n"})
+    assert_identical(plain[-1], read_dump(tmp_path / "dump.atoms")[-1])
