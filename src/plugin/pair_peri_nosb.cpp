@@ -309,6 +309,17 @@ void PairPeriNosb::init_style()
   if (!atom->tag_enable) error->all(FLERR, "Pair style peri/nosb requires atom IDs");
   if (domain->dimension != 3) error->all(FLERR, "Pair style peri/nosb requires a 3d simulation");
 
+  // as a sub-style of hybrid, hybrid/overlay or hybrid/scaled, types mapped to other styles
+  // would get bond families with unset coefficients, and fix sissm would not see the other
+  // styles' forces in its implicit residual: not supported
+
+  if (force->pair != this)
+    error->all(FLERR,
+               "Pair style peri/nosb cannot be a sub-style of pair_style {}: use pair_style "
+               "peri/nosb alone (several materials: pair_coeff per type pair; other "
+               "interactions: fixes such as wall or indent)",
+               force->pair_style);
+
   const int n = atom->ntypes;
 
   // mixing of unset I,J (I != J): bond parameters from both types

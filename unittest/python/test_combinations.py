@@ -103,6 +103,66 @@ def serial(tmp_path_factory):
 
 
 # ---------------------------------------------------------------------------------------------
+# (a) pair_style hybrid: refused
+
+HYBRID = """
+units           si
+boundary        s s s
+atom_style      peri
+atom_modify     map array
+lattice         sc 0.001
+region          block block -0.5 5.5 -0.5 3.5 -0.5 3.5
+create_box      2 block
+create_atoms    1 region block
+region          second block 2.5 INF INF INF INF INF
+set             region second type 2
+set             group all density 1000
+set             group all volume 1.0e-9
+{pair}
+run             10
+"""
+NOSB_COEFF = "linear 1.0e9 0.6e9 0.0030002 0.05 0.25"
+HYBRID_PAIRS = {
+    "hybrid": f"pair_style hybrid peri/nosb zero 0.003\n"
+              f"pair_coeff 1 1 peri/nosb {NOSB_COEFF}\n"
+              f"pair_coeff 2 2 zero\npair_coeff 1 2 zero",
+    "hybrid/overlay": f"pair_style hybrid/overlay peri/nosb zero 0.003\n"
+                      f"pair_coeff 1 1 peri/nosb {NOSB_COEFF}\n"
+                      f"pair_coeff * * zero",
+    "hybrid/scaled": f"pair_style hybrid/scaled 1.0 peri/nosb 1.0 zero 0.003\n"
+                     f"pair_coeff * * peri/nosb {NOSB_COEFF}\n"
+                     f"pair_coeff * * zero",
+}
+
+
+@pytest.mark.parametrize("style", list(HYBRID_PAIRS))
+def test_hybrid_pair_styles_are_refused(tmp_path, style):
+    # Before: the runs went through silently; type 2 (no peri/nosb coefficients) got bond
+    # families built from uninitialised horizon, moduli and model index (valgrind: 158
+    # uninitialised reads in init_style, bond_weight and compute_state).
+    run = run_deck(HYBRID.format(pair=HYBRID_PAIRS[style]), tmp_path, check=False, timeout=60)
+    line = assert_clean_error(run)
+    for words in ("peri/nosb", f"pair_style {style}", "sub-style", "pair_style peri/nosb alone"):
+        assert words in line, (words, line)
+
+
+def test_missing_pair_coeff_of_a_type_is_an_error(tmp_path):
+    # plain peri/nosb with pair_coeff for type 1 only: LAMMPS's Pair::init stops before
+    # PairPeriNosb::init_style reads the unset coefficients of type 2
+    pair = f"pair_style peri/nosb\npair_coeff 1 1 {NOSB_COEFF}"
+    run = run_deck(HYBRID.format(pair=pair), tmp_path, check=False, timeout=60)
+    line = assert_clean_error(run)
+    assert "All pair coeffs are not set" in line, line
+
+
+def test_mixed_type_pair_without_its_own_line_is_not_an_error(tmp_path):
+    # the positive counterpart: with both I I lines, the 1 2 pair is mixed (documented rule)
+    pair = f"pair_style peri/nosb\npair_coeff 1 1 {NOSB_COEFF}\npair_coeff 2 2 {NOSB_COEFF}"
+    run = run_deck(HYBRID.format(pair=pair), tmp_path, timeout=60)
+    assert "bonds/atom" in run.log
+
+
+# ---------------------------------------------------------------------------------------------
 # (b) newton off
 
 NEWTON_CASES = ["nve", "nve-fracture", "jacobi", "krylov-lagged", "krylov-fracture",
