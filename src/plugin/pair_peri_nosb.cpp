@@ -391,6 +391,14 @@ void PairPeriNosb::init_style()
   // a half neighbor list only for short-range contact
 
   if (any_contact) neighbor->add_request(this);
+
+  // minimization: the line searches evaluate trial positions far from the path (up to
+  // min_modify dmax), and bonds breaking there would change the energy being minimized
+
+  if (update->whichflag == 2 && any_break && comm->me == 0)
+    utils::logmesg(lmp,
+                   "Pair peri/nosb: bonds do not break during a minimization; they are checked "
+                   "again from the first step of the next run\n");
 }
 
 /* ---------------------------------------------------------------------- */
@@ -454,17 +462,19 @@ void PairPeriNosb::compute(int eflag, int vflag)
   // (1) F, A = P K^-1, W, C per owned atom, with the bond checks.
   // Bonds break in every force evaluation of a run, but not in the setup evaluation at the
   // start of a run (it only refreshes s0): a run split into several (or by a restart) then
-  // breaks exactly the bonds the unsplit run breaks.
+  // breaks exactly the bonds the unsplit run breaks. Nothing breaks, and s0 is left alone,
+  // during a minimization (see init_style).
 
   const int pbc = family->any_periodic;
+  const int nobreak = !any_break || external_breaking || update->whichflag == 2;
   if (pbc) {
-    if (!any_break || external_breaking) compute_state<NOBREAK, 0, 1>();
+    if (nobreak) compute_state<NOBREAK, 0, 1>();
     else if (update->setupflag)
       uniform_break ? compute_state<S0ONLY, 1, 1>() : compute_state<S0ONLY, 0, 1>();
     else
       uniform_break ? compute_state<BREAK, 1, 1>() : compute_state<BREAK, 0, 1>();
   } else {
-    if (!any_break || external_breaking) compute_state<NOBREAK, 0, 0>();
+    if (nobreak) compute_state<NOBREAK, 0, 0>();
     else if (update->setupflag)
       uniform_break ? compute_state<S0ONLY, 1, 0>() : compute_state<S0ONLY, 0, 0>();
     else

@@ -194,6 +194,103 @@ def test_newton_on_and_off_on_two_ranks(tmp_path, serial, case):
 
 
 # ---------------------------------------------------------------------------------------------
+# (c) minimize
+
+# An 8 x 4 x 4 bar with breakable bonds (s00 = 2 %), a small pseudo-random displacement of
+# every particle, its last layer pulled by `pull` and its first and last layers held (fix
+# setforce 0 0 0). The minimization relaxes the bar towards uniform stretch pull / 7a;
+# min_modify dmax keeps its default 0.1 m = 100 spacings, so the first line-search trials
+# stretch bonds far beyond s00. After the minimization a one-step fix nve run checks the bonds.
+MINIMIZE = """
+units           si
+boundary        s s s
+atom_style      peri
+atom_modify     map array
+variable        a equal 0.001
+neighbor        $(v_a) bin
+lattice         sc ${a}
+region          block block -0.5 7.5 -0.5 3.5 -0.5 3.5
+create_box      1 block
+create_atoms    1 region block
+set             group all density 1000
+set             group all volume $(v_a^3)
+region          left block INF 0.5 INF INF INF INF
+region          right block 6.5 INF INF INF INF INF
+group           left region left
+group           right region right
+pair_style      peri/nosb
+pair_coeff      * * linear 1.0e9 0.6e9 $(3.0002*v_a) 0.02 0.25 stabilize 0.1 break ${brk}
+compute         nosb all nosb/atom
+compute         dsum all reduce sum c_nosb[1]
+thermo_style    custom step pe c_dsum fnorm
+thermo_modify   format float %.17g
+run             0
+variable        h1 atom (sin(id*12.9898+78.233)*43758.5453) &
+                        -floor(sin(id*12.9898+78.233)*43758.5453)-0.5
+variable        h2 atom (sin(id*12.9898+2*78.233)*43758.5453) &
+                        -floor(sin(id*12.9898+2*78.233)*43758.5453)-0.5
+variable        h3 atom (sin(id*12.9898+3*78.233)*43758.5453) &
+                        -floor(sin(id*12.9898+3*78.233)*43758.5453)-0.5
+variable        X atom x+2.0e-6*v_h1+${pull}*gmask(right)
+variable        Y atom y+2.0e-6*v_h2
+variable        Z atom z+2.0e-6*v_h3
+set             group all x v_X y v_Y z v_Z
+fix             hold left setforce 0 0 0
+fix             pull right setforce 0 0 0
+thermo          10
+minimize        0 1.0e5 1000 10000
+write_dump      all custom dump.minimized id x y z c_nosb[1] modify format float %.17g
+fix             integrate all nve
+timestep        1.0e-8
+run             1
+"""
+
+
+def minimize(workdir, brk="yes", pull=3.5e-5):
+    run = run_deck(MINIMIZE, workdir, variables={"brk": brk, "pull": pull}, timeout=300)
+    minimized = read_dump(Path(workdir) / "dump.minimized")[0]
+    return run, minimized
+
+
+def stopping_criterion(run):
+    return re.search(r"Stopping criterion = (.*)", run.log).group(1).strip()
+
+
+def test_minimize_breaks_no_bond(tmp_path):
+    # pull = 3.5e-5 m: the relaxed bar is stretched by 0.5 % on average and by at most 1.4 %
+    # (next to the held layers), below s0 (~2 %) everywhere - the next run breaks nothing.
+    # Before the fix the first line-search trial broke every bond: damage 1 for all 128
+    # particles, energy 0, "quadratic factors are zero" after 1 iteration.
+    run, minimized = minimize(tmp_path / "break", "yes")
+    assert not np.any(minimized["c_nosb[1]"])
+    assert "bonds do not break during a minimization" in run.log
+    table = run.thermo[1]  # the minimization (thermo[0] is the run 0 that builds the families)
+    # converged: the force-density norm fell below 1e5 N/m^3 from 7.7e10 (the round-off floor
+    # of the line search is ~3e3), in 110 iterations (measured)
+    assert stopping_criterion(run) == "force tolerance"
+    assert table["Step"][-1] < 1000
+    assert table["Fnorm"][-1] < 1e5 and table["Fnorm"][0] > 1e10
+    assert table["PotEng"][-1] < 0.5 * table["PotEng"][0]  # 7.5e6 -> 2.1e6
+    # without breaking the minimizer does the same arithmetic: the same state, bit for bit
+    run_nb, minimized_nb = minimize(tmp_path / "nobreak", "no")
+    assert "bonds do not break during a minimization" not in run_nb.log
+    for col in ("x", "y", "z"):
+        assert np.array_equal(minimized[col], minimized_nb[col]), col
+    assert np.array_equal(table["PotEng"], run_nb.thermo[1]["PotEng"])
+    # the next run checks the bonds again: all stretches of the relaxed bar are below s0
+    assert run.thermo[-1]["c_dsum"][-1] == 0.0
+
+
+def test_bonds_are_checked_again_after_a_minimize(tmp_path):
+    # pull = 2.1e-4 m: the relaxed bar is stretched by 3 % on average, beyond s00 = 2 %; the
+    # minimization keeps every bond, the first step of the next run breaks some
+    run, minimized = minimize(tmp_path, "yes", pull=2.1e-4)
+    assert not np.any(minimized["c_nosb[1]"])
+    assert run.thermo[1]["c_dsum"][-1] == 0.0
+    assert run.thermo[-1]["c_dsum"][-1] > 1.0
+
+
+# ---------------------------------------------------------------------------------------------
 # (d) atom_modify sort
 
 SORT_CASES = ["nve", "nve-fracture", "jacobi", "krylov", "krylov-lagged", "krylov-fracture"]
