@@ -376,6 +376,31 @@ void PairPeriNosb::init_style()
       if (!breakflag[i][j] || s00[i][j] != s00[1][1] || alpha[i][j] != alpha[1][1])
         uniform_break = 0;
 
+  // every bond partner must have one image within reach: a periodic box at least two horizons
+  // wide in each periodic direction (checked here at every run, since change_box can shrink
+  // or create a periodic direction after the families exist; the closest image of a partner
+  // would then be the wrong one)
+
+  double cutmax = 0.0;
+  for (int i = 1; i <= n; i++)
+    for (int j = 1; j <= n; j++) cutmax = std::max(cutmax, cut[i][j]);
+  const double xprd = domain->xprd, yprd = domain->yprd, zprd = domain->zprd;
+  const double xy = domain->triclinic ? domain->xy : 0.0;
+  const double xz = domain->triclinic ? domain->xz : 0.0;
+  const double yz = domain->triclinic ? domain->yz : 0.0;
+  // distances between opposite faces of the (restricted triclinic) box
+  const double bxc = sqrt(yprd * zprd * yprd * zprd + xy * zprd * xy * zprd +
+                          (xy * yz - yprd * xz) * (xy * yz - yprd * xz));
+  const double width[3] = {xprd * yprd * zprd / bxc, yprd * zprd / sqrt(zprd * zprd + yz * yz),
+                           zprd};
+  const int periodicity[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+  for (int d = 0; d < 3; d++)
+    if (periodicity[d] && width[d] < 2.0 * cutmax)
+      error->all(FLERR,
+                 "Pair style peri/nosb: the periodic box is {:.8g} wide in {}, shorter than two "
+                 "horizons (2 x {:.8g}): enlarge the box or make that direction non-periodic",
+                 width[d], "xyz"[d], cutmax);
+
   // largest particle size, for the contact range
 
   double hone = 0.0;

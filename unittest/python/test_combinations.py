@@ -392,3 +392,15 @@ def test_change_box_to_a_long_periodic_direction_changes_nothing(tmp_path, seria
                    files={"cbox": "change_box all x final -0.005 0.015 boundary p s s "
                                   "units box\n"})
     assert_identical(plain[-1], read_dump(tmp_path / "dump.atoms")[-1])
+
+
+def test_change_box_to_a_short_periodic_direction_is_an_error(tmp_path):
+    # z made periodic and 5 mm long, less than two horizons (6 mm), after the families exist.
+    # Before: the closest image of a partner 3 mm away was the one 2 mm away on the other
+    # side, and the run went on with pe 4.5e9 instead of 7.1e6 and no message.
+    run = run_deck(BLOCKS, tmp_path, variables={**CASES["jacobi"], "before_run": "cbox"},
+                   files={"cbox": "change_box all z final -0.0005 0.0045 boundary s s p "
+                                  "units box\n"}, check=False, timeout=60)
+    line = assert_clean_error(run)
+    for words in ("peri/nosb", "periodic", "wide in z", "two horizons"):
+        assert words in line, (words, line)
