@@ -33,7 +33,7 @@
      against the critical stretch of its type pair, s00_IJ - alpha_IJ max(s_min,i, s_min,j),
      with the smallest bond stretches s_min of the previous evaluation (kept in atom->s0); a
      broken bond already counts as broken in that evaluation. The setup evaluation at the
-     start of a run breaks nothing (refreshes s_min).
+     start of a run breaks nothing (refreshes s_min); nothing breaks during a minimization.
    - short-range contact as the built-ins, but only between particles that are not bonded.
    - per-atom virial: each bond's force is equal and opposite at its two ends; each end
      tallies half of (x_i - x_j) (x) (force on i), as pair peri/lps does; sum over atoms of
@@ -318,6 +318,17 @@ void PairPeriNosb::init_style()
   if (!atom->tag_enable) error->all(FLERR, "Pair style peri/nosb requires atom IDs");
   if (domain->dimension != 3) error->all(FLERR, "Pair style peri/nosb requires a 3d simulation");
 
+  // as a sub-style of hybrid, hybrid/overlay or hybrid/scaled, types mapped to other styles
+  // would get bond families with unset coefficients, and fix sissm would not see the other
+  // styles' forces in its implicit residual: not supported
+
+  if (force->pair != this)
+    error->all(FLERR,
+               "Pair style peri/nosb cannot be a sub-style of pair_style {}: use pair_style "
+               "peri/nosb alone (several materials: pair_coeff per type pair; other "
+               "interactions: fixes such as wall or indent)",
+               force->pair_style);
+
   const int n = atom->ntypes;
 
   // mixing of unset I,J (I != J): bond parameters from both types
@@ -374,6 +385,31 @@ void PairPeriNosb::init_style()
       if (!breakflag[i][j] || s00[i][j] != s00[1][1] || alpha[i][j] != alpha[1][1])
         uniform_break = 0;
 
+  // every bond partner must have one image within reach: a periodic box at least two horizons
+  // wide in each periodic direction (checked here at every run, since change_box can shrink
+  // or create a periodic direction after the families exist; the closest image of a partner
+  // would then be the wrong one)
+
+  double cutmax = 0.0;
+  for (int i = 1; i <= n; i++)
+    for (int j = 1; j <= n; j++) cutmax = std::max(cutmax, cut[i][j]);
+  const double xprd = domain->xprd, yprd = domain->yprd, zprd = domain->zprd;
+  const double xy = domain->triclinic ? domain->xy : 0.0;
+  const double xz = domain->triclinic ? domain->xz : 0.0;
+  const double yz = domain->triclinic ? domain->yz : 0.0;
+  // distances between opposite faces of the (restricted triclinic) box
+  const double bxc = sqrt(yprd * zprd * yprd * zprd + xy * zprd * xy * zprd +
+                          (xy * yz - yprd * xz) * (xy * yz - yprd * xz));
+  const double width[3] = {xprd * yprd * zprd / bxc, yprd * zprd / sqrt(zprd * zprd + yz * yz),
+                           zprd};
+  const int periodicity[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+  for (int d = 0; d < 3; d++)
+    if (periodicity[d] && width[d] < 2.0 * cutmax)
+      error->all(FLERR,
+                 "Pair style peri/nosb: the periodic box is {:.8g} wide in {}, shorter than two "
+                 "horizons (2 x {:.8g}): enlarge the box or make that direction non-periodic",
+                 width[d], "xyz"[d], cutmax);
+
   // largest particle size, for the contact range
 
   double hone = 0.0;
@@ -391,6 +427,14 @@ void PairPeriNosb::init_style()
 
   if (any_contact) neighbor->add_request(this);
   track_contact_motion(0);
+
+  // minimization: the line searches evaluate trial positions far from the path (up to
+  // min_modify dmax), and bonds breaking there would change the energy being minimized
+
+  if (update->whichflag == 2 && any_break && comm->me == 0)
+    utils::logmesg(lmp,
+                   "Pair peri/nosb: bonds do not break during a minimization; they are checked "
+                   "again from the first step of the next run\n");
 }
 
 /* ---------------------------------------------------------------------- */
@@ -454,17 +498,19 @@ void PairPeriNosb::compute(int eflag, int vflag)
   // (1) F, A = P K^-1, W, C per owned atom, with the bond checks.
   // Bonds break in every force evaluation of a run, but not in the setup evaluation at the
   // start of a run (it only refreshes s_min): a run split into several (or by a restart) then
-  // breaks exactly the bonds the unsplit run breaks.
+  // breaks exactly the bonds the unsplit run breaks. Nothing breaks, and s_min is left alone,
+  // during a minimization (see init_style).
 
   const int pbc = family->any_periodic;
+  const int nobreak = !any_break || external_breaking || update->whichflag == 2;
   if (pbc) {
-    if (!any_break || external_breaking) compute_state<NOBREAK, 0, 1>();
+    if (nobreak) compute_state<NOBREAK, 0, 1>();
     else if (update->setupflag)
       uniform_break ? compute_state<S0ONLY, 1, 1>() : compute_state<S0ONLY, 0, 1>();
     else
       uniform_break ? compute_state<BREAK, 1, 1>() : compute_state<BREAK, 0, 1>();
   } else {
-    if (!any_break || external_breaking) compute_state<NOBREAK, 0, 0>();
+    if (nobreak) compute_state<NOBREAK, 0, 0>();
     else if (update->setupflag)
       uniform_break ? compute_state<S0ONLY, 1, 0>() : compute_state<S0ONLY, 0, 0>();
     else
