@@ -57,6 +57,24 @@ void solve_spd3(const double D[6], const double r[3], double d[3])
   d[2] = inv * (c02 * r[0] + c12 * r[1] + c22 * r[2]);
 }
 
+// Solve the general 3x3 system M x = r (M row-major) by cofactors; false (x untouched) when
+// |det M| <= tiny.
+bool solve3(const double M[9], const double r[3], double tiny, double x[3])
+{
+  const double c00 = M[4] * M[8] - M[5] * M[7], c01 = M[5] * M[6] - M[3] * M[8],
+               c02 = M[3] * M[7] - M[4] * M[6];
+  const double det = M[0] * c00 + M[1] * c01 + M[2] * c02;
+  if (!(std::fabs(det) > tiny)) return false;
+  const double c10 = M[2] * M[7] - M[1] * M[8], c11 = M[0] * M[8] - M[2] * M[6],
+               c12 = M[1] * M[6] - M[0] * M[7];
+  const double c20 = M[1] * M[5] - M[2] * M[4], c21 = M[2] * M[3] - M[0] * M[5],
+               c22 = M[0] * M[4] - M[1] * M[3];
+  x[0] = (c00 * r[0] + c10 * r[1] + c20 * r[2]) / det;
+  x[1] = (c01 * r[0] + c11 * r[1] + c21 * r[2]) / det;
+  x[2] = (c02 * r[0] + c12 * r[1] + c22 * r[2]) / det;
+  return true;
+}
+
 // Per-atom columns of the momentum balance (balance_momentum; 18..20 unused).
 constexpr int NMOMENT = 36;
 
@@ -1030,21 +1048,11 @@ void FixSissm::balance_momentum()
   const double M[9] = {s[21] - h2 * s[27], s[24] - h2 * s[28], s[25] - h2 * s[29],
                        s[24] - h2 * s[30], s[22] - h2 * s[31], s[26] - h2 * s[32],
                        s[25] - h2 * s[33], s[26] - h2 * s[34], s[23] - h2 * s[35]};
+  // (a group on a line or at a point has no inertia to correct in some direction: then only
+  // the momentum is balanced)
   double b[3] = {0.0, 0.0, 0.0};
-  const double c00 = M[4] * M[8] - M[5] * M[7], c01 = M[5] * M[6] - M[3] * M[8],
-               c02 = M[3] * M[7] - M[4] * M[6];
-  const double det = M[0] * c00 + M[1] * c01 + M[2] * c02;
   const double itrace = s[21] + s[22] + s[23];
-  // (a group on a line or at a point has no inertia to correct in some direction)
-  if (std::fabs(det) > 1.0e-12 * itrace * itrace * itrace) {
-    const double c10 = M[2] * M[7] - M[1] * M[8], c11 = M[0] * M[8] - M[2] * M[6],
-                 c12 = M[1] * M[6] - M[0] * M[7];
-    const double c20 = M[1] * M[5] - M[2] * M[4], c21 = M[2] * M[3] - M[0] * M[5],
-                 c22 = M[0] * M[4] - M[1] * M[3];
-    b[0] = (c00 * rhs[0] + c10 * rhs[1] + c20 * rhs[2]) / det;
-    b[1] = (c01 * rhs[0] + c11 * rhs[1] + c21 * rhs[2]) / det;
-    b[2] = (c02 * rhs[0] + c12 * rhs[1] + c22 * rhs[2]) / det;
-  }
+  solve3(M, rhs, 1.0e-12 * itrace * itrace * itrace, b);
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
