@@ -88,7 +88,8 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     gstate(nullptr), hstate(nullptr),
     wdens(nullptr), model(nullptr), bulk(nullptr), shear(nullptr), cut(nullptr), s00(nullptr),
     alpha(nullptr), cs(nullptr), breakflag(nullptr), contactflag(nullptr), kcontact(nullptr),
-    materials(nullptr), any_break(0), any_stab(0), any_contact(0), uniform_break(0), hmax(0.0),
+    g0(nullptr), g0_s00(nullptr), materials(nullptr), any_break(0), any_stab(0), any_contact(0),
+    uniform_break(0), hmax(0.0),
     contact_first(nullptr), contact_neigh(nullptr), contact_maxfirst(0), contact_maxneigh(0),
     contact_inum(-1), contact_margin(0.0), track_motion(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
     state_nlocal(-1), nmax(0), commflag(COMM_STATE), s0_new(nullptr)
@@ -130,6 +131,8 @@ PairPeriNosb::~PairPeriNosb()
     memory->destroy(breakflag);
     memory->destroy(contactflag);
     memory->destroy(kcontact);
+    memory->destroy(g0);
+    memory->destroy(g0_s00);
     for (int i = 0; i <= atom->ntypes; i++) delete materials[i];
     delete[] materials;
   }
@@ -155,6 +158,10 @@ void PairPeriNosb::allocate()
   memory->create(breakflag, n, n, "pair:breakflag");
   memory->create(contactflag, n, n, "pair:contactflag");
   memory->create(kcontact, n, n, "pair:kcontact");
+  memory->create(g0, n, n, "pair:g0");
+  memory->create(g0_s00, n, n, "pair:g0_s00");
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) g0[i][j] = g0_s00[i][j] = 0.0;
   materials = new PeriSISSM::Material *[n];
   for (int i = 0; i < n; i++) materials[i] = nullptr;
 }
@@ -201,7 +208,28 @@ static int coeff_flag(const char *keyword, const char *str, Error *error)
 }
 
 /* ----------------------------------------------------------------------
+   critical stretch from the fracture energy (G0 keyword; doc "Fracture energy"):
+     G0 = delta s00^2 (G0_COEF_M (K + 4G/3) + G0_COEF_S Cs K delta / h)
+   measured with the rigid-halves separation test (examples/fracture-energy/run.py) on a
+   simple cubic lattice with delta = 3.0002 h, alpha = 0, model linear, small-strain limit
+   (s00 = 1e-6; at finite s00 the measured G0 is lower by about 4.5 s00 relative): the
+   dissipated work per area is exactly linear in K + 4G/3 (the particles at the crack are in
+   uniaxial strain) and in Cs K (stabilization); the stabilization part grows about like
+   delta/h (measured 2.5 <= delta/h <= 6), hence the factor delta/h
+------------------------------------------------------------------------- */
+
+static constexpr double G0_COEF_M = 0.58376;
+static constexpr double G0_COEF_S = 1.19321;
+
+static double s00_from_g0(double g0, double k, double g, double cs, double delta, double h)
+{
+  const double modulus = G0_COEF_M * (k + 4.0 * g / 3.0) + G0_COEF_S * cs * k * delta / h;
+  return sqrt(g0 / (modulus * delta));
+}
+
+/* ----------------------------------------------------------------------
    pair_coeff I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] [contact yes/no]
+     [G0 value]   (s00 = NULL with G0)
 ------------------------------------------------------------------------- */
 
 void PairPeriNosb::coeff(int narg, char **arg)
@@ -210,7 +238,7 @@ void PairPeriNosb::coeff(int narg, char **arg)
     error->all(FLERR,
                "Incorrect number of args for pair_coeff peri/nosb command: expected "
                "I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] "
-               "[contact yes/no], got {} arguments",
+               "[contact yes/no] [G0 value], got {} arguments",
                narg);
   if (!allocated) allocate();
 
@@ -228,7 +256,9 @@ void PairPeriNosb::coeff(int narg, char **arg)
   const double k_one = coeff_number("bulk modulus K", arg[3], error);
   const double g_one = coeff_number("shear modulus G", arg[4], error);
   const double cut_one = coeff_number("horizon", arg[5], error);
-  const double s00_one = coeff_number("s00", arg[6], error);
+  // s00 = NULL: the critical stretch comes from the G0 keyword (at init, see init_style)
+  const bool s00_null = strcmp(arg[6], "NULL") == 0;
+  const double s00_one = s00_null ? 0.0 : coeff_number("s00", arg[6], error);
   const double alpha_one = coeff_number("alpha", arg[7], error);
 
   if (k_one <= 0.0)
@@ -250,6 +280,7 @@ void PairPeriNosb::coeff(int narg, char **arg)
                arg[5]);
 
   double cs_one = DEFAULT_CS;
+  double g0_one = 0.0;
   int break_one = 1, contact_one = 1;
   int iarg = 8;
   while (iarg < narg) {
@@ -269,15 +300,36 @@ void PairPeriNosb::coeff(int narg, char **arg)
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb contact", error);
       contact_one = coeff_flag("contact", arg[iarg + 1], error);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "G0") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb G0", error);
+      g0_one = coeff_number("G0", arg[iarg + 1], error);
+      if (g0_one <= 0.0)
+        error->all(FLERR, "Illegal pair_coeff peri/nosb command: G0 must be > 0, got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
     } else {
       error->all(FLERR,
                  "Illegal pair_coeff peri/nosb command: unknown keyword '{}' (allowed: "
-                 "stabilize, break, contact)",
+                 "stabilize, break, contact, G0)",
                  arg[iarg]);
     }
   }
 
-  if (break_one && s00_one <= 0.0)
+  if (g0_one > 0.0 && !s00_null)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: s00 = {} and G0 = {} both set the critical "
+               "stretch (give s00 as NULL with G0)",
+               arg[6], g0_one);
+  if (g0_one > 0.0 && !break_one)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: G0 = {} sets the critical stretch, but "
+               "bonds cannot break with 'break no'",
+               g0_one);
+  if (s00_null && g0_one == 0.0)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: s00 = NULL needs the G0 keyword (the "
+               "critical energy release rate that sets the critical stretch)");
+  if (break_one && !s00_null && s00_one <= 0.0)
     error->all(FLERR,
                "Illegal pair_coeff peri/nosb command: s00 must be > 0 when bonds can break, got "
                "{} (use 'break no' to turn bond breaking off)",
@@ -293,7 +345,9 @@ void PairPeriNosb::coeff(int narg, char **arg)
       bulk[i][j] = k_one;
       shear[i][j] = g_one;
       cut[i][j] = cut_one;
-      s00[i][j] = s00_one;
+      s00[i][j] = s00_one;    // with G0: set at init (s00_from_fracture_energy)
+      g0[i][j] = g0_one;
+      g0_s00[i][j] = 0.0;    // log the s00 it gives at the next init
       alpha[i][j] = alpha_one;
       cs[i][j] = cs_one;
       breakflag[i][j] = break_one;
@@ -305,6 +359,59 @@ void PairPeriNosb::coeff(int narg, char **arg)
   if (count == 0)
     error->all(FLERR, "Incorrect args for pair_coeff peri/nosb command: no type pair in {} {}",
                arg[0], arg[1]);
+}
+
+/* ----------------------------------------------------------------------
+   G0 keyword: the critical stretch of each type pair set with G0, from its own pair_coeff line
+   (K, G, Cs, horizon) and the particle spacing h = mean V^(1/3) of the particles of its two
+   types (of all particles if there are none); logged when it is first set or changes
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::s00_from_fracture_energy()
+{
+  const int n = atom->ntypes;
+  bool any = false;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      if (setflag[i][j] && g0[i][j] > 0.0) any = true;
+  if (!any) return;
+
+  // per type: sum of V^(1/3) and count (index 0: all types)
+  std::vector<double> local(2 * (n + 1), 0.0), total(2 * (n + 1), 0.0);
+  for (int k = 0; k < atom->nlocal; k++) {
+    const double hk = cbrt(atom->vfrac[k]);
+    local[2 * atom->type[k]] += hk;
+    local[2 * atom->type[k] + 1] += 1.0;
+    local[0] += hk;
+    local[1] += 1.0;
+  }
+  MPI_Allreduce(local.data(), total.data(), 2 * (n + 1), MPI_DOUBLE, MPI_SUM, world);
+
+  for (int i = 1; i <= n; i++) {
+    for (int j = i; j <= n; j++) {
+      if (!setflag[i][j] || g0[i][j] <= 0.0) continue;
+      double hsum = total[2 * i] + (j != i ? total[2 * j] : 0.0);
+      double count = total[2 * i + 1] + (j != i ? total[2 * j + 1] : 0.0);
+      if (count == 0.0) {
+        hsum = total[0];
+        count = total[1];
+      }
+      if (count == 0.0)
+        error->all(FLERR,
+                   "pair_coeff peri/nosb G0 {} for types {} {}: no particles to take the "
+                   "particle spacing from",
+                   g0[i][j], i, j);
+      const double h = hsum / count;
+      s00[i][j] = s00_from_g0(g0[i][j], bulk[i][j], shear[i][j], cs[i][j], cut[i][j], h);
+      if (s00[i][j] != g0_s00[i][j] && comm->me == 0)
+        utils::logmesg(lmp,
+                       "peri/nosb: types {} {}: G0 = {:.6g} gives s00 = {:.6g} (K = {:.6g}, "
+                       "G = {:.6g}, Cs = {:.6g}, horizon = {:.6g} = {:.5g} h)\n",
+                       i, j, g0[i][j], s00[i][j], bulk[i][j], shear[i][j], cs[i][j], cut[i][j],
+                       cut[i][j] / h);
+      g0_s00[i][j] = s00[i][j];
+    }
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -330,6 +437,8 @@ void PairPeriNosb::init_style()
                force->pair_style);
 
   const int n = atom->ntypes;
+
+  s00_from_fracture_energy();    // G0 keyword: s00 of those type pairs (before mixing)
 
   // mixing of unset I,J (I != J): bond parameters from both types
 

@@ -91,6 +91,8 @@ class PairPeriNosb : public Pair {
   double **bulk, **shear, **cut, **s00, **alpha, **cs;
   int **breakflag, **contactflag;
   double **kcontact;        // short-range contact stiffness 15 * 18 K / (pi delta^4)
+  double **g0;              // G0 keyword (critical energy release rate), 0 = s00 given
+  double **g0_s00;          // s00 that G0 gave at the last init (to log it once)
   // per type
   PeriSISSM::Material **materials;
   // summary flags
@@ -117,6 +119,7 @@ class PairPeriNosb : public Pair {
   double *s0_new;
 
   void allocate();
+  void s00_from_fracture_energy();
   void grow_peratom();
   void compute_contact(int, int);
   void build_contact_list(double margin);
