@@ -963,8 +963,10 @@ std::string FixNosbFamily::likely_cause(int converged)
                        "peri/nosb doc)",
                        dt, est);
   return fmt::format("time step dt = {:.4g} is within the estimated stable time step {:.4g} of "
-                     "peri/nosb (compute nosb/atom column 11), so the motion was put in from "
-                     "outside: check initial velocities and positions (velocity, set, "
-                     "displace_atoms) and fixes that add forces",
+                     "peri/nosb at rest (compute nosb/atom column 11): either the body is "
+                     "deformed far from rest (strongly compressed or inverted particles are "
+                     "stiffer: lower the time step), or the motion was put in from outside "
+                     "(check initial velocities and positions: velocity, set, displace_atoms; "
+                     "and fixes that add forces)",
                      dt, est);
 }
