@@ -12,6 +12,8 @@
      3 J = det F
      4 von Mises equivalent of the Cauchy stress
      5-10 Cauchy stress sigma = P F^T / J: xx yy zz xy xz yz
+     11 estimate of the particle's stable explicit time step (fix nve), at rest, from its
+       current bonds (FixNosbFamily::stable_time_steps; +inf for a particle without bonds)
    For J < 1e-3 (collapsed or inverted particles) sigma = P F^T / 1e-3 (finite, continuous).
    A particle whose shape tensor is singular reports F = I: W = 0, J = 1, zero stress.
    Atoms outside the group get zeros.
@@ -35,7 +37,7 @@ using namespace LAMMPS_NS;
 /* ---------------------------------------------------------------------- */
 
 ComputeNosbAtom::ComputeNosbAtom(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), nmax(0), values(nullptr), pair(nullptr)
+    Compute(lmp, narg, arg), nmax(0), values(nullptr), dtstable(nullptr), pair(nullptr)
 {
   if (narg != 3)
     error->all(FLERR, "Illegal compute nosb/atom command: no arguments expected after the style");
@@ -48,6 +50,7 @@ ComputeNosbAtom::ComputeNosbAtom(LAMMPS *lmp, int narg, char **arg) :
 ComputeNosbAtom::~ComputeNosbAtom()
 {
   memory->destroy(values);
+  memory->destroy(dtstable);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -66,8 +69,10 @@ void ComputeNosbAtom::compute_peratom()
 
   if (atom->nmax > nmax) {
     memory->destroy(values);
+    memory->destroy(dtstable);
     nmax = atom->nmax;
     memory->create(values, nmax, NCOLUMNS, "nosb/atom:values");
+    memory->create(dtstable, nmax, "nosb/atom:dtstable");
     array_atom = values;
   }
 
@@ -82,6 +87,7 @@ void ComputeNosbAtom::compute_peratom()
     error->all(FLERR,
                "Compute nosb/atom: pair peri/nosb has not evaluated the current atoms yet (the "
                "compute reports the state of the last force evaluation; use 'run 0' first)");
+  if (ready) family->stable_time_steps(dtstable);    // all ranks (a forward communication)
 
   for (int i = 0; i < nlocal; i++) {
     double *v = values[i];
@@ -90,6 +96,7 @@ void ComputeNosbAtom::compute_peratom()
     v[JACOBIAN] = 1.0;
     if (!ready) continue;
     v[DAMAGE] = family->damage(i);
+    v[DTSTABLE] = dtstable[i];
     if (!family->kregular[i]) continue;
     const double *F = pair->gstate[i];
     v[ENERGY] = pair->wdens[i];
@@ -104,5 +111,5 @@ void ComputeNosbAtom::compute_peratom()
 
 double ComputeNosbAtom::memory_usage()
 {
-  return (double) nmax * NCOLUMNS * sizeof(double);
+  return (double) nmax * (NCOLUMNS + 1) * sizeof(double);
 }

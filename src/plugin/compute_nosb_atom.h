@@ -2,7 +2,7 @@
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
    compute nosb/atom: per-atom damage, strain energy density, J, von Mises and Cauchy stress
-   of pair_style peri/nosb.
+   of pair_style peri/nosb, and the estimate of the particle's stable explicit time step.
 ------------------------------------------------------------------------- */
 
 #ifdef COMPUTE_CLASS
@@ -20,7 +20,9 @@ namespace LAMMPS_NS {
 
 class ComputeNosbAtom : public Compute {
  public:
-  enum { DAMAGE = 0, ENERGY, JACOBIAN, VONMISES, SXX, SYY, SZZ, SXY, SXZ, SYZ, NCOLUMNS };
+  enum {
+    DAMAGE = 0, ENERGY, JACOBIAN, VONMISES, SXX, SYY, SZZ, SXY, SXZ, SYZ, DTSTABLE, NCOLUMNS
+  };
 
   ComputeNosbAtom(class LAMMPS *, int, char **);
   ~ComputeNosbAtom() override;
@@ -31,6 +33,7 @@ class ComputeNosbAtom : public Compute {
  private:
   int nmax;
   double **values;
+  double *dtstable;
   class PairPeriNosb *pair;
 };
 

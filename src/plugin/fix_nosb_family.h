@@ -16,6 +16,7 @@ FixStyle(nosb/family,FixNosbFamily);
 
 #include "fix.h"
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,7 @@ class FixNosbFamily : public Fix {
   void setup_post_neighbor() override;
   void post_neighbor() override;
   void min_post_neighbor() override;
+  void post_integrate() override;
 
   double memory_usage() override;
   void grow_arrays(int) override;
@@ -44,6 +46,23 @@ class FixNosbFamily : public Fix {
   void unpack_restart(int, int) override;
   int size_restart(int) override;
   int maxsize_restart() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+
+  // blow-up guard (all ranks): stop with an error naming the step, the worst atom and the
+  // likely cause when an owned atom has a non-finite position, velocity or force, or the atoms
+  // have moved farther than LAMMPS can follow (beyond one periodic image, or spread beyond
+  // what its neighbor bins can index). Called every step in post_integrate, or by an
+  // integrator that moves the atoms later in the step (fix sissm) right after it has, telling
+  // whether its step converged (1), did not (0), or -1 (explicit integrators).
+  void check_motion(int converged = -1);
+  // estimate of the stable explicit time step of every owned atom (all ranks; dt[nlocal]):
+  //   dt_i = f sqrt(2 rho_i / d_i),  d_i = sum_j omega_ij (s_i + s_j),
+  //   s_i = kappa_i (lambda + 2 mu) + C_i / 2,  kappa_i = tr(K_i^-1) / 3
+  // (the SISSM block of the linearized material at rest); +infinity without stiffness
+  void stable_time_steps(double *dt);
+  // smallest stable_time_steps() over all atoms (all ranks)
+  double min_stable_time_step();
 
   // recompute K^-1 and the regular flag of local atom i from its unbroken bonds
   void update_shape(int i);
@@ -112,6 +131,11 @@ class FixNosbFamily : public Fix {
   void break_reused(const std::vector<tagint> &);
   std::vector<tagint> allgather_tags(const std::vector<tagint> &, int *offset = nullptr);
   std::vector<int> reshape;    // atoms whose K must be recomputed after a refresh
+  double *sdiag;               // per atom s_i of stable_time_steps() (owned and ghosts)
+  bigint last_check;           // step of the last check_motion()
+  int integrator_checks;       // 1: an integrator calls check_motion() (fix sissm)
+  double dtstable0;            // min_stable_time_step() at the setup of the run
+  std::string likely_cause(int converged);
   void missing_partner(int i, tagint jtag);
   int local_index(tagint) const;
 };

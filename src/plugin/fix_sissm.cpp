@@ -874,6 +874,11 @@ void FixSissm::post_integrate()
     for (int d = 0; d < 3; d++) v[i][d] = (x[i][d] - yn[i][d]) / h;
   }
 
+  // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
+  // decides on a neighbor list build): a diverged step ends in an error, not in LAMMPS's
+  // neighbor binning
+  pair->family->check_motion(measure <= tol_step ? 1 : 0);
+
   const int k = evaluations;
   last_iterations = k;
   last_measure = measure;

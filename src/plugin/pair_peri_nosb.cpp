@@ -1202,6 +1202,17 @@ int PairPeriNosb::contact_follow_motion()
     // name the atom that moved farthest (the smallest ID among equals, on any rank count)
     tagint idall;
     MPI_Allreduce(&worst, &idall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+    // motion beyond the size of the box (as at the last neighbor list build) is a blow-up,
+    // not a question of the skin
+    const double boxsize = std::max(domain->prd[0], std::max(domain->prd[1], domain->prd[2]));
+    if (moved > boxsize)
+      error->all(FLERR,
+                 "Pair peri/nosb: the run is unstable: at step {} atom {} moved {:.4g} within "
+                 "one implicit step, more than the size of the box {:.4g}; likely cause: fix "
+                 "sissm starts a step at y^n + h v^n, and the velocities are far too large for "
+                 "the time step {:.4g} (check initial velocities and positions, fixes that add "
+                 "forces, or lower the time step)",
+                 update->ntimestep, idall, moved, boxsize, update->dt);
     error->all(FLERR,
                "Pair peri/nosb: within the implicit step {} atom {} moved {:.4g} from where it "
                "was at the last neighbor list build, farther than short-range contact can "

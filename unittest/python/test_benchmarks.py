@@ -42,10 +42,14 @@ def test_stability_driver(tmp_path):
     for method in ("nosb_nve", "lps_nve"):
         beyond = [r for r in by[method] if float(r["factor"]) >= 2]
         assert beyond and all(r["status"] != "stable" for r in beyond), method
+    # a peri/nosb run that blows up ends in its ERROR, never in a signal (issue 9)
+    assert not [r for r in rows if r["method"] != "lps_nve" and r["status"].startswith("crash")]
     # the corotated linear model comes back from every extreme case under fix sissm
     extreme = read_csv(tmp_path / "stability" / "extreme.csv")
     linear = [r for r in extreme if r["method"] == "sissm_krylov" and r["model"] == "linear"]
     assert linear and all(r["verdict"] == "recovered" for r in linear)
+    # the final total momentum of every run that ended with a dump is in the table
+    assert all(r["final_p_kg_m_s"] != "-" and r["final_L_kg_m2_s"] != "-" for r in linear)
 
 
 @pytest.mark.slow

@@ -174,7 +174,13 @@ def command_line(deck: Path, variables: dict) -> str:
     return " ".join(shlex.quote(w) for w in words)
 
 
-def run(deck: Path, workdir: Path, variables: dict, timeout: float = 300):
+# A guard against a hung lmp only, never a criterion: every run is capped in steps (its deck's
+# nsteps), and the slowest one measured takes ~20 s on one core, so a run that has not ended
+# after an hour is stuck, whatever the machine's load.
+HANG_GUARD_S = 3600.0
+
+
+def run(deck: Path, workdir: Path, variables: dict, timeout: float = HANG_GUARD_S):
     shutil.copy(GEOMETRY, workdir)
     t0 = time.time()
     try:
@@ -190,7 +196,8 @@ def classify(r, wall: float, nsteps: int, sissm: bool) -> Outcome:
     lost atoms, lost partners, ...), non-finite thermo values, or etotal growing beyond
     ENERGY_FACTOR times its initial value."""
     if r is None:
-        return Outcome("hang", "timeout", wall=wall, suspicious="timeout (hang?)")
+        return Outcome("hang", f"no end after {HANG_GUARD_S:.0f} s", wall=wall,
+                       suspicious=f"lmp did not end within {HANG_GUARD_S:.0f} s (hang?)")
     table = r.thermo[-1] if r.thermo else {}
     out = Outcome("stable", "", wall=wall, table=table, log=r.log)
     steps = table.get("Step", np.array([]))
@@ -221,7 +228,9 @@ def classify(r, wall: float, nsteps: int, sissm: bool) -> Outcome:
         msg = errors[0]
         out.error = msg
         low = msg.lower()
-        if "halt" in low or "too many neighbor bins" in low:
+        if "the run is unstable" in low:   # the blow-up guard of peri/nosb
+            out.status = "NaN" if "non-finite" in low else "blow-up"
+        elif "halt" in low or "too many neighbor bins" in low:
             out.status = "blow-up"
         elif "non-numeric" in low or "non-finite" in low or "nan" in low.split():
             out.status = "NaN"
@@ -286,7 +295,7 @@ def probe(method: Method, fix: str, work: Path) -> tuple:
     d = work / f"probe_{method.key}"
     d.mkdir(parents=True, exist_ok=True)
     r, _ = run(MATRIX_DECK, d, {"n": 5, "nsteps": 2, "dt": 1e-7, "pair": method.pair,
-                                "fix": fix, "sissm": int(method.sissm)}, timeout=60)
+                                "fix": fix, "sissm": int(method.sissm)})
     if r is None:
         return False, "timeout"
     if r.ok:
@@ -365,6 +374,13 @@ def shape_metrics(rest, frame, has_J: bool = True) -> dict:
         I = np.sum(Yc * Yc) * np.eye(3) - Yc.T @ Yc       # inertia tensor / (rho V_i)
         m["v_cm"] = float(np.linalg.norm(vcm))
         m["omega"] = float(np.linalg.norm(np.linalg.solve(I, Lz))) if np.linalg.det(I) > 0 else float("nan")
+        if "mass" in frame and "c_vfrac" in frame:
+            # total linear momentum p = sum rho_i V_i v_i and angular momentum about the centre
+            # of mass L = sum rho_i V_i (x_i - x_cm) x v_i (rmass is the density)
+            mass = frame["mass"] * frame["c_vfrac"]
+            xcm = (mass[:, None] * Y).sum(0) / mass.sum()
+            m["p"] = float(np.linalg.norm((mass[:, None] * V).sum(0)))
+            m["L"] = float(np.linalg.norm((mass[:, None] * np.cross(Y - xcm, V)).sum(0)))
     if has_J and "v_J" in frame:
         J = frame["v_J"]
         m["Jmin"], m["Jmax"] = float(J.min()), float(J.max())
@@ -537,7 +553,8 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
         "its initial value.  Otherwise how the run ended and the last thermo step before it: "
         "`NaN` (LAMMPS ERROR about non-numeric/non-finite positions, or non-finite thermo), "
         "`lost atoms`, `lost partners` (ERROR lines of LAMMPS/peri/nosb), `blow-up` (the "
-        "bounding box grew beyond 100 x the block's, stopped by fix halt, or LAMMPS's \"Too "
+        "bounding box grew beyond 100 x the block's, stopped by fix halt, or the blow-up guard of "
+        "peri/nosb, \"the run is unstable\", or LAMMPS's \"Too "
         f"many neighbor bins\" for a box that exploded within one step), `E>{ENERGY_FACTOR:g}x` "
         "(energy growth, the run otherwise completed), `crash (core)` (lmp died with a signal "
         "inside LAMMPS itself, not the plugin: first backtrace frame in the CSV), `error` "
@@ -639,10 +656,13 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
         "centre of mass, omega = rigid angular velocity from the final angular momentum and "
         "inertia.  Every block starts at rest (zero linear and angular momentum) and no "
         "external force acts, so v_cm and omega measure momentum created by the integrator; a "
-        "spinning block whose shape is back counts as recovered.")
+        "spinning block whose shape is back counts as recovered.  p = |sum_i rho_i V_i v_i| "
+        "and L = |sum_i rho_i V_i (x_i - x_cm) x v_i| are the total linear and angular "
+        "momentum (about the centre of mass) at the end of the run, from the final dump; both "
+        "are zero at the start.")
     add("")
-    add("| case | model | integrator | outcome | rms / a | max abs(J-1) | J range | v_rms | v_cm | omega (rad/s) | before: J range |")
-    add("|---|---|---|---|---|---|---|---|---|---|---|")
+    add("| case | model | integrator | outcome | rms / a | max abs(J-1) | J range | v_rms | v_cm | omega (rad/s) | p (kg m/s) | L (kg m^2/s) | before: J range |")
+    add("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in xs:
         m = r.get("metrics", {})
         b = r.get("before", {})
@@ -653,7 +673,7 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
             out += f" (`{r['outcome'].error[:80]}`)"
         add(f"| {r['case']} | {r['model']} | {r['method']} | {out} | {fmt(m.get('rms'))} | "
             f"{fmt(m.get('Jdev'))} | {jr} | {fmt(r.get('v_rms'))} | {fmt(m.get('v_cm'))} | "
-            f"{fmt(m.get('omega'))} | {bjr} |")
+            f"{fmt(m.get('omega'))} | {fmt(m.get('p'))} | {fmt(m.get('L'))} | {bjr} |")
     add("")
     # summary per model/method
     add("### Outcomes in brief")
@@ -739,9 +759,13 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
         sites = sorted({e for e, _ in core})
         add(f"{len(core)} runs died with a signal in LAMMPS's own code ({'; '.join(sites)}), "
             "not in the plugin, all after the run had already blown up; e.g. "
-            f"`{core[0][1]}`.")
+            f"`{core[0][1]}`.  (peri/nosb runs stop before that with the error \"the run is "
+            "unstable\" of its blow-up guard, see pair_style peri/nosb; the built-in styles "
+            "have no such guard.)")
     else:
-        add("None.")
+        add("None: every run that blew up ended with an ERROR line (peri/nosb: \"the run is "
+            "unstable\", its blow-up guard, which names the step, an atom and the likely "
+            "cause).")
     add("")
     add("## Plugin problems found")
     add("")
@@ -930,6 +954,8 @@ def main():
                               "before_Jmin": fmt(res["before"].get("Jmin"), ".4g"),
                               "before_Jmax": fmt(res["before"].get("Jmax"), ".4g"),
                               "final_v_rms_m_s": fmt(res["v_rms"], ".3g"),
+                              "final_p_kg_m_s": fmt(m.get("p"), ".4g"),
+                              "final_L_kg_m2_s": fmt(m.get("L"), ".4g"),
                               "sissm_mean_iterations": fmt(o.iterations, ".4g"),
                               "sissm_unconverged_steps": fmt(o.unconverged, ".0f"),
                               "error": o.error, "suspicious": o.suspicious,
