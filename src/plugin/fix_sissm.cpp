@@ -75,8 +75,9 @@ bool solve3(const double M[9], const double r[3], double tiny, double x[3])
   return true;
 }
 
-// Per-atom columns of the momentum balance (balance_momentum; 18..20 unused).
-constexpr int NMOMENT = 36;
+// Per-atom columns of the momentum balance (balance_momentum): 12 terms of a sum, then the
+// atom's position relative to the centre of mass as the rotation proceeds.
+constexpr int NMOMENT = 15;
 
 // The pair flags of an implicit step, reset however the step ends (also when an error is
 // thrown inside it and the caller of LAMMPS carries on).
@@ -109,7 +110,8 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), pair(nullptr), solver(KRYLOV), maxiter(100), tolerance(1.0e-6),
     relax(0), implicit_external(1), external_mode(EXT_NONE), dtv(0.0), tol_step(1.0e-6),
     last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
-    warned(0), warned_roundoff(0), nmax(0), evaluations(0), fint(nullptr), fext(nullptr), flagged(nullptr),
+    warned(0), warned_roundoff(0), nmax(0), evaluations(0), contact_incomplete(0), fint(nullptr),
+    fext(nullptr), flagged(nullptr),
     yn(nullptr), yhat(nullptr), res(nullptr), block(nullptr), rprev(nullptr), dprev(nullptr),
     xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
     sdir(nullptr), term(nullptr), moment(nullptr)
@@ -417,7 +419,7 @@ void FixSissm::evaluate(int blocks)
   const int nall = nlocal + atom->nghost;
   const double h2 = dtv * dtv;
 
-  pair->contact_follow_motion();
+  contact_incomplete = pair->contact_follow_motion() < 0;
   for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
   pair->stiffness_flag = blocks;
   pair->compute(0, 0);
@@ -636,7 +638,7 @@ double FixSissm::solve_jacobi()
     measure = scaled_max(res, 1);
     if (k == 0) attainable_tolerance();
     sweep(k == 0);
-    if (measure <= tol_step) break;
+    if (measure <= tol_step && !contact_incomplete) break;
   }
   return measure;
 }
@@ -675,7 +677,7 @@ double FixSissm::solve_krylov()
     evaluate(1);
     measure = scaled_max(res, 1);
     if (evaluations == 1) attainable_tolerance();
-    if (measure <= tol_step) {
+    if (measure <= tol_step && !contact_incomplete) {
       // as jacobi does: the evaluation that meets the tolerance still gives its SISSM
       // correction (free, and at small steps, where the start y^n + h v^n may already meet a
       // loose tolerance, it is what moves the body by h^2 f / rho)
@@ -865,9 +867,6 @@ void FixSissm::post_integrate()
     free_group = group_is_free();
   }
   if (free_group) balance_momentum();
-  // contact candidates: the next step starts from a fresh neighbor list if this one moved
-  // atoms far (PairPeriNosb::contact_follow_motion())
-  if (pair->contact_reneighbor_wanted()) next_reneighbor = update->ntimestep;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -878,6 +877,10 @@ void FixSissm::post_integrate()
   // decides on a neighbor list build): a diverged step ends in an error, not in LAMMPS's
   // neighbor binning
   pair->family->check_motion(measure <= tol_step ? 1 : 0);
+  // short-range contact: a result beyond what the candidates could follow is refused, and
+  // the next step starts from a fresh neighbor list if this one moved atoms far
+  // (PairPeriNosb::contact_follow_motion())
+  if (pair->contact_end_of_step()) next_reneighbor = update->ntimestep;
 
   const int k = evaluations;
   last_iterations = k;
@@ -947,24 +950,27 @@ bool FixSissm::group_is_free()
 /* ----------------------------------------------------------------------
    momentum balance of a free group, for every step, converged or not:
      P^{n+1} = P^n + h F,        F = sum_i V_i fext_i,
-     L^{n+1} = L^n + h T,        T = sum_i V_i q_i^{n+1} x fext_i,
+     L^{n+1} = L^n + h T,        T = sum_i V_i r_i x fext_i,
    P = sum_i m_i v_i, L = sum_i m_i q_i x v_i the angular momentum about the centre of mass
    (q_i = y_i - c), m_i = rho_i V_i, fext the other fixes' force density of the last evaluation
-   (zero under external lagged: then it is in yhat, and P^n + h F is sum_i m_i (yhat_i -
-   y_i^n) / h). With v^{n+1} = (y^{n+1} - y^n)/h and sum_i m_i q_i^n = 0, both are linear in
-   y^{n+1}: sum_i m_i (y_i^{n+1} - y_i^n) = h P^{n+1} and
-     L^{n+1} = (1/h) sum_i m_i q_i^n x y_i^{n+1} = (1/h) sum_i m_i q_i^n x (y_i^{n+1} - y_i^n)
-   (the last form loses no digits far from the origin). The internal forces of a free group
-   have zero sum and zero torque at any positions (their energy is invariant under
-   translation and rotation), so a converged
-   backward-Euler step keeps P exactly; a truncated solve does not, and a free body at rest
-   would pick up a rigid velocity. Backward Euler itself changes L by h sum_i m_i v_i^{n+1} x
-   v_i^n (it damps rotation). The rigid correction y_i += a + b x q_i^n restores both
-   balances exactly: a from the first, and b from
-     (I^n - h^2 C) b = h (L^n + h T - L),   C = sum_i V_i (q_i^n fext_i^T - (q_i^n.fext_i) I),
-   I^n the inertia tensor about c^n, T and L those of the uncorrected step (a does not change
-   T). The correction is a rigid motion to first order in b: it does not touch the force
-   balance of the deformation. Sums are order-independent, so every rank count corrects alike.
+   and r_i = y_i^{n+1} - c^{n+1} (under external lagged fext is zero here: it is in yhat, so
+   that m (yhat - y^n) / h = m v^n + h V fext, and the lagged force and torque at y^n are in the
+   targets). With v^{n+1} = (y^{n+1} - y^n)/h and sum_i m_i q_i^n = 0,
+     sum_i m_i (y_i^{n+1} - y_i^n) = h P^{n+1},   L^{n+1} = (1/h) sum_i m_i q_i^n x r_i.
+   The internal forces of a free group have zero sum and zero torque at any positions (their
+   energy is invariant under translation and rotation), so a converged backward-Euler step
+   keeps P exactly; a truncated solve does not, and a free body at rest would pick up a rigid
+   velocity. Backward Euler itself changes L by h sum_i m_i v_i^{n+1} x v_i^n (it damps
+   rotation). The correction moves the result rigidly: its centre by d (from the first
+   balance, exactly), and the rest by a rotation R about the centre, r_i -> R r_i, found by
+   Newton's method on G(R) = (1/h) sum m q^n x R r - h sum V (R r) x fext - L^n = 0 with
+     dG = J dtheta,  J = (1/h) sum_i m_i ((q_i^n . r_i) I - r_i q_i^nT)
+                          - h sum_i V_i (r_i fext_i^T - (r_i . fext_i) I)
+   (rotation increments composed exactly, Rodrigues' formula): a rotation changes no bond
+   length, so the deformation and its energy are untouched. A converged step needs a rotation
+   of ~1e-4 rad or less, reached to round-off in two iterations; at most 8 are made. All
+   terms are relative to the centres (coordinates far from the origin would cost digits), and
+   the sums are order-independent, so every rank count corrects alike.
 ------------------------------------------------------------------------- */
 
 void FixSissm::balance_momentum()
@@ -996,75 +1002,88 @@ void FixSissm::balance_momentum()
   if (!(mass > 0.0)) return;
   const double cn[3] = {s[1] / mass, s[2] / mass, s[3] / mass};
 
+  // the step's displacement of the centre, the targets h P^{n+1} - h^2 F and L^n, and F
   for (int i = 0; i < nlocal; i++) {
     double *row = moment[i];
-    for (int k = 0; k < NMOMENT; k++) row[k] = 0.0;
+    for (int k = 0; k < 12; k++) row[k] = 0.0;
     if (!(mask[i] & groupbit)) continue;
     const double m = rho[i] * vfrac[i];
-    const double *fe = fext[i];
-    double q[3], u[3], r[3], mv[3], w[3];
+    double q[3], mv[3];
     for (int k = 0; k < 3; k++) {
       q[k] = yn[i][k] - cn[k];
-      u[k] = x[i][k] - yn[i][k];    // the step's displacement
-      r[k] = x[i][k] - cn[k];
-      // m v^n (+ h m fext / rho when lagged, which is in yhat)
-      mv[k] = m * (yhat[i][k] - yn[i][k]) / h;
-      row[k] = m * u[k];
+      mv[k] = m * (yhat[i][k] - yn[i][k]) / h;    // m v^n (+ the lagged force, see above)
+      row[k] = m * (x[i][k] - yn[i][k]);
       row[3 + k] = mv[k];
-      row[6 + k] = lagged ? 0.0 : vfrac[i] * fe[k];
+      row[6 + k] = lagged ? 0.0 : vfrac[i] * fext[i][k];
     }
-    cross(q, mv, w);
-    for (int k = 0; k < 3; k++) row[9 + k] = w[k];
-    cross(q, u, w);
-    for (int k = 0; k < 3; k++) row[12 + k] = m * w[k];
-    if (!lagged) {
-      cross(r, fe, w);
-      for (int k = 0; k < 3; k++) row[15 + k] = vfrac[i] * w[k];
-    }
-    const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-    row[21] = m * (qq - q[0] * q[0]);
-    row[22] = m * (qq - q[1] * q[1]);
-    row[23] = m * (qq - q[2] * q[2]);
-    row[24] = -m * q[0] * q[1];
-    row[25] = -m * q[0] * q[2];
-    row[26] = -m * q[1] * q[2];
-    if (!lagged) {
-      const double qf = q[0] * fe[0] + q[1] * fe[1] + q[2] * fe[2];
-      for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++)
-          row[27 + 3 * r + c] = vfrac[i] * (q[r] * fe[c] - (r == c ? qf : 0.0));
-    }
+    cross(q, mv, row + 9);
   }
-  reproducible_sums(t, nlocal, NMOMENT, NMOMENT, s);
+  reproducible_sums(t, nlocal, NMOMENT, 12, s);
+  double dcen[3], d[3], Ln[3];
+  for (int k = 0; k < 3; k++) {
+    dcen[k] = s[k] / mass;                                   // c - c^n
+    d[k] = (h * (s[3 + k] + h * s[6 + k]) - s[k]) / mass;    // move of the centre
+    Ln[k] = s[9 + k];
+  }
 
-  // linear: sum m (y' - y^n) = h (P^n + h F)
-  double a[3];
-  for (int k = 0; k < 3; k++) a[k] = (h * (s[3 + k] + h * s[6 + k]) - s[k]) / mass;
-
-  // angular: T of the uncorrected step about its own centre of mass c = c^n + dc (all terms
-  // relative to c^n or y^n: absolute coordinates far from the origin would cost digits)
-  const double *F = s + 6, *Ln = s + 9, *hL = s + 12;
-  const double dc[3] = {s[0] / mass, s[1] / mass, s[2] / mass};
-  double cF[3];
-  cross(dc, F, cF);
-  double rhs[3];
-  for (int k = 0; k < 3; k++) rhs[k] = h * (Ln[k] + h * (s[15 + k] - cF[k])) - hL[k];
+  // rotation about the centre c = c^n + dcen: r_i = y_i - c, kept in the last three columns
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit)
+      for (int k = 0; k < 3; k++)
+        moment[i][12 + k] = (x[i][k] - yn[i][k]) - dcen[k] + (yn[i][k] - cn[k]);
   const double h2 = h * h;
-  const double M[9] = {s[21] - h2 * s[27], s[24] - h2 * s[28], s[25] - h2 * s[29],
-                       s[24] - h2 * s[30], s[22] - h2 * s[31], s[26] - h2 * s[32],
-                       s[25] - h2 * s[33], s[26] - h2 * s[34], s[23] - h2 * s[35]};
-  // (a group on a line or at a point has no inertia to correct in some direction: then only
-  // the momentum is balanced)
-  double b[3] = {0.0, 0.0, 0.0};
-  const double itrace = s[21] + s[22] + s[23];
-  solve3(M, rhs, 1.0e-12 * itrace * itrace * itrace, b);
+  for (int iter = 0; iter < 8; iter++) {
+    for (int i = 0; i < nlocal; i++) {
+      double *row = moment[i];
+      for (int k = 0; k < 12; k++) row[k] = 0.0;
+      if (!(mask[i] & groupbit)) continue;
+      const double m = rho[i] * vfrac[i];
+      const double *r = row + 12;
+      const double q[3] = {yn[i][0] - cn[0], yn[i][1] - cn[1], yn[i][2] - cn[2]};
+      double fe[3] = {0.0, 0.0, 0.0};
+      if (!lagged)
+        for (int k = 0; k < 3; k++) fe[k] = vfrac[i] * fext[i][k];
+      double w[3], u[3];
+      cross(q, r, w);
+      cross(r, fe, u);
+      for (int k = 0; k < 3; k++) row[k] = m * w[k] / h - h * u[k];    // G + L^n
+      const double qr = q[0] * r[0] + q[1] * r[1] + q[2] * r[2];
+      const double rf = r[0] * fe[0] + r[1] * fe[1] + r[2] * fe[2];
+      for (int a = 0; a < 3; a++)
+        for (int c = 0; c < 3; c++)
+          row[3 + 3 * a + c] = m / h * ((a == c ? qr : 0.0) - r[a] * q[c]) -
+              h * (r[a] * fe[c] - (a == c ? rf : 0.0));
+    }
+    reproducible_sums(t, nlocal, NMOMENT, 12, s);
+    const double G[3] = {Ln[0] - s[0], Ln[1] - s[1], Ln[2] - s[2]};    // -G
+    // (a group on a line or at a point has no inertia about some axis: no rotation then)
+    const double jtrace = fabs(s[3]) + fabs(s[7]) + fabs(s[11]);
+    double dtheta[3];
+    if (!solve3(s + 3, G, 1.0e-12 * jtrace * jtrace * jtrace, dtheta)) break;
+    const double angle = sqrt(dtheta[0] * dtheta[0] + dtheta[1] * dtheta[1] +
+                              dtheta[2] * dtheta[2]);
+    if (!(angle > 0.0)) break;
+    const double k[3] = {dtheta[0] / angle, dtheta[1] / angle, dtheta[2] / angle};
+    const double cs = cos(angle), sn = sin(angle);
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      double *r = moment[i] + 12;
+      double kr[3];
+      cross(k, r, kr);
+      const double kdr = k[0] * r[0] + k[1] * r[1] + k[2] * r[2];
+      for (int c = 0; c < 3; c++) r[c] = r[c] * cs + kr[c] * sn + k[c] * kdr * (1.0 - cs);
+    }
+    if (angle < 1.0e-15) break;
+  }
 
+  // y <- c + d + R r, written as a displacement of y (no large coordinates subtracted)
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    const double q[3] = {yn[i][0] - cn[0], yn[i][1] - cn[1], yn[i][2] - cn[2]};
-    double w[3];
-    cross(b, q, w);
-    for (int k = 0; k < 3; k++) x[i][k] += a[k] + w[k];
+    const double *r = moment[i] + 12;
+    for (int k = 0; k < 3; k++) {
+      const double r0 = (x[i][k] - yn[i][k]) - dcen[k] + (yn[i][k] - cn[k]);
+      x[i][k] += d[k] + (r[k] - r0);
+    }
   }
 }
 

@@ -68,6 +68,7 @@ class FixSissm : public Fix {
   int warned_roundoff;  // round-off limit of the tolerance already reported in this run
   int nmax;
   int evaluations;      // force evaluations of the current step
+  int contact_incomplete;    // the last evaluation's contact candidates were incomplete
   double **fint;        // internal force density at y^n (captured in pre_reverse; lagged, mixed)
   double **fext;        // force density of the other fixes at the last evaluation (implicit,
                         //   mixed: used by the momentum balance; lagged: zero, it is in yhat)

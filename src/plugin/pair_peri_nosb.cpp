@@ -1174,12 +1174,10 @@ void PairPeriNosb::grow_motion()
    within reach + m) cover every pair within contact reach while no atom has moved m/2 from
    x_c. Beyond that they are chosen again, at the current positions, with the margin skin/4;
    the neighbor list holds the pairs within horizon + skin of its build (positions x_n), so the
-   new choice is complete only while reach + skin/4 + 2 max|x - x_n| <= horizon + skin. Farther
-   motion within one step is an error (a pair could touch that the list does not hold, or
-   that is not even a ghost). The integrator asks for a neighbor list build after every step
-   that moved an atom more than skin/8 (contact_reneighbor_wanted()), so a step starts with
-   max|x - x_n| <= skin/8 and may move atoms by (horizon - reach)/2 + skin/4.
-   One global max per call (two values).
+   new choice is complete only while reach + skin/4 + 2 max|x - x_n| <= horizon + skin
+   (contact_reachable()). An iterate farther away is evaluated with the candidates it has and
+   reported as incomplete (-1): the solver does not accept it as converged, and the step's
+   end (contact_end_of_step()) refuses a result that is that far. One global max per call.
 ------------------------------------------------------------------------- */
 
 int PairPeriNosb::contact_follow_motion()
@@ -1188,44 +1186,67 @@ int PairPeriNosb::contact_follow_motion()
   double moved;
   tagint worst;
   const double dc = motion_since(xcontact, &moved, &worst);
-  // (non-finite positions are the integrator's to report)
-  if (!(dc >= 0.5 * contact_margin) || !std::isfinite(moved)) return 0;
+  if (!contact_reachable(moved)) return -1;
+  if (dc < 0.5 * contact_margin) return 0;
+  build_contact_list(0.25 * neighbor->skin);
+  return 1;
+}
 
-  // the smallest horizon among the type pairs with contact bounds the neighbor list's reach
+/* ----------------------------------------------------------------------
+   whether contact candidates chosen from the neighbor list with the margin skin/4 are complete
+   after atoms moved by up to `moved` from the neighbor list build (false if not finite)
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_reachable(double moved) const
+{
   const double skin = neighbor->skin;
-  double hzmin = DBL_MAX;
+  return contact_reach() + 0.25 * skin + 2.0 * moved <= contact_horizon() + skin;
+}
+
+/* ----------------------------------------------------------------------
+   the smallest horizon among the type pairs with contact (it bounds the neighbor list's reach)
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::contact_horizon() const
+{
+  double hz = DBL_MAX;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++)
-      if (contactflag[i][j]) hzmin = std::min(hzmin, cut[i][j]);
-  const double margin = 0.25 * skin;
-  if (contact_reach() + margin + 2.0 * moved > hzmin + skin) {
+      if (contactflag[i][j]) hz = std::min(hz, cut[i][j]);
+  return hz;
+}
+
+/* ----------------------------------------------------------------------
+   at the end of an implicit step (all ranks): an error when the step moved an atom farther
+   from the last neighbor list build than the contact candidates can follow (its contact
+   forces could not be complete); true when it moved one more than skin/8, so that the
+   integrator asks for a neighbor list build before the next step. A step therefore starts
+   with max|x - x_n| <= skin/8 and may move atoms by (horizon - reach)/2 + skin/4.
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_end_of_step()
+{
+  if (!track_motion || !list) return false;
+  double moved;
+  tagint worst;
+  motion_since(xneigh, &moved, &worst);
+  const double skin = neighbor->skin;
+  if (!contact_reachable(moved)) {
     // name the atom that moved farthest (the smallest ID among equals, on any rank count)
     tagint idall;
     MPI_Allreduce(&worst, &idall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
-    // motion beyond the size of the box (as at the last neighbor list build) is a blow-up,
-    // not a question of the skin
-    const double boxsize = std::max(domain->prd[0], std::max(domain->prd[1], domain->prd[2]));
-    if (moved > boxsize)
-      error->all(FLERR,
-                 "Pair peri/nosb: the run is unstable: at step {} atom {} moved {:.4g} within "
-                 "one implicit step, more than the size of the box {:.4g}; likely cause: fix "
-                 "sissm starts a step at y^n + h v^n, and the velocities are far too large for "
-                 "the time step {:.4g} (check initial velocities and positions, fixes that add "
-                 "forces, or lower the time step)",
-                 update->ntimestep, idall, moved, boxsize, update->dt);
+    const double hz = contact_horizon();
     error->all(FLERR,
-               "Pair peri/nosb: within the implicit step {} atom {} moved {:.4g} from where it "
-               "was at the last neighbor list build, farther than short-range contact can "
-               "follow inside one step with neighbor skin {:.4g} (a step may move atoms by "
-               "(horizon - 1.35 x particle size) / 2 + skin / 4 = {:.4g}); use a smaller time "
-               "step, a neighbor skin of at least {:.4g}, or turn contact off for these types "
+               "Pair peri/nosb: the implicit step {} moved atom {} by {:.4g} from where it was "
+               "at the last neighbor list build, farther than short-range contact can follow "
+               "inside one step with neighbor skin {:.4g} (a step may move atoms by (horizon - "
+               "1.35 x particle size) / 2 + skin / 4 = {:.4g}); use a smaller time step, a "
+               "neighbor skin of at least {:.4g}, or turn contact off for these types "
                "(pair_coeff ... contact no)",
-               update->ntimestep, idall, moved, skin,
-               0.5 * (hzmin - contact_reach()) + 0.25 * skin,
-               2.0 * (2.0 * moved + contact_reach() - hzmin));
+               update->ntimestep, idall, moved, skin, 0.5 * (hz - contact_reach()) + 0.25 * skin,
+               2.0 * (2.0 * moved + contact_reach() - hz));
   }
-  build_contact_list(margin);
-  return 1;
+  return moved > 0.125 * skin;
 }
 
 /* ----------------------------------------------------------------------
@@ -1257,20 +1278,6 @@ double PairPeriNosb::motion_since(double **ref, double *moved, tagint *worst)
   *moved = sqrt(all[1]);
   *worst = (iworst >= 0 && local[1] == all[1]) ? atom->tag[iworst] : MAXTAGINT;
   return sqrt(all[0]);
-}
-
-/* ----------------------------------------------------------------------
-   true when an atom has moved more than skin/8 since the last neighbor list build (all
-   ranks agree): an implicit integrator then asks for a build before its next step
-------------------------------------------------------------------------- */
-
-bool PairPeriNosb::contact_reneighbor_wanted()
-{
-  if (!track_motion || !list) return false;
-  double moved;
-  tagint worst;
-  motion_since(xneigh, &moved, &worst);
-  return moved > 0.125 * neighbor->skin;
 }
 
 /* ----------------------------------------------------------------------

@@ -66,11 +66,13 @@ class PairPeriNosb : public Pair {
   // track_contact_motion(1), contact_follow_motion() (call it after every move, with ghost
   // positions current) keeps the short-range contact candidates complete: it re-selects them
   // from the neighbor list when an atom has moved more than half their margin since they were
-  // selected, and stops with an error when the motion since the neighbor list build exceeds
-  // what the list covers. Returns the number of re-selections (0 or 1).
+  // selected (returns 1; 0: nothing to do), and returns -1 when the atoms have moved farther
+  // than the neighbor list covers (then the candidates are incomplete for this iterate).
+  // contact_end_of_step() stops with an error when the step's result is that far, and returns
+  // true when the next step should start from a new neighbor list.
   void track_contact_motion(int flag);
   int contact_follow_motion();
-  bool contact_reneighbor_wanted();
+  bool contact_end_of_step();
   // contact pairs that coupled an atom of contact_groupbit with one outside it, counted over
   // this rank's evaluations since the counter was last reset (0: not counted)
   int contact_groupbit;
@@ -109,6 +111,8 @@ class PairPeriNosb : public Pair {
   double contact_reach() const;    // largest contact range, 1.35 hmax
   void grow_motion();
   double motion_since(double **ref, double *moved, tagint *worst);
+  bool contact_reachable(double moved) const;
+  double contact_horizon() const;
   int state_nlocal;         // nlocal when compute() last filled the per-atom state
   enum { RESTART_VERSION = 2 };
 

@@ -87,19 +87,45 @@ def forces(frame) -> np.ndarray:
     return np.column_stack([frame["fx"], frame["fy"], frame["fz"]])
 
 
+def rotation(theta):
+    """Rotation matrix of the rotation vector theta (Rodrigues)."""
+    angle = np.linalg.norm(theta)
+    if angle == 0.0:
+        return np.eye(3)
+    k = theta / angle
+    K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * K @ K
+
+
 def balance_momentum(yn, vn, y, m, h):
     """The rigid correction fix sissm applies to the step y of a free group without external
-    forces (doc/fix_sissm.rst, "Momentum"): y + a + b x (y^n - c^n) such that the momentum
-    sum m (y' - y^n)/h equals sum m v^n and the angular momentum about the centre of mass,
-    (1/h) sum m q^n x y', equals sum m q^n x v^n. Written here independently of the C++ code,
-    from the two balances, by solving the linear system for (a, b) directly."""
+    forces (doc/fix_sissm.rst, "Momentum"): the result moved rigidly, its centre so that the
+    momentum sum m (y' - y^n)/h equals sum m v^n, and rotated about the centre so that the
+    angular momentum (1/h) sum m q^n x (y' - y^n) (q^n = y^n - c^n) equals sum m q^n x v^n.
+    Written here independently of the C++ code: the rotation from Newton's method on its
+    rotation vector with a finite-difference Jacobian."""
     m = np.broadcast_to(np.asarray(m, float), (len(y),))
     mass = m.sum()
     cn = (m[:, None] * yn).sum(0) / mass
+    c = (m[:, None] * y).sum(0) / mass
     q = yn - cn
-    a = (h * (m[:, None] * vn).sum(0) - (m[:, None] * (y - yn)).sum(0)) / mass
-    inertia = sum(mi * (qi @ qi * np.eye(3) - np.outer(qi, qi)) for mi, qi in zip(m, q))
-    l_target = (m[:, None] * np.cross(q, vn)).sum(0)
-    l_now = (m[:, None] * np.cross(q, y)).sum(0) / h
-    b = np.linalg.solve(inertia, h * (l_target - l_now))
-    return y + a + np.cross(b, q)
+    shift = (h * (m[:, None] * vn).sum(0) - (m[:, None] * (y - yn)).sum(0)) / mass
+    target = (m[:, None] * np.cross(q, vn)).sum(0)
+    r0 = y - c
+
+    def residual(theta):
+        return (m[:, None] * np.cross(q, r0 @ rotation(theta).T)).sum(0) / h - target
+
+    theta = np.zeros(3)
+    for _ in range(20):
+        g = residual(theta)
+        jac = np.empty((3, 3))
+        for k in range(3):
+            e = np.zeros(3)
+            e[k] = 1e-7
+            jac[:, k] = (residual(theta + e) - residual(theta - e)) / 2e-7
+        step = np.linalg.solve(jac, -g)
+        theta = theta + step
+        if np.linalg.norm(step) < 1e-15:
+            break
+    return c + shift + r0 @ rotation(theta).T

@@ -40,15 +40,16 @@ def test_contact_within_a_step_is_seen(tmp_path):
 
 def test_a_step_beyond_the_neighbor_list_is_refused(tmp_path):
     # 15 m/s: 1.5 mm per block per step, more than a step can move atoms with a skin of 1 mm
-    # ((horizon - contact distance)/2 + skin/4 = 1.075 mm). The run stops in step 1 with an
-    # error naming the step, the atom, and the skin that would do (before the fix the blocks
+    # ((horizon - contact distance)/2 + skin/4 = 1.075 mm). The step's iterates are evaluated
+    # with the candidates they can have, but its result is that far: the run stops in step 1
+    # with an error naming the step, the atom, and the skin that would do (before the fix the blocks
     # passed through each other unhindered: gap 4.5, 1.5, -1.5, -4.5 mm, one iteration per
     # step, "converged").
     run = run_deck(DECK, tmp_path, variables={"gap": 0.0045, "v": 15.0}, check=False)
     assert run.returncode > 0  # an error exit, not a signal
     assert len(run.errors) >= 1
     error = run.errors[0]
-    assert "implicit step 1 atom" in error and "moved 0.0015" in error
+    assert "implicit step 1 moved atom" in error and "by 0.0015" in error
     assert "neighbor skin of at least 0.0027" in error
     # with that skin the candidates follow the motion: the step runs
     run = run_deck(DECK, tmp_path / "skin", variables={"gap": 0.0045, "v": 15.0, "nsteps": 1,

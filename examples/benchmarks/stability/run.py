@@ -295,7 +295,8 @@ def probe(method: Method, fix: str, work: Path) -> tuple:
     d = work / f"probe_{method.key}"
     d.mkdir(parents=True, exist_ok=True)
     r, _ = run(MATRIX_DECK, d, {"n": 5, "nsteps": 2, "dt": 1e-7, "pair": method.pair,
-                                "fix": fix, "sissm": int(method.sissm)})
+                                "fix": fix, "sissm": int(method.sissm),
+                                **sissm_skin(method.sissm)})
     if r is None:
         return False, "timeout"
     if r.ok:
@@ -303,10 +304,22 @@ def probe(method: Method, fix: str, work: Path) -> tuple:
     return False, (r.errors[0] if r.errors else f"exit {r.returncode}")
 
 
+# Neighbor skin (m) of the fix sissm runs: large enough that every pair of the small blocks is a
+# neighbor. Their steps at 100-1000 x the explicit limit move a soft block by more than its
+# own size per step, farther than short-range contact candidates chosen with the decks' thin
+# skin (half a spacing) can follow, and fix sissm refuses such steps (doc/fix_sissm.rst,
+# "Contact"); with every pair a neighbor it can follow any motion up to skin/4.
+SISSM_SKIN = 1.0
+
+
+def sissm_skin(sissm: bool) -> dict:
+    return {"skin": SISSM_SKIN} if sissm else {}
+
+
 def matrix_vars(method: Method, E: float, dt: float, nsteps: int, thermo_every: int = 1):
     return {"E": f"{E:g}", "dt": f"{dt:.6g}", "nsteps": nsteps, "v0": V0, "pair": method.pair,
             "model": "linear", "fix": method.fix, "sissm": int(method.sissm),
-            "thermo_every": thermo_every}
+            "thermo_every": thermo_every, **sissm_skin(method.sissm)}
 
 
 def bisect_limit(method: Method, cfg: Config, work: Path, log) -> dict:
@@ -445,7 +458,7 @@ def run_extreme(xm: XMethod, model: str, case: str, cfg: Config, limits: dict, w
     variables = {"E": f"{E_REF:g}", "n": n, "pair": xm.pair, "model": model,
                  "dt": f"{dt:.6g}", "nsteps": nsteps, "fix": xm.fix, "sissm": int(xm.sissm),
                  "gamma": f"{gamma:.6g}", "img": int(xm.images and cfg.images),
-                 "prefix": "x", "thermo_every": max(1, nsteps // 50)}
+                 "prefix": "x", "thermo_every": max(1, nsteps // 50), **sissm_skin(xm.sissm)}
     variables.update(casevars)
     r, wall = run(EXTREME_DECK, d, variables)
     o = classify(r, wall, nsteps, xm.sissm)
