@@ -28,7 +28,13 @@ FRACTURE = {"nx": 6, "ny": 6, "nz": 6, "dt": 1.5e-5, "vib": 100.0, "vrand": 2.0,
 CASES = {"elastic": ELASTIC, "fracture": FRACTURE,
          "elastic-krylov": {**ELASTIC, "solver": "krylov"},
          "fracture-krylov": {**FRACTURE, "vib": 1000.0, "solver": "krylov", "skin": 0.06}}
-COLUMNS = ("PotEng", "KinEng", "TotEng", "f_integrate[1]", "f_integrate[2]")
+SUMS = ("PotEng", "KinEng", "TotEng")   # thermo sums over atoms
+FIX = ("f_integrate[1]", "f_integrate[2]", "f_integrate[3]", "f_integrate[4]")
+DUMPED = ("id", "x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "c_nosb[1]", "c_nosb[2]")
+# A sum of n terms of one sign (energy densities, kinetic energies, contact energies) changes
+# by at most 2 (n - 1) 2^-53 of itself when its terms are added in another order; n is at most
+# a few thousand here (216 atoms and their contact pairs), so 1e-12.
+REORDERED_SUM = 1e-12
 
 
 def test_the_cases_are_what_they_claim():
@@ -40,24 +46,26 @@ def test_the_cases_are_what_they_claim():
 @pytest.mark.parametrize("case", ["elastic", "fracture", "elastic-krylov", "fracture-krylov"])
 def test_one_and_two_ranks_agree(tmp_path, case):
     # Per-particle sums run over the bond families in tag order on any rank count, the
-    # convergence measure is a global max (exact), and ghosts get positions and stress data
-    # every sweep; only the thermo sums are reduced in another order (1e-16 relative); krylov's
-    # inner products are order-independent sums (FixSissm::reproducible_sum). The
-    # issue's 1e-8 over 100 steps leaves room for round-off growth (measured: positions
-    # bit-identical, thermo 2e-16).
+    # convergence measure is a global max, ghosts get positions and stress data every sweep,
+    # and krylov's inner products are order-independent sums (FixSissm::reproducible_sum): so
+    # every per-atom value, the sweep counts and the convergence measure are bit-identical on 1
+    # and 2 ranks (dump and thermo use %.17g, which round-trips a double). The issue asked for
+    # 1e-8; exact equality is what the design gives. Only pe, ke and etotal, sums over atoms
+    # that MPI reduces in another order, differ: by REORDERED_SUM at most (measured 1.4e-15).
     args = {**CASES[case], "dump_every": 100}
     one = run_deck(BLOCK, tmp_path / "np1", nprocs=1, variables=args)
     two = run_deck(BLOCK, tmp_path / "np2", nprocs=2, variables=args)
     assert "with 2 MPI tasks" in two.log
     t1, t2 = one.thermo[-1], two.thermo[-1]
     assert np.array_equal(t1["Step"], t2["Step"]) and t1["Step"][-1] == 100
-    for col in COLUMNS:
-        assert relative_difference(t1[col], t2[col]) < 1e-8, col
-    assert np.array_equal(t1["f_integrate[1]"], t2["f_integrate[1]"])  # same sweep counts
+    for col in SUMS:
+        assert relative_difference(t1[col], t2[col]) < REORDERED_SUM, col
+    for col in FIX:  # same sweep counts, same convergence measures
+        assert np.array_equal(t1[col], t2[col]), col
     d1, d2 = read_dump(tmp_path / "np1/dump.atoms"), read_dump(tmp_path / "np2/dump.atoms")
     assert [f["step"] for f in d1] == [0, 100] == [f["step"] for f in d2]
-    for col in ("id", "x", "y", "z", "vx", "vy", "vz", "fx", "c_nosb[1]", "c_nosb[2]"):
-        assert relative_difference(d1[-1][col], d2[-1][col]) < 1e-8, col
+    for col in DUMPED:
+        assert np.array_equal(d1[-1][col], d2[-1][col]), col
     damage = d1[-1]["c_nosb[1]"]
     if case.startswith("fracture"):
         assert np.count_nonzero(damage) > 100  # bonds did break, on both rank counts alike
@@ -78,8 +86,10 @@ def test_restart_continues_the_run(tmp_path, case, write_ranks, read_ranks):
     # The fix keeps no state between steps but positions, velocities and the external force
     # of the last evaluation, which the setup of the continued run recomputes at the same
     # positions (bonds are not broken in that setup evaluation); so the continued run is the
-    # unsplit one, to round-off (measured: bit-identical). f[3] and f[4] restart with the run
-    # (interface: "since the run started") and are not compared.
+    # unsplit one, bit for bit. On the same rank count even the thermo sums are: the setup of
+    # every run sorts the atoms spatially (atom_modify sort), so both runs add the same atoms
+    # in the same order (measured: same order, all columns bit-identical). f[3] and f[4]
+    # restart with the run (interface: "since the run started") and are not compared.
     args = CASES[case]
     full = run_deck(BLOCK, tmp_path / "full", nprocs=write_ranks,
                     variables={**args, "dump_every": 50})
@@ -91,12 +101,12 @@ def test_restart_continues_the_run(tmp_path, case, write_ranks, read_ranks):
     assert b["Step"][0] == 50 and b["Step"][-1] == 100
     i = int(np.searchsorted(a["Step"], 50))
     assert np.array_equal(a["Step"][i:], b["Step"])
-    for col in ("PotEng", "KinEng", "TotEng"):
-        assert relative_difference(a[col][i:], b[col]) < 1e-12, col
-    for col in ("f_integrate[1]", "f_integrate[2]"):  # step 50 itself: no step taken yet
-        assert relative_difference(a[col][i + 1:], b[col][1:]) < 1e-12, col
+    for col in SUMS:
+        assert np.array_equal(a[col][i:], b[col]), col
+    for col in FIX[:2]:  # step 50 itself: no step taken yet
+        assert np.array_equal(a[col][i + 1:], b[col][1:]), col
     fa = read_dump(tmp_path / "full/dump.atoms")[-1]
     fb = read_dump(tmp_path / "split/dump.atoms")[-1]
     assert fa["step"] == fb["step"] == 100
-    for col in ("id", "x", "y", "z", "vx", "vy", "vz", "c_nosb[1]"):
-        assert relative_difference(fa[col], fb[col]) < 1e-12, col
+    for col in DUMPED:
+        assert np.array_equal(fa[col], fb[col]), col

@@ -1,6 +1,8 @@
-"""The harness itself: build/lmp is the pinned LAMMPS with what we need, runs serial and on
-two ranks, and the thermo and dump readers return physically sensible numbers."""
+"""The harness itself: build/lmp is the LAMMPS the plugin was built against (by default the
+pinned one) with what we need, runs serial and on two ranks, and the thermo and dump readers
+return physically sensible numbers."""
 from pathlib import Path
+import re
 import subprocess
 
 import numpy as np
@@ -12,11 +14,67 @@ DECKS = Path(__file__).parent / "decks"
 BLOCK = DECKS / "block_vibration.lmp"
 
 
-def test_lmp_is_the_pinned_lammps_with_peri_and_plugin():
-    out = subprocess.run([str(LMP), "-h"], capture_output=True, text=True, timeout=60).stdout
-    assert "4 Feb 2025" in out
+REPO = Path(__file__).resolve().parents[2]
+PINNED_VERSION = "4 Feb 2025"   # what tools/setup.sh builds when LAMMPS_SRC is not set
+
+
+def lmp_help() -> str:
+    # lmp -h takes well under a second; 60 s only guards against a hung binary
+    return subprocess.run([str(LMP), "-h"], capture_output=True, text=True, timeout=60).stdout
+
+
+def cmake_cache() -> dict:
+    """PATH entries of the CMakeCache.txt of the build that wrote LMP (tools/setup.sh puts the
+    wrapper into the build folder)."""
+    cache = LMP.parent / "CMakeCache.txt"
+    if not cache.exists():
+        pytest.skip(f"{LMP} has no CMakeCache.txt beside it: not a tools/setup.sh build")
+    entries = {}
+    for line in cache.read_text().splitlines():
+        name, sep, value = line.partition(":PATH=")
+        if sep:
+            entries[name] = value
+    return entries
+
+
+def lammps_version_of(source_dir: Path) -> str:
+    """The version line lmp -h prints for a LAMMPS built from source_dir (src/version.h:
+    LAMMPS_VERSION, plus " - LAMMPS_UPDATE" when the tree defines one)."""
+    text = (source_dir / "version.h").read_text()
+    version = re.search(r'^#define LAMMPS_VERSION "(.*)"', text, re.M)
+    update = re.search(r'^#define LAMMPS_UPDATE "(.*)"', text, re.M)
+    assert version, f"no LAMMPS_VERSION in {source_dir / 'version.h'}"
+    return version.group(1) + (f" - {update.group(1)}" if update else "")
+
+
+def test_lmp_is_the_lammps_we_built_against_with_peri_and_plugin():
+    # build/lmp must run the LAMMPS whose headers the plugin was compiled against (a plugin
+    # is tied to one LAMMPS version): the one of LAMMPS_SOURCE_DIR in the build's CMake cache,
+    # whichever tree tools/setup.sh was given (LAMMPS_SRC or the pinned one)
+    out = lmp_help()
     packages = out.split("Installed packages:")[1].split("List of individual style")[0].split()
     assert "PERI" in packages and "PLUGIN" in packages
+    cache = cmake_cache()
+    source = Path(cache["LAMMPS_SOURCE_DIR"])
+    first = out.strip().splitlines()[0]
+    assert first.endswith("Simulator - " + lammps_version_of(source)), (first, source)
+    # and the wrapper runs the lmp of the LAMMPS build it was linked against
+    if LMP.read_bytes()[:2] == b"#!":
+        assert f'"{cache["LAMMPS_BINARY_DIR"]}/lmp"' in LMP.read_text()
+
+
+def test_the_default_setup_pins_lammps_4_feb_2025():
+    # tools/setup.sh without LAMMPS_SRC fetches Debian's lammps 20250204 source and unpacks
+    # it as lammps-4Feb2025; when this build is that default one, its version.h and lmp say so
+    setup = (REPO / "tools" / "setup.sh").read_text()
+    pins = dict(re.findall(r"^(lammps_\w+)=(\S+)$", setup, re.M))
+    assert pins["lammps_topdir"] == "lammps-4Feb2025"
+    assert pins["lammps_deb_version"].startswith("20250204+")
+    source = Path(cmake_cache()["LAMMPS_SOURCE_DIR"])
+    if source.parent.name != pins["lammps_topdir"]:
+        pytest.skip(f"built against {source} (LAMMPS_SRC), not the pinned tree")
+    assert lammps_version_of(source) == PINNED_VERSION
+    assert lmp_help().strip().splitlines()[0].endswith("Simulator - " + PINNED_VERSION)
 
 
 def energy_swing(run):

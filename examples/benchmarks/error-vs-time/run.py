@@ -22,6 +22,10 @@ thermo `cpu` column = LAMMPS loop time so far; "Loop time" at the end), steps an
 
 --quick: a few points per method (smoke test, < 3 minutes); writes to doc/reports/
 error-vs-time-quick* unless --out/--report say otherwise.
+
+Which runs and checkpoints exist never depends on the machine's speed: a fix sissm run is
+capped in force evaluations (fix halt in in.sissm, on steps x (f_ID[3] + 1)), not in seconds.
+Wall time is only reported.
 """
 from __future__ import annotations
 
@@ -74,7 +78,16 @@ FULL = dict(
     sissm_static_dt=[10, 100, 1000, 10000],   # 1000 and 10000: krylov variants only
     sissm_dynamic_dt=[0.25, 1, 4, 16],
     sissm_stiff_dt=[10, 100, 1000, 10000],
-    sissm_timeout=20,                   # s, wall-time cap of one fix sissm run
+    # budget of one fix sissm run in force evaluations (fix halt stops it at the first thermo
+    # row with at least that many): a static run keeps its checkpoints up to there, a dynamic
+    # run that does not reach its end within it gives no point.  20000 keeps the runs of the
+    # committed report (made with a 20 s wall-time cap, ~1000 evaluations/s there): rerun
+    # with this budget, its 20 dynamic fix sissm points come out with the same evaluation
+    # counts (largest 18854) and its 8 dropped dynamic runs stop short (the closest: krylov
+    # 50 at 0.25x, step 4008 of 4887); its static and stiff runs stopped at 20400-22440
+    # evaluations, and every fix sissm checkpoint it cites took <= 17970.
+    sissm_static_evaluations=20000,
+    sissm_dynamic_evaluations=20000,
     dynamic_periods=2.0,                # simulated time of the dynamic scene, x Euler-Bernoulli T1
     reference_dt=0.1,                   # dynamic reference: x limit
     static_periods=6.0,                 # length of a static explicit run, x T1
@@ -91,7 +104,10 @@ QUICK = dict(
     sissm_static_dt=[30],
     sissm_dynamic_dt=[1, 8],
     sissm_stiff_dt=[30],
-    sissm_timeout=4,
+    # every quick variant gives a dynamic point at 1x and 8x the limit (largest: 6897
+    # evaluations) but jacobi iterations 200 at 8x (40 of 81 steps in 8040: ~16000)
+    sissm_static_evaluations=4000,
+    sissm_dynamic_evaluations=8000,
     dynamic_periods=1.0,
     reference_dt=0.2,
     static_periods=4.0,
@@ -123,7 +139,11 @@ class Runner:
         self.lmp, self.work, self.log = lmp, work, log
         self.count, self.total_wall = 0, 0.0
 
-    def run(self, deck: str, variables: dict, check=True, timeout=3600):
+    # a guard against a hung lmp only (the longest run of the full benchmark takes ~150 s);
+    # a hit stops the benchmark with an error that names the run
+    HANG_GUARD_S = 3600
+
+    def run(self, deck: str, variables: dict, check=True):
         self.count += 1
         wd = self.work / f"run{self.count:04d}"
         wd.mkdir(parents=True)
@@ -133,8 +153,12 @@ class Runner:
         for k, v in variables.items():
             cmd += ["-var", k, str(v)]
         t0 = time.time()
-        proc = subprocess.run(cmd, cwd=wd, capture_output=True, text=True, timeout=timeout,
-                              stdin=subprocess.DEVNULL)
+        try:
+            proc = subprocess.run(cmd, cwd=wd, capture_output=True, text=True,
+                                  timeout=self.HANG_GUARD_S, stdin=subprocess.DEVNULL)
+        except subprocess.TimeoutExpired:
+            raise RuntimeError(f"{deck} {variables} in {wd} did not finish within the "
+                               f"{self.HANG_GUARD_S} s hang guard") from None
         self.total_wall += time.time() - t0
         log = (wd / "log.lammps").read_text(errors="replace") if (wd / "log.lammps").exists() \
             else ""
@@ -267,19 +291,21 @@ class Benchmark:
         return lo, hi
 
     # -- runs -------------------------------------------------------------------------------
-    def explicit(self, style, material, dt, gamma, nsteps, thermo_every, beam=None, timeout="off"):
+    def explicit(self, style, material, dt, gamma, nsteps, thermo_every, beam=None):
         r = self.runner.run(f"in.{style}", beam_vars(beam or self.beam, material, dict(
-            dt=dt, gamma=gamma, nsteps=nsteps, thermo_every=thermo_every, timeout=timeout)))
+            dt=dt, gamma=gamma, nsteps=nsteps, thermo_every=thermo_every)))
         th = r["thermo"]
         steps = th["Step"]
         return dict(step=steps, time=th["Time"], defl=th["v_defl"], cpu=th["CPU"], evals=steps,
                     iters=np.zeros_like(steps), loop=r["loop"], atoms=r["atoms"],
                     wEB=float(EB.search(r["log"]).group(1)), done=int(steps[-1]) == nsteps)
 
-    def sissm(self, opts, material, dt, gamma, nsteps, thermo_every, timeout):
+    def sissm(self, opts, material, dt, gamma, nsteps, thermo_every, maxevals):
+        """A fix sissm run of at most nsteps steps, stopped at the first thermo row with at
+        least maxevals force evaluations (in.sissm: fix halt)."""
         r = self.runner.run("in.sissm", beam_vars(self.beam, material, dict(
             dt=dt, gamma=gamma, nsteps=nsteps, thermo_every=thermo_every, opts=opts,
-            timeout=timeout)), check=False)
+            maxevals=maxevals)), check=False)
         th = r["thermo"]
         if not r["ok"] or "Step" not in th or len(th["Step"]) < 2:
             self.notes.append(f"fix sissm `{opts}` at dt = {dt:.3g} s ({material}) failed: "
@@ -365,7 +391,8 @@ class Benchmark:
                 dt = m * lim
                 gamma = self.sissm_gamma(material, refs["nosb"]["omega1"], dt, lim, opts)
                 self.say(f"{scene}: sissm `{opts}` dt {m} x limit gamma {gamma:.3g}")
-                run = self.sissm(opts, material, dt, gamma, 100000, 5, cfg["sissm_timeout"])
+                run = self.sissm(opts, material, dt, gamma, 100000, 5,
+                                 cfg["sissm_static_evaluations"])
                 if run is None:
                     continue
                 self.static_points(scene, method_of(opts), opts + (
@@ -422,13 +449,14 @@ class Benchmark:
                 dt = T / n
                 self.say(f"dynamic: sissm `{opts}` dt {dt / lim:.3g} x limit ({n} steps)")
                 run = self.sissm(opts, material, dt, 0.0, n, max(1, n // 200),
-                                 cfg["sissm_timeout"])
+                                 cfg["sissm_dynamic_evaluations"])
                 if run is None:
                     continue
                 if not run["done"]:
                     self.notes.append(f"dynamic: fix sissm `{opts}` at {dt / lim:.3g} x the limit "
-                                      f"stopped at the {cfg['sissm_timeout']} s wall-time cap "
-                                      f"after {int(run['step'][-1])} of {n} steps: no point")
+                                      f"stopped at the {cfg['sissm_dynamic_evaluations']}-"
+                                      f"evaluation cap after {int(run['step'][-1])} of {n} steps "
+                                      f"({int(run['evals'][-1])} evaluations): no point")
                     continue
                 self.rows["dynamic"].append(dict(
                     scene="dynamic", method=method_of(opts), variant=opts, dt=dt,
@@ -577,6 +605,13 @@ def report(bm, out: Path, report_path: Path, command: str):
              + (" This build accepts `solver jacobi|krylov`." if bm.has_solver else
                 " This build does not accept `solver` (jacobi only)."))
     L.append("")
+    L.append("Every fix sissm run is capped in **force evaluations**, not in wall time (`fix halt` "
+             "on steps x (f_ID[3] + 1), checked at every thermo row), so which points exist does "
+             "not depend on the machine's speed: a static or stiff run stops at its first "
+             f"checkpoint with at least {cfg['sissm_static_evaluations']} evaluations and keeps "
+             "its checkpoints up to there; a dynamic run that has not reached the end of its "
+             f"simulated time within {cfg['sissm_dynamic_evaluations']} evaluations gives no "
+             "point (listed under \"Notes from the runs\").\n")
     L.append("Explicit stability limits (fix nve, bisection: a run of "
              f"{cfg['bisect_steps']} steps with gravity is stable when the tip stays within 10x "
              "the Euler-Bernoulli deflection); every time step below is given as a multiple of "
