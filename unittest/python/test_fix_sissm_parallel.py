@@ -94,7 +94,7 @@ def test_restart_continues_the_run(tmp_path, case, write_ranks, read_ranks):
     full = run_deck(BLOCK, tmp_path / "full", nprocs=write_ranks,
                     variables={**args, "dump_every": 50})
     run_deck(BLOCK, tmp_path / "split", nprocs=write_ranks, variables={**args, "restart_at": 50})
-    keep = {k: args[k] for k in ("nsteps", "grav", "thermo_every", "solver") if k in args}
+    keep = {k: args[k] for k in ("nsteps", "grav", "thermo_every", "solver", "skin") if k in args}
     cont = run_deck(CONTINUE, tmp_path / "split", nprocs=read_ranks,
                     variables={**keep, "dump_every": 50})
     a, b = full.thermo[-1], cont.thermo[-1]
