@@ -308,12 +308,13 @@ def probe(method: Method, fix: str, work: Path) -> tuple:
 # neighbor. Their steps at 100-1000 x the explicit limit move a soft block by more than its
 # own size per step, farther than short-range contact candidates chosen with the decks' thin
 # skin (half a spacing) can follow, and fix sissm refuses such steps (doc/fix_sissm.rst,
-# "Contact"); with every pair a neighbor it can follow any motion up to skin/4.
+# "Contact"); with every pair a neighbor it can follow any motion up to skin/4. All pairs of a
+# few hundred atoms: the nsq list (no bins, which LAMMPS refuses far smaller than the cutoff).
 SISSM_SKIN = 1.0
 
 
 def sissm_skin(sissm: bool) -> dict:
-    return {"skin": SISSM_SKIN} if sissm else {}
+    return {"skin": SISSM_SKIN, "nstyle": "nsq"} if sissm else {}
 
 
 def matrix_vars(method: Method, E: float, dt: float, nsteps: int, thermo_every: int = 1):
