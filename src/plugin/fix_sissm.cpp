@@ -799,7 +799,8 @@ void FixSissm::attainable_tolerance()
     local[1] = fmax(local[1], xmax);
   }
   MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
-  const double floor = 0.5 * DBL_EPSILON * all[0];
+  // (tolerance 0 asks for every step to use all its iterations: no floor then)
+  const double floor = (tolerance > 0.0) ? 0.5 * DBL_EPSILON * all[0] : 0.0;
   tol_step = fmax(tolerance, floor);
   if (floor > tolerance && !warned_roundoff && comm->me == 0)
     error->warning(FLERR,
@@ -880,7 +881,13 @@ void FixSissm::post_integrate()
   // short-range contact: a result beyond what the candidates could follow is refused, and
   // the next step starts from a fresh neighbor list if this one moved atoms far
   // (PairPeriNosb::contact_follow_motion())
-  if (pair->contact_end_of_step()) next_reneighbor = update->ntimestep;
+  const std::string cause = (measure > tol_step)
+      ? fmt::format("this step stopped at the iteration limit with convergence measure {:.3g} "
+                    "above the tolerance {:.3g}, so the motion may be an artefact of the "
+                    "unconverged solve",
+                    measure, tol_step)
+      : "";
+  if (pair->contact_end_of_step(cause)) next_reneighbor = update->ntimestep;
 
   const int k = evaluations;
   last_iterations = k;

@@ -1224,7 +1224,7 @@ double PairPeriNosb::contact_horizon() const
    with max|x - x_n| <= skin/8 and may move atoms by (horizon - reach)/2 + skin/4.
 ------------------------------------------------------------------------- */
 
-bool PairPeriNosb::contact_end_of_step()
+bool PairPeriNosb::contact_end_of_step(const std::string &cause)
 {
   if (!track_motion || !list) return false;
   double moved;
@@ -1240,11 +1240,11 @@ bool PairPeriNosb::contact_end_of_step()
                "Pair peri/nosb: the implicit step {} moved atom {} by {:.4g} from where it was "
                "at the last neighbor list build, farther than short-range contact can follow "
                "inside one step with neighbor skin {:.4g} (a step may move atoms by (horizon - "
-               "1.35 x particle size) / 2 + skin / 4 = {:.4g}); use a smaller time step, a "
+               "1.35 x particle size) / 2 + skin / 4 = {:.4g}){}; use a smaller time step, a "
                "neighbor skin of at least {:.4g}, or turn contact off for these types "
                "(pair_coeff ... contact no)",
                update->ntimestep, idall, moved, skin, 0.5 * (hz - contact_reach()) + 0.25 * skin,
-               2.0 * (2.0 * moved + contact_reach() - hz));
+               cause.empty() ? "" : "; " + cause, 2.0 * (2.0 * moved + contact_reach() - hz));
   }
   return moved > 0.125 * skin;
 }

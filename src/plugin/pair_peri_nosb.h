@@ -17,6 +17,8 @@ PairStyle(peri/nosb,PairPeriNosb);
 
 #include "pair.h"
 
+#include <string>
+
 namespace PeriSISSM {
 class Material;
 }
@@ -72,7 +74,8 @@ class PairPeriNosb : public Pair {
   // true when the next step should start from a new neighbor list.
   void track_contact_motion(int flag);
   int contact_follow_motion();
-  bool contact_end_of_step();
+  // (cause: what the integrator knows about the step, for the error message; may be empty)
+  bool contact_end_of_step(const std::string &cause);
   // contact pairs that coupled an atom of contact_groupbit with one outside it, counted over
   // this rank's evaluations since the counter was last reset (0: not counted)
   int contact_groupbit;

@@ -729,8 +729,8 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
             "blue -1, yellow 0, green 1, red >= 2)")
         add("")
         add("The after picture is taken once the block has been moved back to the centre (a "
-            "block that picked up momentum in unconverged steps drifts away; its velocity is in "
-            "the table above).")
+            "block that moves, e.g. an explicit run that picked up momentum, would drift out of "
+            "the frame; velocities and momenta are in the table above).")
         add("")
         models = [mm for mm in cfg.models if any(r["model"] == mm for r in imgs)]
         add("| case | " + " | ".join(f"{mm} before | {mm} after" for mm in models) + " |")
