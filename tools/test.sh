@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up if needed (tools/setup.sh), then run the whole test suite: the GoogleTest unit tests
-# of the mechanics core (through ctest) and the pytest suite that drives build/lmp.
+# of the LAMMPS-free core (through ctest) and the pytest suite that drives build/lmp.
 # Extra arguments go to pytest, e.g. tools/test.sh -k harness  or  tools/test.sh -m "not slow".
 set -uo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)

@@ -23,7 +23,7 @@ IMPACT = REPO / "examples" / "impact"
 RHO = 1000.0
 ERROR_RE = re.compile(r"the run is unstable: at step (\d+) .*?atom (\d+) .*likely cause: (.*)")
 
-# DT_SAFETY of fix_nosb_family.cpp (documented in doc/pair_peri_nosb.rst)
+# kStableStepSafety of src/core/peri/stable_step.h (documented in doc/pair_peri_nosb.rst)
 DT_SAFETY = 1.25
 
 

@@ -274,7 +274,7 @@ def test_stabilization_controls_zero_energy_modes(tmp_path):
 def test_singular_families_stay_finite(tmp_path):
     # A single layer of particles: every family is coplanar, K_i is singular for every
     # particle (math.md: 'handle it explicitly ... never with NaN'). The documented fallback
-    # (compute_nosb_atom.cpp, pair_peri_nosb.cpp) reports F = I (J = 1, W = 0) and gives the
+    # (compute_nosb_atom.cpp, src/core/peri/elastic.cpp) reports F = I (J = 1, W = 0) and gives the
     # particle no force state of its own; the run must stay finite.
     deck = (DECKS / "nosb_plate.lmp")
     run = run_deck(deck, tmp_path, variables={"nsteps": 20})

@@ -1,0 +1,13 @@
+// Bond breaking (see breaking.h).
+
+#include "peri/breaking.h"
+
+namespace PeriSISSM {
+
+double s00_from_fracture_energy(double g0, double k, double g, double cs, double delta, double h)
+{
+  const double modulus = kG0CoefM * (k + 4.0 * g / 3.0) + kG0CoefS * cs * k * delta / h;
+  return sqrt(g0 / (modulus * delta));
+}
+
+}  // namespace PeriSISSM

@@ -1,0 +1,94 @@
+// Short-range contact (see contact.h).
+
+#include "peri/contact.h"
+
+#include "peri/model.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace PeriSISSM {
+
+double contact_distance(double xi_length, double vi, double vj)
+{
+  return std::min(0.9 * xi_length, 0.675 * (std::cbrt(vi) + std::cbrt(vj)));
+}
+
+double contact_energy(double r, double d, double kc, double vi, double vj)
+{
+  if (r >= d) return 0.0;
+  return 0.5 * kc * vi * vj * (d - r) * (d - r);
+}
+
+// f_i = kc V_j (d/r - 1) del:  df_i/dx_i = kc V_j ((d/r - 1) I - (d/r) n n^T).
+void contact_block(const double del[3], double d, double kc, double vj, double block[6])
+{
+  const double r = std::sqrt(del[0] * del[0] + del[1] * del[1] + del[2] * del[2]);
+  const double a = kc * vj * (1.0 - d / r), b = kc * vj * d / (r * r * r);
+  block[0] = a + b * del[0] * del[0];
+  block[1] = a + b * del[1] * del[1];
+  block[2] = a + b * del[2] * del[2];
+  block[3] = b * del[0] * del[1];
+  block[4] = b * del[0] * del[2];
+  block[5] = b * del[1] * del[2];
+}
+
+void contact_pass(const Model &model, const Particles &p, const ReferenceBox &box, double reach,
+                  const ContactCandidates &cand, bool newton, bool tally, ContactPairs &pairs)
+{
+  const double *x = p.x;
+  const double *x0 = p.x0;
+  double *f = p.f;
+  const double *vfrac = p.volume;
+  const int *type = p.type;
+  const int nlocal = p.nlocal;
+  const bool periodic = box.any();
+  const double rmaxsq = reach * reach;
+
+  for (int ii = 0; ii < cand.inum; ii++) {
+    const int i = cand.ilist[ii];
+    const double xtmp = x[3 * i], ytmp = x[3 * i + 1], ztmp = x[3 * i + 2];
+    const int itype = type[i];
+    for (int k = cand.first[ii]; k < cand.first[ii + 1]; k++) {
+      const int j = cand.neigh[k];
+      const double delx = xtmp - x[3 * j];
+      const double dely = ytmp - x[3 * j + 1];
+      const double delz = ztmp - x[3 * j + 2];
+      const double rsq = delx * delx + dely * dely + delz * delz;
+      if (rsq >= rmaxsq) continue;
+      const int jtype = type[j];
+      if (!model.contact(itype, jtype)) continue;
+      double dx0 = x0[3 * i] - x0[3 * j];
+      double dy0 = x0[3 * i + 1] - x0[3 * j + 1];
+      double dz0 = x0[3 * i + 2] - x0[3 * j + 2];
+      if (periodic) box.image(dx0, dy0, dz0);
+      const double r = sqrt(rsq);
+      const double d0 = 0.9 * sqrt(dx0 * dx0 + dy0 * dy0 + dz0 * dz0);
+      if (r >= d0 || r <= 0.0) continue;
+      const double d = std::min(d0, 0.675 * (cbrt(vfrac[i]) + cbrt(vfrac[j])));
+      if (r >= d) continue;
+      if (pairs.bonded(i, j)) continue;
+      pairs.acting(i, j);
+
+      const double dr = r - d;    // < 0
+      const double kc = model.kcontact(itype, jtype) / model.horizon(itype, jtype);
+      const double fpi = -kc * vfrac[j] * dr / r;
+      const double fpj = -kc * vfrac[i] * dr / r;
+      f[3 * i] += delx * fpi;
+      f[3 * i + 1] += dely * fpi;
+      f[3 * i + 2] += delz * fpi;
+      if (newton || j < nlocal) {
+        f[3 * j] -= delx * fpj;
+        f[3 * j + 1] -= dely * fpj;
+        f[3 * j + 2] -= delz * fpj;
+      }
+      if (tally) {
+        const double energy = 2.0 * contact_energy(r, d, kc, vfrac[i], vfrac[j]) /
+            (vfrac[i] + vfrac[j]);
+        pairs.tally(i, j, energy, fpi * vfrac[i], delx, dely, delz);
+      }
+    }
+  }
+}
+
+}  // namespace PeriSISSM

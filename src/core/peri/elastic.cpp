@@ -1,0 +1,215 @@
+// The elastic (correspondence) term (see elastic.h).
+
+#include "peri/elastic.h"
+
+#include "peri/model.h"
+#include "peri/particle.h"
+
+#include <algorithm>
+
+namespace PeriSISSM {
+
+namespace {
+
+template <int MODE, int UNIFORM, int PBC>
+void state_pass(const Model &model, const Particles &p, const Families &fam,
+                const ReferenceBox &box, bool blocks, ParticleFields &fields,
+                std::vector<int> &broke_list)
+{
+  constexpr int NG = ParticleFields::NG, NK = ParticleFields::NK;
+  const BreakingRule &rule = model.breaking();
+  const double *xf = p.x;
+  const double *rf = p.x0;
+  const int *type = p.type;
+  double *s0 = p.smin;
+  const int nlocal = p.nlocal;
+  constexpr double ACC0 = BreakingRule::initial<UNIFORM>();
+
+  for (int i = 0; i < nlocal; i++) {
+    const int itype = type[i];
+    const double xi0 = xf[3 * i], xi1 = xf[3 * i + 1], xi2 = xf[3 * i + 2];
+    const double ri0 = rf[3 * i], ri1 = rf[3 * i + 1], ri2 = rf[3 * i + 2];
+    const int n = fam.npartner[i];
+    int *jl = fam.jlocal[i];
+    const double *om = fam.omega[i];
+    double m00 = 0.0, m01 = 0.0, m02 = 0.0, m10 = 0.0, m11 = 0.0, m12 = 0.0, m20 = 0.0,
+           m21 = 0.0, m22 = 0.0;
+    double acc = ACC0, den = 0.0;
+    int broke = 0;
+    const double smini = (MODE != BreakingRule::NOBREAK) ? s0[i] : 0.0;
+
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *xj = xf + 3 * j;
+      const double e0 = xj[0] - xi0;
+      const double e1 = xj[1] - xi1;
+      const double e2 = xj[2] - xi2;
+      const double *rj = rf + 3 * j;
+      double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
+      if (PBC) box.image(x0, x1, x2);
+      if (MODE != BreakingRule::NOBREAK) {
+        const double r2 = e0 * e0 + e1 * e1 + e2 * e2;
+        const double q2 = x0 * x0 + x1 * x1 + x2 * x2;
+        const int jtype = UNIFORM ? 1 : type[j];
+        if (rule.check<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, s0[j]), acc, den)) {
+          jl[b] = -1;
+          broke = 1;
+          continue;
+        }
+      }
+      const double w = om[b];
+      const double w0 = w * e0, w1 = w * e1, w2 = w * e2;
+      m00 += w0 * x0;
+      m01 += w0 * x1;
+      m02 += w0 * x2;
+      m10 += w1 * x0;
+      m11 += w1 * x1;
+      m12 += w1 * x2;
+      m20 += w2 * x0;
+      m21 += w2 * x1;
+      m22 += w2 * x2;
+    }
+
+    if (MODE != BreakingRule::NOBREAK) {
+      fields.smin_new[i] = BreakingRule::smin_from<UNIFORM>(acc, den, smini);
+      if (broke) {
+        update_shape(fam, rf, box, i);
+        broke_list.push_back(i);
+      }
+    }
+
+    double *g = fields.g + NG * i;
+    double *h = fields.h + 9 * i;
+    if (fam.kregular[i]) {
+      const double M[9] = {m00, m01, m02, m10, m11, m12, m20, m21, m22};
+      g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
+      if (blocks) {
+        double *k = fields.k + NK * i;
+        fields.w[i] = correspondence_state(model.material(itype), M, fam.kinv[i], g, h, k);
+        k[6] = g[ParticleFields::G_C];
+      } else {
+        fields.w[i] = correspondence_state(model.material(itype), M, fam.kinv[i], g, h);
+      }
+      g[ParticleFields::G_REG] = 1.0;
+    } else {
+      // singular K: F is undefined, the particle carries no force state of its own (H = 0,
+      // C = 0, W = 0) and F is reported as the identity
+      for (int k = 0; k < 9; k++) g[k] = (k % 4 == 0) ? 1.0 : 0.0;
+      for (int k = 0; k < 9; k++) h[k] = 0.0;
+      if (blocks)
+        for (int k = 0; k < NK; k++) fields.k[NK * i + k] = 0.0;
+      g[ParticleFields::G_C] = 0.0;
+      g[ParticleFields::G_REG] = 0.0;
+      fields.w[i] = 0.0;
+    }
+  }
+
+  if (MODE != BreakingRule::NOBREAK)
+    for (int i = 0; i < nlocal; i++) s0[i] = fields.smin_new[i];
+}
+
+template <int EVFLAG, int PBC>
+void force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
+                const ParticleFields &fields, const Virial &virial)
+{
+  const double *xf = p.x;
+  const double *rf = p.x0;
+  double *f = p.f;
+  const double *vfrac = p.volume;
+  const int nlocal = p.nlocal;
+  const double *hf = fields.h;
+
+  for (int i = 0; i < nlocal; i++) {
+    const double *hi = hf + 9 * i;
+    const double xi0 = xf[3 * i], xi1 = xf[3 * i + 1], xi2 = xf[3 * i + 2];
+    const double ri0 = rf[3 * i], ri1 = rf[3 * i + 1], ri2 = rf[3 * i + 2];
+    const int n = fam.npartner[i];
+    const int *jl = fam.jlocal[i];
+    const double *om = fam.omega[i];
+    double fx = 0.0, fy = 0.0, fz = 0.0;
+    BondVirial vir;
+
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *hj = hf + 9 * j;
+      const double w = om[b];
+      const double *rj = rf + 3 * j;
+      double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
+      if (PBC) box.image(x0, x1, x2);
+      const double t0 = w * ((hi[0] + hj[0]) * x0 + (hi[1] + hj[1]) * x1 + (hi[2] + hj[2]) * x2);
+      const double t1 = w * ((hi[3] + hj[3]) * x0 + (hi[4] + hj[4]) * x1 + (hi[5] + hj[5]) * x2);
+      const double t2 = w * ((hi[6] + hj[6]) * x0 + (hi[7] + hj[7]) * x1 + (hi[8] + hj[8]) * x2);
+      fx += t0;
+      fy += t1;
+      fz += t2;
+      if (EVFLAG) {
+        const double *xj = xf + 3 * j;
+        vir.add(xj[0] - xi0, xj[1] - xi1, xj[2] - xi2, t0, t1, t2);
+      }
+    }
+
+    f[3 * i] += fx;
+    f[3 * i + 1] += fy;
+    f[3 * i + 2] += fz;
+    if (EVFLAG) vir.tally(virial, i, -0.5 * vfrac[i]);
+  }
+}
+
+}  // namespace
+
+void elastic_state_pass(const Model &model, const Particles &p, const Families &fam,
+                        const ReferenceBox &box, int mode, bool blocks, ParticleFields &fields,
+                        std::vector<int> &broke)
+{
+  using R = BreakingRule;
+  const bool uniform = model.breaking().uniform();
+  auto run = [&](auto pbc) {
+    constexpr int PBC = decltype(pbc)::value;
+    if (mode == R::NOBREAK) state_pass<R::NOBREAK, 0, PBC>(model, p, fam, box, blocks, fields, broke);
+    else if (mode == R::S0ONLY)
+      uniform ? state_pass<R::S0ONLY, 1, PBC>(model, p, fam, box, blocks, fields, broke)
+              : state_pass<R::S0ONLY, 0, PBC>(model, p, fam, box, blocks, fields, broke);
+    else
+      uniform ? state_pass<R::BREAK, 1, PBC>(model, p, fam, box, blocks, fields, broke)
+              : state_pass<R::BREAK, 0, PBC>(model, p, fam, box, blocks, fields, broke);
+  };
+  if (box.any()) run(std::integral_constant<int, 1>());
+  else run(std::integral_constant<int, 0>());
+}
+
+void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
+                        const ParticleFields &fields, const Virial &virial)
+{
+  const bool pbc = box.any(), ev = virial.any();
+  if (pbc) ev ? force_pass<1, 1>(p, fam, box, fields, virial) : force_pass<0, 1>(p, fam, box, fields, virial);
+  else ev ? force_pass<1, 0>(p, fam, box, fields, virial) : force_pass<0, 0>(p, fam, box, fields, virial);
+}
+
+void implicit_blocks(const Families &fam, int nlocal, const ParticleFields &fields,
+                     double **block)
+{
+  constexpr int NK = ParticleFields::NK;
+  for (int i = 0; i < nlocal; i++) {
+    const double *ki = fields.k + NK * i;
+    const int n = fam.npartner[i];
+    const int *jl = fam.jlocal[i];
+    const double *om = fam.omega[i];
+    double a[NK] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    double wsum = 0.0;
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *kj = fields.k + NK * j;
+      const double w = om[b];
+      wsum += w;
+      for (int k = 0; k < NK; k++) a[k] += w * kj[k];
+    }
+    double *out = block[i];
+    const double cdiag = 0.5 * (wsum * ki[6] + a[6]);
+    for (int k = 0; k < 6; k++) out[k] = wsum * ki[k] + a[k] + (k < 3 ? cdiag : 0.0);
+  }
+}
+
+}  // namespace PeriSISSM

@@ -1,0 +1,78 @@
+// The per-particle data one force evaluation reads and writes, as plain arrays (rows over the
+// owned particles first, then their ghost copies; 3-vectors three doubles per particle), and
+// the callbacks through which an evaluation communicates. LAMMPS-free: the glue fills these
+// with pointers into its own per-atom arrays.
+
+#ifndef PERISISSM_PERI_FIELDS_H
+#define PERISISSM_PERI_FIELDS_H
+
+namespace PeriSISSM {
+
+// What the particles are.
+struct Particles {
+  int nlocal = 0;                   // owned particles (rows 0 .. nlocal-1)
+  const double *x = nullptr;        // current positions
+  const double *x0 = nullptr;       // reference positions
+  const double *volume = nullptr;   // V_i
+  const int *type = nullptr;        // type of each particle (1 .. ntypes)
+  double *smin = nullptr;           // smallest bond stretch of the last evaluation (breaking)
+  double *f = nullptr;              // force density, accumulated into for the owned rows
+};
+
+// Per-particle state of the correspondence model, written for the owned rows and sent to the
+// ghosts by the halo between passes.
+struct ParticleFields {
+  // g: F (row-major 3x3), C (stabilization modulus), regular flag (1 or 0)
+  enum { G_C = 9, G_REG = 10, NG = 11 };
+  // k: implicit stiffness H (xx yy zz xy xz yz) and C, for the SISSM blocks
+  enum { NK = 7 };
+  double *g = nullptr;          // NG per particle
+  double *h = nullptr;          // 9 per particle: H = (P + Q) K^-1
+  double *k = nullptr;          // NK per particle (only when blocks are asked for)
+  double *w = nullptr;          // energy density of each owned particle
+  double *smin_new = nullptr;   // scratch, one per owned particle
+};
+
+// Forward communication of a per-particle field from the owners to their ghost copies.
+class Halo {
+ public:
+  virtual ~Halo() = default;
+  // rows: width doubles per particle, contiguous; after the call the ghost rows hold their
+  // owners' values
+  virtual void forward(double *rows, int width) = 0;
+};
+
+// Where virial contributions go (either may be null).
+struct Virial {
+  double *global = nullptr;      // 6 doubles: xx yy zz xy xz yz
+  double **peratom = nullptr;    // 6 per owned particle
+  bool any() const { return global || peratom; }
+};
+
+// Virial of the bonds of one particle: the sums of eta (x) t over its bonds (t the bond's
+// force density on the particle), tallied as s (sums) with s = -V_i / 2 (half of each bond to
+// each end, x_i - x_j = -eta), as pair peri/lps tallies.
+struct BondVirial {
+  double v0 = 0.0, v1 = 0.0, v2 = 0.0, v3 = 0.0, v4 = 0.0, v5 = 0.0;
+  inline void add(double e0, double e1, double e2, double t0, double t1, double t2)
+  {
+    v0 += e0 * t0;
+    v1 += e1 * t1;
+    v2 += e2 * t2;
+    v3 += e0 * t1;
+    v4 += e0 * t2;
+    v5 += e1 * t2;
+  }
+  inline void tally(const Virial &virial, int i, double s) const
+  {
+    const double v[6] = {s * v0, s * v1, s * v2, s * v3, s * v4, s * v5};
+    if (virial.global)
+      for (int k = 0; k < 6; k++) virial.global[k] += v[k];
+    if (virial.peratom)
+      for (int k = 0; k < 6; k++) virial.peratom[i][k] += v[k];
+  }
+};
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_PERI_FIELDS_H

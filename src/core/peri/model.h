@@ -1,0 +1,63 @@
+// The parameters of a peridynamic model: per particle type its material, stabilization and
+// bulk modulus; per type pair the horizon, short-range contact and the breaking rule. This is
+// the rule object that everything else asks: the force evaluation, the bond families (which
+// partners, what weight), the stable time step estimate.
+
+#ifndef PERISISSM_PERI_MODEL_H
+#define PERISISSM_PERI_MODEL_H
+
+#include "materials/material.h"
+#include "peri/breaking.h"
+
+#include <memory>
+#include <vector>
+
+namespace PeriSISSM {
+
+class Model {
+ public:
+  // types are numbered 1 .. ntypes
+  void set_ntypes(int ntypes);
+  int ntypes() const { return n_ - 1; }
+
+  // Inputs: itype; material (owned from now on); cs >= 0 stabilization factor; bulk modulus K.
+  void set_type(int itype, std::unique_ptr<Material> material, double cs, double bulk);
+  // Inputs: type pair (set for both orders); horizon; contact on/off; contact stiffness.
+  void set_pair(int itype, int jtype, double horizon, bool contact, double kcontact);
+
+  const Material &material(int itype) const { return *types_[itype].material; }
+  double cs(int itype) const { return types_[itype].cs; }
+  double bulk(int itype) const { return types_[itype].bulk; }
+  double horizon(int itype, int jtype) const { return pairs_[itype * n_ + jtype].horizon; }
+  bool contact(int itype, int jtype) const { return pairs_[itype * n_ + jtype].contact; }
+  double kcontact(int itype, int jtype) const { return pairs_[itype * n_ + jtype].kcontact; }
+  BreakingRule &breaking() { return breaking_; }
+  const BreakingRule &breaking() const { return breaking_; }
+  bool any_stabilization() const;
+  bool any_contact() const;
+
+  // weight of a bond of reference length r between particles of types itype, jtype and
+  // volumes vi, vj (bond_weight() with the pair's horizon)
+  double bond_weight(double r, int itype, int jtype, double vi, double vj) const;
+  // stabilization modulus C of a particle of type itype with a regular K^-1
+  // (stabilization_modulus() with the type's Cs and K)
+  double stabilization_modulus(int itype, const double Kinv[9]) const;
+
+ private:
+  struct Type {
+    std::unique_ptr<Material> material;
+    double cs = 0.0, bulk = 0.0;
+  };
+  struct Pair {
+    double horizon = 0.0, kcontact = 0.0;
+    bool contact = false;
+  };
+  int n_ = 1;
+  std::vector<Type> types_;
+  std::vector<Pair> pairs_;
+  BreakingRule breaking_;
+};
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_PERI_MODEL_H

@@ -1,0 +1,24 @@
+// Stable explicit time step estimate (see stable_step.h).
+
+#include "peri/stable_step.h"
+
+#include "materials/material.h"
+
+#include <cmath>
+#include <limits>
+
+namespace PeriSISSM {
+
+double stable_step_stiffness(const Material &material, const double Kinv[9], double C)
+{
+  const double kappa = (Kinv[0] + Kinv[4] + Kinv[8]) / 3.0;
+  return kappa * (material.lambda() + 2.0 * material.mu()) + 0.5 * C;
+}
+
+double stable_time_step(double rho, double d)
+{
+  return (d > 0.0) ? kStableStepSafety * std::sqrt(2.0 * rho / d)
+                   : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace PeriSISSM

@@ -1,0 +1,30 @@
+// Backward Euler (see backward_euler.h).
+
+#include "solvers/backward_euler.h"
+
+namespace PeriSISSM {
+
+void BackwardEuler::begin(const Rows &rows, double h, double **y, double **v, double **fa,
+                          double **fb, double **yn, double **yhat)
+{
+  const double h2 = h * h;
+  for (int i = 0; i < rows.n; i++) {
+    if (!rows.has(i)) continue;
+    for (int k = 0; k < 3; k++) {
+      yn[i][k] = y[i][k];
+      yhat[i][k] = y[i][k] + h * v[i][k];
+      if (fa) yhat[i][k] += h2 * (fa[i][k] - fb[i][k]) / rows.density[i];
+      y[i][k] += h * v[i][k];
+    }
+  }
+}
+
+void BackwardEuler::finish(const Rows &rows, double h, double **y, double **yn, double **v)
+{
+  for (int i = 0; i < rows.n; i++) {
+    if (!rows.has(i)) continue;
+    for (int d = 0; d < 3; d++) v[i][d] = (y[i][d] - yn[i][d]) / h;
+  }
+}
+
+}  // namespace PeriSISSM

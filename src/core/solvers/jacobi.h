@@ -1,0 +1,39 @@
+// The SISSM sweep and the Jacobi solver (doc/theory.rst, "The SISSM iteration"):
+//   y_i <- y_i + alpha_i D_i^-1 r_i(y)
+// with D_i the diagonal block of J. relax yes (after the first sweep of a step): a secant
+// estimate of the particle's stiffness along its last move Delta: the residual changed by
+// -(stiffness) Delta; when the true response is stiffer than D assumed (Delta.D.Delta), the
+// move is scaled back by their ratio.
+
+#ifndef PERISISSM_SOLVERS_JACOBI_H
+#define PERISISSM_SOLVERS_JACOBI_H
+
+#include "solvers/system.h"
+
+namespace PeriSISSM {
+
+// What a solve ended with: the convergence measure of its last evaluation and the tolerance
+// the step was held to (the system's step_tolerance()).
+struct SolveResult {
+  double measure = 0.0;
+  double tolerance = 0.0;
+  bool converged() const { return measure <= tolerance; }
+};
+
+// Work rows of the relaxed sweep (both null without relax).
+struct SweepMemory {
+  double **rprev = nullptr;    // residual of the previous sweep
+  double **dprev = nullptr;    // correction of the previous sweep
+};
+
+// One sweep from the last evaluation (residual and blocks); first: the first sweep of the step
+// (no secant estimate yet).
+void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &relax);
+
+// Up to maxiter sweeps; each evaluates the residual of the iterate it starts from, and the sweep
+// whose starting residual meets the tolerance is the last one.
+SolveResult solve_jacobi(NonlinearSystem &sys, int maxiter, const SweepMemory &relax);
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_SOLVERS_JACOBI_H

@@ -1,0 +1,121 @@
+// Newton-Krylov (see newton_krylov.h).
+
+#include "solvers/newton_krylov.h"
+
+#include <cmath>
+
+namespace PeriSISSM {
+
+SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, int maxiter,
+                                const KrylovWork &w)
+{
+  const Rows &rows = sys.rows();
+  double **x = sys.unknowns();
+  double **res = sys.residual();
+  const int n = rows.n;
+  const SweepMemory plain;
+  SolveResult out;
+  double measure_prev = 0.0, phi_base = 0.0, eta = 1.0e-2;
+  int have_base = 0, halvings = 0;
+
+  auto axpy_positions = [&](double **base, double c, double **dir) {
+    for (int i = 0; i < n; i++)
+      if (rows.has(i))
+        for (int k = 0; k < 3; k++) x[i][k] = base[i][k] + c * dir[i][k];
+  };
+
+  while (true) {
+    sys.evaluate(true);
+    out.measure = scaled_max(sys, res, true);
+    if (sys.evaluations() == 1) out.tolerance = sys.step_tolerance();
+    if (out.measure <= out.tolerance && sys.evaluation_complete()) {
+      // as jacobi does: the evaluation that meets the tolerance still gives its SISSM
+      // correction (free, and at small steps, where the start may already meet a loose
+      // tolerance, it is what moves the body by h^2 f / rho)
+      sissm_sweep(sys, true, plain);
+      break;
+    }
+    const double phi = merit(sys, w.term);
+    const int worse = have_base && phi > phi_base;
+    if (worse && halvings < 4 && sys.evaluations() < maxiter) {
+      halvings++;
+      axpy_positions(w.xbase, ldexp(1.0, -halvings), w.sdir);
+      continue;
+    }
+    if (worse && sys.evaluations() >= maxiter) {
+      // the budget ends on a Newton iterate worse than its base: take the SISSM correction
+      // of the base instead (the plain sweep, robust where a truncated Newton step is not)
+      axpy_positions(w.xbase, 1.0, w.jbase);
+      sys.check_finite();
+      out.measure = measure_prev;
+      break;
+    }
+    if (sys.evaluations() >= maxiter - 1) {
+      // no budget left for a CG product and the check of its Newton iterate
+      sissm_sweep(sys, true, plain);
+      break;
+    }
+
+    // accept the iterate as the base of a Newton step
+    const double measure = out.measure;
+    if (have_base && measure_prev > 0.0)
+      eta = fmin(0.1, fmax(1.0e-4, 0.9 * (measure / measure_prev) * (measure / measure_prev)));
+    measure_prev = measure;
+    halvings = 0;
+    have_base = 1;
+    phi_base = phi;
+    for (int i = 0; i < n; i++)
+      if (rows.has(i))
+        for (int k = 0; k < 3; k++) {
+          w.xbase[i][k] = x[i][k];
+          w.rbase[i][k] = w.cres[i][k] = res[i][k];
+          w.sdir[i][k] = 0.0;
+        }
+    precond.apply(sys, w.cres, w.zdir);
+    for (int i = 0; i < n; i++)
+      if (rows.has(i))
+        for (int k = 0; k < 3; k++) w.pdir[i][k] = w.jbase[i][k] = w.zdir[i][k];
+    double rz = dot(sys, w.cres, w.zdir, w.term);
+    const double target = fmax(0.25 * out.tolerance, eta * measure);
+    int cg = 0;
+
+    while (sys.evaluations() < maxiter - 1 && rz > 0.0) {
+      const double e = 1.0e-7 / scaled_max(sys, w.pdir, false);
+      axpy_positions(w.xbase, e, w.pdir);
+      sys.evaluate(false);
+      // res <- J p
+      for (int i = 0; i < n; i++)
+        if (rows.has(i))
+          for (int k = 0; k < 3; k++) res[i][k] = (w.rbase[i][k] - res[i][k]) / e;
+      const double pjp = dot(sys, w.pdir, res, w.term);
+      if (!(pjp > 0.0)) {
+        if (cg == 0)
+          for (int i = 0; i < n; i++)
+            if (rows.has(i))
+              for (int k = 0; k < 3; k++) w.sdir[i][k] = w.zdir[i][k];
+        break;
+      }
+      const double alpha = rz / pjp;
+      for (int i = 0; i < n; i++)
+        if (rows.has(i))
+          for (int k = 0; k < 3; k++) {
+            w.sdir[i][k] += alpha * w.pdir[i][k];
+            w.cres[i][k] -= alpha * res[i][k];
+          }
+      cg++;
+      if (scaled_max(sys, w.cres, true) <= target) break;
+      precond.apply(sys, w.cres, w.zdir);
+      const double rz_new = dot(sys, w.cres, w.zdir, w.term);
+      const double beta = rz_new / rz;
+      rz = rz_new;
+      for (int i = 0; i < n; i++)
+        if (rows.has(i))
+          for (int k = 0; k < 3; k++) w.pdir[i][k] = w.zdir[i][k] + beta * w.pdir[i][k];
+    }
+    axpy_positions(w.xbase, 1.0, w.sdir);
+    sys.check_finite();
+  }
+  return out;
+}
+
+}  // namespace PeriSISSM

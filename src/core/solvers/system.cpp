@@ -1,0 +1,47 @@
+// Inner products and measures of the particle systems (see system.h).
+
+#include "solvers/system.h"
+
+#include "linalg/exact_sum.h"
+
+#include <cmath>
+
+namespace PeriSISSM {
+
+double dot(NonlinearSystem &sys, double **a, double **b, double *term)
+{
+  const Rows &rows = sys.rows();
+  for (int i = 0; i < rows.n; i++)
+    term[i] = rows.has(i)
+        ? rows.volume[i] * (a[i][0] * b[i][0] + a[i][1] * b[i][1] + a[i][2] * b[i][2])
+        : 0.0;
+  return exact_sum(term, rows.n, sys.reductions());
+}
+
+double merit(NonlinearSystem &sys, double *term)
+{
+  const Rows &rows = sys.rows();
+  double **res = sys.residual();
+  for (int i = 0; i < rows.n; i++)
+    term[i] = rows.has(i) ? rows.volume[i] / rows.density[i] *
+            (res[i][0] * res[i][0] + res[i][1] * res[i][1] + res[i][2] * res[i][2])
+                          : 0.0;
+  return exact_sum(term, rows.n, sys.reductions());
+}
+
+double scaled_max(NonlinearSystem &sys, double **a, bool per_density)
+{
+  const Rows &rows = sys.rows();
+  double local = 0.0;
+  for (int i = 0; i < rows.n; i++) {
+    if (!rows.has(i)) continue;
+    const double size =
+        per_density ? rows.density[i] * cbrt(rows.volume[i]) : cbrt(rows.volume[i]);
+    const double m = sqrt(a[i][0] * a[i][0] + a[i][1] * a[i][1] + a[i][2] * a[i][2]) / size;
+    if (m > local) local = m;
+  }
+  sys.reductions().max(&local, 1);
+  return local;
+}
+
+}  // namespace PeriSISSM

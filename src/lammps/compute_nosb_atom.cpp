@@ -1,0 +1,116 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   compute ID group nosb/atom
+
+   Per-atom array, from the state of pair peri/nosb at its last force evaluation (the current
+   positions during and at the end of a run) and the current bond families:
+     1 damage: 1 - (sum of omega = beta V_j over unbroken bonds) / (that sum over the initial
+       family), i.e. the omega-weighted broken fraction
+     2 W: strain energy density W(F) plus the particle's share of the stabilization energy
+       (what peri/nosb tallies per atom, so sum_i V_i W_i is the stored energy)
+     3 J = det F
+     4 von Mises equivalent of the Cauchy stress
+     5-10 Cauchy stress sigma = P F^T / J: xx yy zz xy xz yz
+     11 estimate of the particle's stable explicit time step (fix nve), at rest, from its
+       current bonds (FixNosbFamily::stable_time_steps; +inf for a particle without bonds)
+   For J < 1e-3 (collapsed or inverted particles) sigma = P F^T / 1e-3 (finite, continuous).
+   A particle whose shape tensor is singular reports F = I: W = 0, J = 1, zero stress.
+   Atoms outside the group get zeros.
+------------------------------------------------------------------------- */
+
+#include "compute_nosb_atom.h"
+
+#include "fix_nosb_family.h"
+#include "pair_peri_nosb.h"
+
+#include "peri/model.h"
+#include "peri/particle.h"
+
+#include "atom.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+
+/* ---------------------------------------------------------------------- */
+
+ComputeNosbAtom::ComputeNosbAtom(LAMMPS *lmp, int narg, char **arg) :
+    Compute(lmp, narg, arg), nmax(0), values(nullptr), dtstable(nullptr), pair(nullptr)
+{
+  if (narg != 3)
+    error->all(FLERR, "Illegal compute nosb/atom command: no arguments expected after the style");
+  peratom_flag = 1;
+  size_peratom_cols = NCOLUMNS;
+}
+
+/* ---------------------------------------------------------------------- */
+
+ComputeNosbAtom::~ComputeNosbAtom()
+{
+  memory->destroy(values);
+  memory->destroy(dtstable);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeNosbAtom::init()
+{
+  pair = dynamic_cast<PairPeriNosb *>(force->pair_match("peri/nosb", 1));
+  if (!pair) error->all(FLERR, "Compute nosb/atom requires pair_style peri/nosb");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeNosbAtom::compute_peratom()
+{
+  invoked_peratom = update->ntimestep;
+
+  if (atom->nmax > nmax) {
+    memory->destroy(values);
+    memory->destroy(dtstable);
+    nmax = atom->nmax;
+    memory->create(values, nmax, NCOLUMNS, "nosb/atom:values");
+    memory->create(dtstable, nmax, "nosb/atom:dtstable");
+    array_atom = values;
+  }
+
+  const int nlocal = atom->nlocal;
+  int *mask = atom->mask;
+  int *type = atom->type;
+  FixNosbFamily *family = pair->family;
+  const bool ready = family && family->built;
+  // after read_restart, or after atoms were added or removed, the pair has no state for the
+  // current atoms until it has evaluated its forces
+  if (ready && !pair->state_current())
+    error->all(FLERR,
+               "Compute nosb/atom: pair peri/nosb has not evaluated the current atoms yet (the "
+               "compute reports the state of the last force evaluation; use 'run 0' first)");
+  if (ready) family->stable_time_steps(dtstable);    // all ranks (a forward communication)
+
+  for (int i = 0; i < nlocal; i++) {
+    double *v = values[i];
+    for (int k = 0; k < NCOLUMNS; k++) v[k] = 0.0;
+    if (!(mask[i] & groupbit)) continue;
+    v[JACOBIAN] = 1.0;
+    if (!ready) continue;
+    v[DAMAGE] = family->damage(i);
+    v[DTSTABLE] = dtstable[i];
+    if (!family->kregular[i]) continue;
+    const double *F = pair->deformation_gradient(i);
+    v[ENERGY] = pair->energy_density(i);
+    double J;
+    PeriSISSM::cauchy_stress(pair->model().material(type[i]), F, &v[SXX], J);
+    v[JACOBIAN] = J;
+    v[VONMISES] = PeriSISSM::von_mises(&v[SXX]);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double ComputeNosbAtom::memory_usage()
+{
+  return (double) nmax * (NCOLUMNS + 1) * sizeof(double);
+}

@@ -1,0 +1,942 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix nosb/family: the bond families of pair_style peri/nosb.
+
+   Families are built once, at the setup of the first run or minimization after the pair style
+   is defined (after the neighbor list build, before the first force evaluation, so step 0
+   already has the right energy): partner j is in the family of i when |x_j - x_i| <= horizon
+   of their types, with the positions at that moment taken as the reference configuration
+   (x0 = x for every atom). Families are stored by atom tag and sorted by tag, so that every
+   per-particle sum runs in the same order whatever the number of MPI ranks. A broken bond has
+   tag 0 and stays broken; broken slots are dropped when the atom migrates. Per bond the fix
+   keeps the weight omega = w beta V_j (pair peri/nosb); the reference bond xi = X_j - X_i is
+   x0_j - x0_i (minimum image in the box of the creation). Per atom: K^-1 (zeros if
+   singular), the regular flag, the initial family weight (damage reference), the largest
+   eigenvalue of the initial K (singularity test) and the atom's own ID. Everything migrates
+   with the atoms and is kept in restart files. Local indices of the partners (closest image)
+   are refreshed after every neighbor list build; a partner that no longer exists (deleted or
+   lost atom) counts as a broken bond, one that exists beyond the ghost cutoff is an error.
+
+   Blow-up guard (check_motion, every step after the integrators have moved the atoms and
+   before LAMMPS decides on a neighbor list build): a non-finite position, velocity or force
+   of an owned atom, an atom beyond one periodic image of the box (Domain::pbc shifts by one
+   box length only), or atoms spread so far that LAMMPS's neighbor bins cannot index them
+   (more than 2^30 bins; LAMMPS's own test of that multiplies the bin counts in 64-bit integers,
+   which wrap around for a box that exploded within one step, and then writes outside its bin
+   array: signal 11 in NBinStandard::bin_atoms) stop the run with an error that names the step,
+   the worst atom (the same on any number of ranks) and the likely cause, judged from the time
+   step against the estimate of stable_time_steps(). Cost: one pass over the owned atoms and
+   one MPI_Allreduce of 8 doubles per step.
+------------------------------------------------------------------------- */
+
+#include "fix_nosb_family.h"
+
+#include "peri/model.h"
+#include "peri/stable_step.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+// per-atom doubles after the bonds in exchange and restart buffers:
+// K^-1, regular, vinit, lamref, owntag
+static constexpr int NATOMDATA = 13;
+// doubles per bond in exchange and restart buffers: partner tag, omega
+static constexpr int NBONDDATA = 2;
+// global restart data: format version, built, maxpartner, periodic (3), box0 (6), tagmax0
+static constexpr int NGLOBAL = 13;
+// format of the restart data (global and per atom); 2: the first one with a version
+static constexpr int RESTART_VERSION = 2;
+
+/* ---------------------------------------------------------------------- */
+
+FixNosbFamily::FixNosbFamily(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), built(0), maxpartner(1), npartner(nullptr), partner(nullptr),
+    omega(nullptr), kinv(nullptr), kregular(nullptr), vinit(nullptr), lamref(nullptr),
+    owntag(nullptr), jlocal(nullptr), tagmax0(0), model(nullptr), list(nullptr), sdiag(nullptr), last_check(-1), integrator_checks(0), dtstable0(0.0)
+{
+  if (narg != 3) error->all(FLERR, "Illegal fix nosb/family command: no arguments expected");
+
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  maxexchange_dynamic = 1;
+  maxexchange = 1 + NATOMDATA + NBONDDATA * maxpartner;
+  comm_forward = 1;    // sdiag (stable_time_steps)
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixNosbFamily::~FixNosbFamily()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+
+  memory->destroy(npartner);
+  memory->destroy(partner);
+  memory->destroy(omega);
+  memory->destroy(kinv);
+  memory->destroy(kregular);
+  memory->destroy(vinit);
+  memory->destroy(lamref);
+  memory->destroy(owntag);
+  memory->destroy(jlocal);
+  memory->destroy(sdiag);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbFamily::setmask()
+{
+  return POST_NEIGHBOR | MIN_POST_NEIGHBOR | POST_INTEGRATE;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::init()
+{
+  if (!model || !force->pair_match("peri/nosb", 1))
+    error->all(FLERR, "Fix nosb/family requires pair_style peri/nosb (it is created by that "
+               "pair style and is not meant to be defined in an input script)");
+
+  // a full neighbor list once, to build the families
+
+  if (!built) neighbor->add_request(this, NeighConst::REQ_FULL | NeighConst::REQ_OCCASIONAL);
+
+  // fix sissm moves the atoms in its own post_integrate, which may come after this one: it
+  // calls check_motion() itself once it has
+
+  integrator_checks = modify->get_fix_by_style("^sissm$").empty() ? 0 : 1;
+
+  // PD scale factor used by dump cfg, as set by the built-in PERI styles
+
+  double vone = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) vone += atom->vfrac[i];
+  double vave;
+  MPI_Allreduce(&vone, &vave, 1, MPI_DOUBLE, MPI_SUM, world);
+  if (atom->natoms) vave /= atom->natoms;
+  atom->pdscale = (vave > 0.0) ? 1.44 / cbrt(vave) : 1.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::init_list(int /*id*/, NeighList *ptr)
+{
+  list = ptr;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::setup_post_neighbor()
+{
+  if (!built) build_families();
+  refresh_local_indices();
+  dtstable0 = min_stable_time_step();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::post_neighbor()
+{
+  refresh_local_indices();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::min_post_neighbor()
+{
+  refresh_local_indices();
+}
+
+/* ----------------------------------------------------------------------
+   build the families from the current positions (reference configuration)
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::build_families()
+{
+  double **x = atom->x;
+  double **x0 = atom->x0;
+  double *vfrac = atom->vfrac;
+  int *type = atom->type;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+
+  neighbor->build_one(list);
+  const int inum = list->inum;
+  int *ilist = list->ilist;
+  int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  // partners of each owned atom: (tag, local index of the image found by the list)
+
+  std::vector<std::vector<std::pair<tagint, int>>> fam(nlocal);
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int itype = type[i];
+    int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = x[j][0] - x[i][0];
+      const double dy = x[j][1] - x[i][1];
+      const double dz = x[j][2] - x[i][2];
+      const double delta = model->horizon(itype, type[j]);
+      if (dx * dx + dy * dy + dz * dz <= delta * delta) fam[i].emplace_back(tag[j], j);
+    }
+    std::sort(fam[i].begin(), fam[i].end());
+    for (size_t k = 1; k < fam[i].size(); k++)
+      if (fam[i][k].first == fam[i][k - 1].first)
+        error->one(FLERR,
+                   "Pair peri/nosb: atom {} appears twice in the bond family of atom {}: the "
+                   "periodic box is shorter than two horizons",
+                   fam[i][k].first, tag[i]);
+  }
+
+  int maxone = 0;
+  for (int i = 0; i < nlocal; i++) maxone = std::max(maxone, (int) fam[i].size());
+  MPI_Allreduce(&maxone, &maxpartner, 1, MPI_INT, MPI_MAX, world);
+  maxpartner = std::max(maxpartner, 1);
+  maxexchange = 1 + NATOMDATA + NBONDDATA * maxpartner;
+
+  memory->destroy(partner);
+  memory->destroy(omega);
+  memory->destroy(jlocal);
+  grow_arrays(atom->nmax);
+
+  // the reference configuration is the current one, in the current box
+
+  box.periodic[0] = domain->xperiodic;
+  box.periodic[1] = domain->yperiodic;
+  box.periodic[2] = domain->zperiodic;
+  box.box[0] = domain->xprd;
+  box.box[1] = domain->yprd;
+  box.box[2] = domain->zprd;
+  box.box[3] = domain->triclinic ? domain->yz : 0.0;
+  box.box[4] = domain->triclinic ? domain->xz : 0.0;
+  box.box[5] = domain->triclinic ? domain->xy : 0.0;
+  for (int i = 0; i < nall; i++) {
+    x0[i][0] = x[i][0];
+    x0[i][1] = x[i][1];
+    x0[i][2] = x[i][2];
+  }
+
+  bigint nbonds = 0, nsingular = 0;
+  for (int i = 0; i < nlocal; i++) {
+    const int itype = type[i];
+    npartner[i] = (int) fam[i].size();
+    vinit[i] = 0.0;
+    for (int b = 0; b < npartner[i]; b++) {
+      const int j = fam[i][b].second;
+      double xi[3];
+      PeriSISSM::reference_bond(x0[0], box, i, j, xi);
+      const double r = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+      if (r == 0.0)
+        error->one(FLERR, "Pair peri/nosb: atoms {} and {} are at the same position", tag[i],
+                   tag[j]);
+      omega[i][b] = model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j]);
+      partner[i][b] = fam[i][b].first;
+      jlocal[i][b] = j;
+      vinit[i] += omega[i][b];
+    }
+    lamref[i] = 0.0;
+    owntag[i] = tag[i];
+    PeriSISSM::update_shape(view(), x0[0], box, i);
+    nbonds += npartner[i];
+    if (!kregular[i]) nsingular++;
+  }
+  built = 1;
+
+  tagint tagmax = 0;
+  for (int i = 0; i < nlocal; i++) tagmax = std::max(tagmax, tag[i]);
+  MPI_Allreduce(&tagmax, &tagmax0, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+
+  bigint all[2], one[2] = {nbonds, nsingular};
+  MPI_Allreduce(one, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "Peridynamic bond families (peri/nosb):\n"
+                   "  total # of bonds = {}\n  bonds/atom = {:.8g}\n"
+                   "  atoms with a singular shape tensor = {}\n",
+                   all[0], atom->natoms ? (double) all[0] / atom->natoms : 0.0, all[1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::attach(const PeriSISSM::Model *m, std::function<void()> rebuilt)
+{
+  model = m;
+  neighbor_rebuilt = std::move(rebuilt);
+}
+
+/* ---------------------------------------------------------------------- */
+
+PeriSISSM::Families FixNosbFamily::view()
+{
+  PeriSISSM::Families fam;
+  fam.npartner = npartner;
+  fam.jlocal = jlocal;
+  fam.omega = omega;
+  fam.kinv = kinv;
+  fam.kregular = kregular;
+  fam.lamref = lamref;
+  return fam;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::forget_broken(const std::vector<int> &atoms)
+{
+  for (int i : atoms)
+    for (int b = 0; b < npartner[i]; b++)
+      if (jlocal[i][b] < 0) partner[i][b] = 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixNosbFamily::damage(int i) const
+{
+  if (vinit[i] <= 0.0) return 0.0;
+  double vnow = 0.0;
+  for (int b = 0; b < npartner[i]; b++)
+    if (partner[i][b]) vnow += omega[i][b];
+  return 1.0 - vnow / vinit[i];
+}
+
+/* ----------------------------------------------------------------------
+   local indices of the partners of all owned atoms: closest image of each partner
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::refresh_local_indices()
+{
+  if (neighbor_rebuilt) neighbor_rebuilt();
+  if (!built) return;
+  const int nlocal = atom->nlocal;
+  tagint *tag = atom->tag;
+
+  // families refer to atom IDs: renumbered IDs would silently pair the wrong atoms, and so
+  // would an ID of a deleted atom that create_atoms gave to a new one
+
+  int flags[2] = {0, 0}, flags_all[2];
+  std::vector<tagint> reused;
+  for (int i = 0; i < nlocal; i++) {
+    if (owntag[i] == 0) {    // atom created after the families (no bonds of its own)
+      owntag[i] = tag[i];
+      if (tag[i] <= tagmax0) reused.push_back(tag[i]);
+    }
+    if (owntag[i] != tag[i]) flags[0] = 1;
+  }
+  flags[1] = (int) reused.size();
+  MPI_Allreduce(flags, flags_all, 2, MPI_INT, MPI_MAX, world);
+  if (flags_all[0])
+    error->all(FLERR,
+               "Pair peri/nosb: atom IDs changed after the bond families were built (bonds "
+               "are stored by atom ID): use delete_atoms ... compress no, and do not "
+               "renumber atoms (reset_atoms id) once a peri/nosb run has been done");
+  if (flags_all[1]) break_reused(reused);
+
+  std::vector<std::pair<int, int>> missing;    // (atom, slot) whose partner is not here
+  for (int i = 0; i < nlocal; i++) {
+    for (int b = 0; b < npartner[i]; b++) {
+      const tagint jtag = partner[i][b];
+      if (jtag == 0) {
+        jlocal[i][b] = -1;
+        continue;
+      }
+      const int j = local_index(jtag);
+      if (j < 0) {
+        jlocal[i][b] = -1;
+        missing.emplace_back(i, b);
+        continue;
+      }
+      jlocal[i][b] = domain->closest_image(i, j);
+    }
+  }
+
+  int nmissing = (int) missing.size(), nmissing_all;
+  MPI_Allreduce(&nmissing, &nmissing_all, 1, MPI_INT, MPI_SUM, world);
+  if (nmissing_all) resolve_missing(missing);
+
+  for (int i : reshape) PeriSISSM::update_shape(view(), atom->x0[0], box, i);
+  reshape.clear();
+}
+
+/* ----------------------------------------------------------------------
+   the tags of every rank, concatenated in rank order (the same vector on all ranks);
+   offset (if given) receives where this rank's tags start in it
+------------------------------------------------------------------------- */
+
+std::vector<tagint> FixNosbFamily::allgather_tags(const std::vector<tagint> &mine, int *offset)
+{
+  const int nme = (int) mine.size();
+  std::vector<int> counts(comm->nprocs), displs(comm->nprocs);
+  MPI_Allgather(&nme, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  int ntotal = 0;
+  for (int p = 0; p < comm->nprocs; p++) {
+    displs[p] = ntotal;
+    ntotal += counts[p];
+  }
+  std::vector<tagint> all(ntotal);
+  MPI_Allgatherv(mine.data(), nme, MPI_LMP_TAGINT, all.data(), counts.data(), displs.data(),
+                 MPI_LMP_TAGINT, world);
+  if (offset) *offset = displs[comm->me];
+  return all;
+}
+
+/* ----------------------------------------------------------------------
+   new atoms that got the ID of a deleted bond partner: those bonds are broken
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::break_reused(const std::vector<tagint> &reused)
+{
+  std::vector<tagint> all = allgather_tags(reused);
+  const int ntotal = (int) all.size();
+  std::sort(all.begin(), all.end());
+
+  int nbroken = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    int broke = 0;
+    for (int b = 0; b < npartner[i]; b++) {
+      if (partner[i][b] && std::binary_search(all.begin(), all.end(), partner[i][b])) {
+        partner[i][b] = 0;
+        broke = 1;
+        nbroken++;
+      }
+    }
+    if (broke) reshape.push_back(i);
+  }
+  int nbroken_all;
+  MPI_Allreduce(&nbroken, &nbroken_all, 1, MPI_INT, MPI_SUM, world);
+  if (comm->me == 0 && nbroken_all)
+    error->warning(FLERR,
+                   "Pair peri/nosb: {} new atoms reuse IDs of deleted atoms; the {} bond ends "
+                   "to those IDs count as broken",
+                   ntotal, nbroken_all);
+}
+
+/* ----------------------------------------------------------------------
+   partners that are neither local nor ghost atoms: a partner that no longer exists
+   anywhere (delete_atoms, lost atoms) counts as a broken bond; a partner that exists on
+   another rank beyond the ghost cutoff is an error
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::resolve_missing(const std::vector<std::pair<int, int>> &missing)
+{
+  const int nme = (int) missing.size();
+  std::vector<tagint> mine(nme);
+  for (int k = 0; k < nme; k++) mine[k] = partner[missing[k].first][missing[k].second];
+  int first = 0;
+  const std::vector<tagint> all = allgather_tags(mine, &first);
+  const int ntotal = (int) all.size();
+
+  // which of the wanted tags are owned somewhere
+
+  std::vector<int> own(ntotal, 0), exists(ntotal, 0);
+  for (int k = 0; k < ntotal; k++) {
+    const int j = local_index(all[k]);
+    if (j >= 0 && j < atom->nlocal) own[k] = 1;
+  }
+  MPI_Allreduce(own.data(), exists.data(), ntotal, MPI_INT, MPI_MAX, world);
+
+  int nbroken = 0;
+  for (int k = 0; k < nme; k++) {
+    const int i = missing[k].first;
+    if (exists[first + k]) missing_partner(i, all[first + k]);
+    partner[i][missing[k].second] = 0;
+    nbroken++;
+  }
+  for (int k = 0; k < nme; k++)
+    if (k == 0 || missing[k].first != missing[k - 1].first) reshape.push_back(missing[k].first);
+
+  int nbroken_all;
+  MPI_Allreduce(&nbroken, &nbroken_all, 1, MPI_INT, MPI_SUM, world);
+  if (comm->me == 0)
+    error->warning(FLERR,
+                   "Pair peri/nosb: {} bond ends lost their partner atom (deleted or lost); "
+                   "those bonds count as broken",
+                   nbroken_all);
+}
+
+/* ----------------------------------------------------------------------
+   atom->map() with a guard: the map is only valid up to the largest current atom ID
+   (entries of deleted atoms with larger IDs are stale)
+------------------------------------------------------------------------- */
+
+int FixNosbFamily::local_index(tagint jtag) const
+{
+  if (jtag <= 0 || jtag > atom->map_tag_max) return -1;
+  return atom->map(jtag);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::missing_partner(int i, tagint jtag)
+{
+  error->one(FLERR,
+             "Pair peri/nosb: bond partner atom {} of atom {} is neither a local nor a ghost "
+             "atom on this MPI rank at step {}: the bond is longer than the ghost cutoff {}; "
+             "increase it with comm_modify cutoff (or the neighbor skin), unless the body is "
+             "flying apart: time step dt = {:.4g}, estimated stable time step of peri/nosb {:.4g} "
+             "at the start of the run (compute nosb/atom column 11)",
+             jtag, atom->tag[i], update->ntimestep, comm->get_comm_cutoff(), update->dt,
+             dtstable0);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixNosbFamily::memory_usage()
+{
+  const double nmax = atom->nmax;
+  double bytes = nmax * (2.0 * sizeof(int) + sizeof(tagint) + 13.0 * sizeof(double));
+  bytes += nmax * maxpartner * (sizeof(tagint) + sizeof(int) + sizeof(double));
+  return bytes;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::grow_arrays(int nmax)
+{
+  memory->grow(npartner, nmax, "nosb/family:npartner");
+  memory->grow(partner, nmax, maxpartner, "nosb/family:partner");
+  memory->grow(omega, nmax, maxpartner, "nosb/family:omega");
+  memory->grow(kinv, nmax, 9, "nosb/family:kinv");
+  memory->grow(kregular, nmax, "nosb/family:kregular");
+  memory->grow(vinit, nmax, "nosb/family:vinit");
+  memory->grow(lamref, nmax, "nosb/family:lamref");
+  memory->grow(owntag, nmax, "nosb/family:owntag");
+  memory->grow(jlocal, nmax, maxpartner, "nosb/family:jlocal");
+  memory->grow(sdiag, nmax, "nosb/family:sdiag");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::copy_arrays(int i, int j, int /*delflag*/)
+{
+  npartner[j] = npartner[i];
+  for (int b = 0; b < npartner[i]; b++) {
+    partner[j][b] = partner[i][b];
+    omega[j][b] = omega[i][b];
+    jlocal[j][b] = jlocal[i][b];
+  }
+  memcpy(kinv[j], kinv[i], sizeof(double) * 9);
+  kregular[j] = kregular[i];
+  vinit[j] = vinit[i];
+  lamref[j] = lamref[i];
+  owntag[j] = owntag[i];
+}
+
+/* ----------------------------------------------------------------------
+   an atom created after the families exist has no bonds
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::set_arrays(int i)
+{
+  npartner[i] = 0;
+  for (int k = 0; k < 9; k++) kinv[i][k] = 0.0;
+  kregular[i] = 0;
+  vinit[i] = 0.0;
+  lamref[i] = 0.0;
+  owntag[i] = 0;
+}
+
+/* ----------------------------------------------------------------------
+   pack unbroken bonds and per-atom data: n, n x (tag, omega), K^-1, regular, vinit, lamref,
+   owntag
+------------------------------------------------------------------------- */
+
+int FixNosbFamily::pack_exchange(int i, double *buf)
+{
+  int m = 1, n = 0;
+  for (int b = 0; b < npartner[i]; b++) {
+    if (partner[i][b] == 0) continue;
+    buf[m++] = ubuf(partner[i][b]).d;
+    buf[m++] = omega[i][b];
+    n++;
+  }
+  buf[0] = n;
+  for (int k = 0; k < 9; k++) buf[m++] = kinv[i][k];
+  buf[m++] = kregular[i];
+  buf[m++] = vinit[i];
+  buf[m++] = lamref[i];
+  buf[m++] = ubuf(owntag[i]).d;
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbFamily::unpack_exchange(int nlocal, double *buf)
+{
+  int m = 0;
+  npartner[nlocal] = static_cast<int>(buf[m++]);
+  for (int b = 0; b < npartner[nlocal]; b++) {
+    partner[nlocal][b] = (tagint) ubuf(buf[m++]).i;
+    omega[nlocal][b] = buf[m++];
+  }
+  for (int k = 0; k < 9; k++) kinv[nlocal][k] = buf[m++];
+  kregular[nlocal] = static_cast<int>(buf[m++]);
+  vinit[nlocal] = buf[m++];
+  lamref[nlocal] = buf[m++];
+  owntag[nlocal] = (tagint) ubuf(buf[m++]).i;
+  return m;
+}
+
+/* ----------------------------------------------------------------------
+   global state: whether the families exist, the largest family, the reference box
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::write_restart(FILE *fp)
+{
+  double list[NGLOBAL] = {(double) RESTART_VERSION, (double) built, (double) maxpartner,
+                          (double) box.periodic[0], (double) box.periodic[1],
+                          (double) box.periodic[2], box.box[0], box.box[1], box.box[2],
+                          box.box[3], box.box[4], box.box[5], ubuf(tagmax0).d};
+  if (comm->me == 0) {
+    int size = NGLOBAL * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), NGLOBAL, fp);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   a file of another format version is refused before its per-atom data are read
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::restart(char *buf)
+{
+  auto list = (double *) buf;
+  if (list[0] != (double) RESTART_VERSION)
+    error->all(FLERR,
+               "Pair peri/nosb: the restart file holds bond families of another format version "
+               "({} instead of {}): write the restart file again with this build (or use the "
+               "build that wrote it)",
+               list[0], (int) RESTART_VERSION);
+  built = static_cast<int>(list[1]);
+  maxpartner = std::max(static_cast<int>(list[2]), 1);
+  for (int k = 0; k < 3; k++) box.periodic[k] = static_cast<int>(list[3 + k]);
+  for (int k = 0; k < 6; k++) box.box[k] = list[6 + k];
+  tagmax0 = (tagint) ubuf(list[12]).i;
+  maxexchange = 1 + NATOMDATA + NBONDDATA * maxpartner;
+
+  // second dimension of the 2d arrays changes: reallocate before per-atom data arrive
+
+  memory->destroy(partner);
+  memory->destroy(omega);
+  memory->destroy(jlocal);
+  grow_arrays(atom->nmax);
+}
+
+/* ----------------------------------------------------------------------
+   per-atom restart data: size first (as other fixes expect), then as in pack_exchange
+------------------------------------------------------------------------- */
+
+int FixNosbFamily::pack_restart(int i, double *buf)
+{
+  const int m = pack_exchange(i, &buf[1]);
+  buf[0] = m + 1;
+  return m + 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbFamily::maxsize_restart()
+{
+  return 2 + NATOMDATA + NBONDDATA * maxpartner;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbFamily::size_restart(int i)
+{
+  int n = 0;
+  for (int b = 0; b < npartner[i]; b++)
+    if (partner[i][b]) n++;
+  return 2 + NATOMDATA + NBONDDATA * n;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbFamily::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                     int * /*pbc*/)
+{
+  for (int k = 0; k < n; k++) buf[k] = sdiag[list[k]];
+  return n;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::unpack_forward_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; k++) sdiag[first + k] = buf[k];
+}
+
+/* ----------------------------------------------------------------------
+   stable explicit time step of every owned atom (PeriSISSM::stable_time_step, peri/stable_step.h):
+   current bonds (broken ones do not count), reference state, so it changes only when bonds
+   break; a particle with no stiffness (all bonds broken) gets +infinity
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::stable_time_steps(double *dt)
+{
+  const int nlocal = atom->nlocal;
+  int *type = atom->type;
+  double *rho = atom->rmass;
+  if (atom->nmax > 0 && !sdiag) grow_arrays(atom->nmax);
+
+  for (int i = 0; i < nlocal; i++) {
+    double s = 0.0;
+    if (built && kregular[i])
+      s = PeriSISSM::stable_step_stiffness(model->material(type[i]), kinv[i],
+                                           model->stabilization_modulus(type[i], kinv[i]));
+    sdiag[i] = s;
+  }
+  comm->forward_comm(this);
+
+  for (int i = 0; i < nlocal; i++) {
+    double d = 0.0;
+    if (built) {
+      // partners through the atom map (any image carries s_j), so that this also works
+      // between runs, when jlocal may be stale
+      for (int b = 0; b < npartner[i]; b++) {
+        if (partner[i][b] == 0) continue;
+        const int j = local_index(partner[i][b]);
+        if (j < 0) continue;
+        d += omega[i][b] * (sdiag[i] + sdiag[j]);
+      }
+    }
+    dt[i] = PeriSISSM::stable_time_step(rho[i], d);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixNosbFamily::min_stable_time_step()
+{
+  const int nlocal = atom->nlocal;
+  std::vector<double> dt(nlocal);
+  stable_time_steps(dt.data());
+  double one = std::numeric_limits<double>::infinity(), all;
+  for (int i = 0; i < nlocal; i++) one = std::min(one, dt[i]);
+  MPI_Allreduce(&one, &all, 1, MPI_DOUBLE, MPI_MIN, world);
+  return all;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbFamily::post_integrate()
+{
+  if (!integrator_checks) check_motion();
+}
+
+/* ----------------------------------------------------------------------
+   the blow-up guard (see the top of this file)
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::check_motion(int converged)
+{
+  last_check = update->ntimestep;
+
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const double *lo = domain->boxlo;
+  const double *hinv = domain->h_inv;
+  const int *pbc = domain->periodicity;
+  const int anypbc = pbc[0] || pbc[1] || pbc[2];
+
+  // maxima over all ranks: -(smallest ID with a non-finite value), -(smallest ID beyond one
+  // periodic image), -min and max of the finite positions
+
+  constexpr double NONE = -DBL_MAX;
+  double one[8] = {NONE, NONE, NONE, NONE, NONE, NONE, NONE, NONE}, all[8];
+  for (int i = 0; i < nlocal; i++) {
+    const double *xi = x[i];
+    const double sum = xi[0] + xi[1] + xi[2] + v[i][0] + v[i][1] + v[i][2] + f[i][0] +
+        f[i][1] + f[i][2];
+    if (!std::isfinite(sum)) {
+      one[0] = std::max(one[0], -(double) tag[i]);
+      continue;
+    }
+    if (anypbc) {
+      // fractional coordinates: Domain::pbc() can bring back atoms within [-1, 2)
+      const double d0 = xi[0] - lo[0], d1 = xi[1] - lo[1], d2 = xi[2] - lo[2];
+      const double l[3] = {hinv[0] * d0 + hinv[5] * d1 + hinv[4] * d2,
+                           hinv[1] * d1 + hinv[3] * d2, hinv[2] * d2};
+      for (int d = 0; d < 3; d++)
+        if (pbc[d] && (l[d] < -1.0 || l[d] >= 2.0)) one[1] = std::max(one[1], -(double) tag[i]);
+    }
+    for (int d = 0; d < 3; d++) {
+      one[2 + d] = std::max(one[2 + d], -xi[d]);
+      one[5 + d] = std::max(one[5 + d], xi[d]);
+    }
+  }
+  MPI_Allreduce(one, all, 8, MPI_DOUBLE, MPI_MAX, world);
+
+  // neighbor bins LAMMPS will need if it rebuilds its lists now: the box of a non-periodic
+  // dimension is reset to the atoms (shrink-wrapped) or stays fixed (atoms beyond a fixed
+  // boundary are lost, an error of LAMMPS); bins of the default size, half the neighbor
+  // cutoff, over the box plus the ghost cutoff at both ends
+
+  double span[3], bins = 1.0;
+  const double binsize =
+      neighbor->binsizeflag ? neighbor->binsize_user : 0.5 * neighbor->cutneighmax;
+  for (int d = 0; d < 3; d++) {
+    double blo = domain->boxlo[d], bhi = domain->boxhi[d];
+    if (!pbc[d] && all[5 + d] > NONE) {
+      // s: the atoms' extent; m: at least the box it has now (LAMMPS: the initial box)
+      if (domain->boundary[d][0] == 2) blo = -all[2 + d];
+      if (domain->boundary[d][0] == 3) blo = std::min(blo, -all[2 + d]);
+      if (domain->boundary[d][1] == 2) bhi = all[5 + d];
+      if (domain->boundary[d][1] == 3) bhi = std::max(bhi, all[5 + d]);
+    }
+    span[d] = bhi - blo;
+    if (binsize > 0.0) bins *= (span[d] + 2.0 * comm->cutghost[d]) / binsize + 4.0;
+  }
+  constexpr double MAXBINS = 1073741824.0;    // 2^30: half of what LAMMPS can index
+  const int which = (all[0] > NONE) ? 1 : (all[1] > NONE) ? 2 : (bins > MAXBINS) ? 3 : 0;
+  if (!which) return;
+
+  // the worst atom: the smallest ID for the first two kinds, else the one farthest outside
+  // the box of the last neighbor list build (smallest ID among equals)
+
+  tagint worst = 0;
+  if (which < 3) {
+    worst = (tagint) (-all[which - 1]);
+  } else {
+    double far = -1.0;
+    tagint id = 0;
+    for (int i = 0; i < nlocal; i++) {
+      double out = 0.0;
+      for (int d = 0; d < 3; d++)
+        out = std::max(out, std::max(domain->boxlo[d] - x[i][d], x[i][d] - domain->boxhi[d]));
+      if (out > far || (out == far && tag[i] < id)) {
+        far = out;
+        id = tag[i];
+      }
+    }
+    double farall;
+    MPI_Allreduce(&far, &farall, 1, MPI_DOUBLE, MPI_MAX, world);
+    tagint mine = (far == farall) ? id : std::numeric_limits<tagint>::max();
+    MPI_Allreduce(&mine, &worst, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  }
+
+  // what the owner of that atom knows (position, velocity, which values are not finite)
+
+  double det[7] = {NONE, NONE, NONE, NONE, NONE, NONE, NONE}, detall[7];
+  for (int i = 0; i < nlocal; i++) {
+    if (tag[i] != worst) continue;
+    int bad = 0;
+    for (int d = 0; d < 3; d++) {
+      if (!std::isfinite(x[i][d])) bad |= 1;
+      if (!std::isfinite(v[i][d])) bad |= 2;
+      if (!std::isfinite(f[i][d])) bad |= 4;
+    }
+    det[6] = bad;
+    for (int d = 0; d < 3; d++) {
+      det[d] = (bad & 1) ? 0.0 : x[i][d];
+      det[3 + d] = (bad & 2) ? 0.0 : v[i][d];
+    }
+  }
+  MPI_Allreduce(det, detall, 7, MPI_DOUBLE, MPI_MAX, world);
+  const double speed =
+      sqrt(detall[3] * detall[3] + detall[4] * detall[4] + detall[5] * detall[5]);
+
+  const std::string cause = likely_cause(converged);
+  const bigint step = update->ntimestep;
+  if (which == 1) {
+    const int bad = (int) detall[6];
+    std::vector<std::string> names;
+    if (bad & 1) names.emplace_back("position");
+    if (bad & 2) names.emplace_back("velocity");
+    if (bad & 4) names.emplace_back("force");
+    std::string what;
+    for (size_t k = 0; k < names.size(); k++)
+      what += (k == 0 ? "" : (k + 1 == names.size() ? " and " : ", ")) + names[k];
+    error->all(FLERR,
+               "Pair peri/nosb: the run is unstable: at step {} atom {} has a non-finite {}; "
+               "likely cause: {}",
+               step, worst, what, cause);
+  } else if (which == 2) {
+    error->all(FLERR,
+               "Pair peri/nosb: the run is unstable: at step {} atom {} is at ({:.4g}, {:.4g}, "
+               "{:.4g}), more than one box length outside the periodic box (speed {:.4g}, "
+               "{:.4g} per step); likely cause: {}",
+               step, worst, detall[0], detall[1], detall[2], speed, speed * update->dt, cause);
+  } else {
+    error->all(FLERR,
+               "Pair peri/nosb: the run is unstable: at step {} the atoms span {:.4g} x {:.4g} x "
+               "{:.4g}, too far for LAMMPS's neighbor bins; atom {} is farthest from the box of "
+               "the last neighbor list build, at ({:.4g}, {:.4g}, {:.4g}), speed {:.4g} "
+               "({:.4g} per step); likely cause: {}",
+               step, span[0], span[1], span[2], worst, detall[0], detall[1], detall[2], speed,
+               speed * update->dt, cause);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the likely cause of a blow-up (all ranks), from the integrator and the time step
+------------------------------------------------------------------------- */
+
+std::string FixNosbFamily::likely_cause(int converged)
+{
+  const double dt = update->dt;
+  const double est = min_stable_time_step();
+  if (converged == 0)
+    return fmt::format("fix sissm stopped at its iteration limit without converging, at time "
+                       "step dt = {:.4g} ({:.3g} x the estimated explicit stable time step {:.4g} "
+                       "of peri/nosb): lower the time step or raise its iterations{}",
+                       dt, dt / est, est,
+                       dt <= est ? "; with a time step this small, check the initial velocities "
+                                   "and external forces as well"
+                                 : "");
+  if (converged == 1)
+    return fmt::format("fix sissm converged in this step (dt = {:.4g}), so the motion was put in "
+                       "from outside: check initial velocities and positions (velocity, set, "
+                       "displace_atoms) and fixes that add forces",
+                       dt);
+  if (dt > est)
+    return fmt::format("time step dt = {:.4g} is above the estimated stable time step {:.4g} "
+                       "of peri/nosb (compute nosb/atom column 11, formula in the pair_style "
+                       "peri/nosb doc)",
+                       dt, est);
+  return fmt::format("time step dt = {:.4g} is within the estimated stable time step {:.4g} of "
+                     "peri/nosb at rest (compute nosb/atom column 11): either the body is "
+                     "deformed far from rest (strongly compressed or inverted particles are "
+                     "stiffer: lower the time step), or the motion was put in from outside "
+                     "(check initial velocities and positions: velocity, set, displace_atoms; "
+                     "and fixes that add forces)",
+                     dt, est);
+}

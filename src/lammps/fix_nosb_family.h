@@ -1,0 +1,127 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix nosb/family: bond families of pair_style peri/nosb (created by the pair style as
+   "NOSB_FAMILY all nosb/family"; users do not define it).
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(nosb/family,FixNosbFamily);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_NOSB_FAMILY_H
+#define LMP_FIX_NOSB_FAMILY_H
+
+#include "fix.h"
+
+#include "peri/family.h"
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace PeriSISSM {
+class Model;
+}
+
+namespace LAMMPS_NS {
+
+class FixNosbFamily : public Fix {
+ public:
+  FixNosbFamily(class LAMMPS *, int, char **);
+  ~FixNosbFamily() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup_post_neighbor() override;
+  void post_neighbor() override;
+  void min_post_neighbor() override;
+  void post_integrate() override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+
+  // blow-up guard (all ranks): stop with an error naming the step, the worst atom and the
+  // likely cause when an owned atom has a non-finite position, velocity or force, or the atoms
+  // have moved farther than LAMMPS can follow (beyond one periodic image, or spread beyond
+  // what its neighbor bins can index). Called every step in post_integrate, or by an
+  // integrator that moves the atoms later in the step (fix sissm) right after it has, telling
+  // whether its step converged (1), did not (0), or -1 (explicit integrators).
+  void check_motion(int converged = -1);
+  // estimate of the stable explicit time step of every owned atom (all ranks; dt[nlocal]):
+  //   dt_i = f sqrt(2 rho_i / d_i),  d_i = sum_j omega_ij (s_i + s_j),
+  //   s_i = kappa_i (lambda + 2 mu) + C_i / 2,  kappa_i = tr(K_i^-1) / 3
+  // (the SISSM block of the linearized material at rest); +infinity without stiffness
+  void stable_time_steps(double *dt);
+  // smallest stable_time_steps() over all atoms (all ranks)
+  double min_stable_time_step();
+
+  // the rule object of the families (horizons, bond weights, materials for the time step
+  // estimate) and what to call right after every neighbor list build (the pair style, at
+  // every init)
+  void attach(const PeriSISSM::Model *model, std::function<void()> neighbor_rebuilt);
+  // the families as the core sees them
+  PeriSISSM::Families view();
+  // bonds that the core broke in an evaluation (partner index -1) lose their partner tag too
+  void forget_broken(const std::vector<int> &atoms);
+  // damage of local atom i: 1 - (sum of omega over unbroken bonds) / (over the initial family)
+  double damage(int i) const;
+
+  // state (read by pair peri/nosb, compute nosb/atom and integrators)
+  // The reference bond is not stored: xi = x0_j - x0_i (x0 = positions when the families
+  // were built), with the minimum image convention in periodic boxes (the x0 of a periodic
+  // ghost image is not shifted).
+  int built;          // 1 once families exist (built at the first run, kept in restarts)
+  int maxpartner;     // largest family (bond slots per atom)
+  int *npartner;      // bond slots of each atom (broken ones included until migration)
+  tagint **partner;   // partner tags, 0 = broken bond
+  double **omega;     // per slot: bond weight omega = w beta V_j (pair peri/nosb)
+  double **kinv;      // K^-1 (row-major 3x3) of each atom; zeros when K is singular
+  int *kregular;      // 1 if K is regular (F defined), 0 otherwise
+  double *vinit;      // sum of omega over the initial family (damage reference)
+  double *lamref;     // largest eigenvalue of the initial K (reference of the singularity test)
+  tagint *owntag;     // the atom's own ID when its family was stored (detects renumbering)
+  int **jlocal;       // local index (closest image) of each partner of each owned atom,
+                      //   -1 for broken bonds; refreshed after every neighbor list build
+  PeriSISSM::ReferenceBox box;    // the box the families were built in (reference bonds)
+  tagint tagmax0;     // largest atom ID when the families were built
+
+ protected:
+  const PeriSISSM::Model *model;
+  std::function<void()> neighbor_rebuilt;
+  class NeighList *list;
+
+  void build_families();
+  void refresh_local_indices();
+  void resolve_missing(const std::vector<std::pair<int, int>> &);
+  void break_reused(const std::vector<tagint> &);
+  std::vector<tagint> allgather_tags(const std::vector<tagint> &, int *offset = nullptr);
+  std::vector<int> reshape;    // atoms whose K must be recomputed after a refresh
+  double *sdiag;               // per atom s_i of stable_time_steps() (owned and ghosts)
+  bigint last_check;           // step of the last check_motion()
+  int integrator_checks;       // 1: an integrator calls check_motion() (fix sissm)
+  double dtstable0;            // min_stable_time_step() at the setup of the run
+  std::string likely_cause(int converged);
+  void missing_partner(int i, tagint jtag);
+  int local_index(tagint) const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

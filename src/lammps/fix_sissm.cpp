@@ -1,0 +1,645 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix sissm (doc/theory.rst, "The implicit step"). Per step, with h the time step, for the atoms of the group,
+   the backward-Euler problem
+     r_i(y) = rho_i (yhat_i - y_i) + h^2 f_i(y) = 0,     yhat_i = y_i^n + h v_i^n
+   where f is the exact peri/nosb force density plus, with external implicit (default), the
+   forces of the other fixes re-evaluated at y (external lagged: they are taken at y^n, from
+   the total force of the last evaluation minus the pair part captured in pre_reverse, and
+   moved into yhat as h^2 fext / rho). So a converged step is the backward-Euler step of the
+   material fix nve integrates. The per-particle implicit block
+     D_i = rho_i I + h^2 sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I)
+   drives two solvers:
+     jacobi   y^{k+1} = y^k + alpha_i D_i^-1 r_i(y^k)               (the SISSM sweep)
+     krylov   Newton steps J s = r, J = -dr/dy, solved by conjugate gradients preconditioned
+              with D (products J p by a finite difference of r along p), with a backtracking
+              safeguard on sum_i V_i |r_i|^2 / rho_i
+   both started at y^0 = y^n + h v^n (an equilibrium is a fixed point for any iteration
+   count); an "iteration" is one force evaluation. End of step: v^{n+1} = (y^{n+1} - y^n) / h.
+   The solve runs in post_integrate, after every initial_integrate, so particles prescribed by
+   fix move or other integrators already sit at t^{n+1}.
+------------------------------------------------------------------------- */
+
+#include "fix_sissm.h"
+
+#include "implicit_forces.h"
+
+#include "linalg/exact_sum.h"
+#include "solvers/backward_euler.h"
+#include "solvers/jacobi.h"
+#include "solvers/momentum.h"
+#include "solvers/newton_krylov.h"
+#include "solvers/preconditioner.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "pair.h"
+#include "update.h"
+
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <initializer_list>
+#include <vector>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+
+// The implicit step of the force model, ended however the step ends (also when an error is
+// thrown inside it and the caller of LAMMPS carries on).
+class ImplicitStep {
+ public:
+  ImplicitStep(ImplicitForces *forces, int groupbit) : forces_(forces)
+  {
+    forces_->begin_implicit_step(groupbit);
+  }
+  ~ImplicitStep() { forces_->end_implicit_step(); }
+  ImplicitStep(const ImplicitStep &) = delete;
+  ImplicitStep &operator=(const ImplicitStep &) = delete;
+
+ private:
+  ImplicitForces *forces_;
+};
+
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV), maxiter(100), tolerance(1.0e-6),
+    relax(0), implicit_external(1), external_mode(EXT_NONE), dtv(0.0), tol_step(1.0e-6),
+    last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
+    warned(0), warned_roundoff(0), nmax(0), evaluations_(0), contact_incomplete(0), fint(nullptr),
+    fext(nullptr), flagged(nullptr),
+    yn(nullptr), yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr),
+    xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
+    sdir(nullptr), term(nullptr), moment(nullptr)
+{
+  time_integrate = 1;
+  force_reneighbor = 1;    // after steps that moved atoms far (short-range contact)
+  next_reneighbor = -1;
+  vector_flag = 1;
+  size_vector = 4;
+  global_freq = 1;
+  extvector = 0;
+
+  int iarg = 3;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "iterations") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm iterations", error);
+      maxiter = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (maxiter < 1)
+        error->all(FLERR, "Illegal fix sissm command: iterations must be >= 1, got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "tolerance") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm tolerance", error);
+      tolerance = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(tolerance >= 0.0))
+        error->all(FLERR, "Illegal fix sissm command: tolerance must be >= 0, got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "relax") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm relax", error);
+      relax = utils::logical(FLERR, arg[iarg + 1], false, lmp);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "solver") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm solver", error);
+      if (strcmp(arg[iarg + 1], "jacobi") == 0) solver = JACOBI;
+      else if (strcmp(arg[iarg + 1], "krylov") == 0) solver = KRYLOV;
+      else
+        error->all(FLERR, "Illegal fix sissm command: solver must be jacobi or krylov, got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "external") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm external", error);
+      if (strcmp(arg[iarg + 1], "implicit") == 0) implicit_external = 1;
+      else if (strcmp(arg[iarg + 1], "lagged") == 0) implicit_external = 0;
+      else
+        error->all(FLERR,
+                   "Illegal fix sissm command: external must be implicit or lagged, got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else {
+      error->all(FLERR,
+                 "Illegal fix sissm command: unknown keyword '{}' (allowed: iterations, "
+                 "tolerance, solver, relax, external)",
+                 arg[iarg]);
+    }
+  }
+  if (relax && solver != JACOBI)
+    error->all(FLERR, "Illegal fix sissm command: relax yes requires solver jacobi");
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixSissm::~FixSissm()
+{
+  destroy_arrays();
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixSissm::setmask()
+{
+  return POST_INTEGRATE | PRE_REVERSE;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixSissm::init()
+{
+  forces = dynamic_cast<ImplicitForces *>(force->pair_match("peri/nosb", 1));
+  if (!forces)
+    error->all(FLERR, "Fix sissm requires pair_style peri/nosb (found {})",
+               force->pair_style ? force->pair_style : "no pair style");
+  if (!atom->rmass_flag || !atom->vfrac_flag)
+    error->all(FLERR, "Fix sissm requires atom_style peri (per-atom density and volume)");
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "Fix sissm does not support run_style respa");
+  dtv = update->dt;
+  comm_reverse = 3;
+  choose_external();
+  forces->track_contact_motion(1);
+  precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
+  // the options of this run decide which work arrays exist: allocate them anew
+  destroy_arrays();
+  nmax = 0;
+}
+
+/* ----------------------------------------------------------------------
+   the forces of the other fixes (those that add forces after the pair style, in post_force).
+   Re-evaluating a fix at every iterate is right only for a fix whose force is a pure function
+   of the positions, velocities and forces at that moment: the known ones are listed below.
+   A fix with state or random numbers (langevin, smd, python/invoke, external, a dynamic
+   group, unknown styles) must run exactly once per step: its force is lagged, taken from the
+   evaluation that ended the previous step. When the pure ones all add a force that does not
+   depend on the force so far, the two kinds mix (MIXED); a pure fix that rewrites the force
+   (setforce, aveforce, lineforce, planeforce) next to a lagged one leaves only the fully
+   lagged treatment. What is decided is written to the log when it changes.
+------------------------------------------------------------------------- */
+
+namespace {
+bool is_pure_additive(const std::string &style)
+{
+  static const char *const names[] = {
+      "gravity",    "addforce",     "viscous",     "indent",     "wall/lj93",   "wall/lj126",
+      "wall/lj1043", "wall/colloid", "wall/harmonic", "wall/morse", "wall/table", "wall/region",
+      "spring",     "spring/self",  "drag",        "efield"};
+  for (const char *n : names)
+    if (style == n) return true;
+  return false;
+}
+
+bool is_pure_rewriting(const std::string &style)
+{
+  return style == "setforce" || style == "aveforce" || style == "lineforce" ||
+      style == "planeforce";
+}
+}    // namespace
+
+void FixSissm::choose_external()
+{
+  implicit_fixes.clear();
+  std::vector<Fix *> lagged;
+  int rewriting = 0;
+  const auto &fixes = modify->get_fix_list();
+  // Modify::post_force calls the dynamic-group fixes (style GROUP) first, then the others
+  for (int pass = 0; pass < 2; pass++) {
+    for (Fix *f : fixes) {
+      if (f == this || !(modify->get_fix_mask(f) & POST_FORCE)) continue;
+      if ((strcmp(f->style, "GROUP") == 0) != (pass == 0)) continue;
+      const std::string style(f->style);
+      if (is_pure_additive(style)) implicit_fixes.push_back(f);
+      else if (is_pure_rewriting(style)) {
+        implicit_fixes.push_back(f);
+        rewriting = 1;
+      } else
+        lagged.push_back(f);
+    }
+  }
+
+  std::string note;
+  if (implicit_fixes.empty() && lagged.empty()) external_mode = EXT_NONE;
+  else if (!implicit_external) external_mode = EXT_LAGGED;
+  else if (lagged.empty()) external_mode = EXT_IMPLICIT;
+  else {
+    std::string names;
+    for (Fix *f : lagged) names += fmt::format("{}{} ({})", names.empty() ? "" : ", ", f->id,
+                                                f->style);
+    if (rewriting) {
+      external_mode = EXT_LAGGED;
+      note = fmt::format("Fix sissm {}: fix {} may hold state or random numbers and must act once "
+                         "per step, and a fix that rewrites forces (setforce, aveforce, lineforce, "
+                         "planeforce) is present: the forces of all other fixes are lagged (taken "
+                         "at the start of each step, as with 'external lagged')\n",
+                         id, names);
+    } else {
+      external_mode = EXT_MIXED;
+      note = fmt::format("Fix sissm {}: fix {} may hold state or random numbers and must act once "
+                         "per step: its force is lagged (taken at the start of each step); the "
+                         "other fixes' forces are implicit\n",
+                         id, names);
+    }
+  }
+  if (note != external_note && comm->me == 0 && !note.empty()) utils::logmesg(lmp, note);
+  external_note = note;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixSissm::reset_dt()
+{
+  dtv = update->dt;
+}
+
+/* ----------------------------------------------------------------------
+   per-atom work arrays: only those the chosen options use
+------------------------------------------------------------------------- */
+
+void FixSissm::destroy_arrays()
+{
+  for (double ***a : {&fint, &fext, &flagged, &yn, &yhat, &res, &kblock, &rprev, &dprev, &xbase,
+                      &rbase, &jbase, &cres, &zdir, &pdir, &sdir, &moment})
+    memory->destroy(*a);
+  memory->destroy(term);
+}
+
+void FixSissm::grow()
+{
+  if (atom->nmax <= nmax) return;
+  destroy_arrays();
+  nmax = atom->nmax;
+  memory->create(kblock, nmax, 6, "sissm:block");
+  memory->create(yn, nmax, 3, "sissm:yn");
+  memory->create(yhat, nmax, 3, "sissm:yhat");
+  memory->create(res, nmax, 3, "sissm:res");
+  memory->create(fext, nmax, 3, "sissm:fext");
+  memory->create(moment, nmax, PeriSISSM::kMomentumColumns, "sissm:moment");
+  if (external_mode == EXT_LAGGED || external_mode == EXT_MIXED)
+    memory->create(fint, nmax, 3, "sissm:fint");
+  if (external_mode == EXT_MIXED) memory->create(flagged, nmax, 3, "sissm:flagged");
+  if (relax) {
+    memory->create(rprev, nmax, 3, "sissm:rprev");
+    memory->create(dprev, nmax, 3, "sissm:dprev");
+  }
+  if (solver == KRYLOV) {
+    for (double ***a : {&xbase, &rbase, &jbase, &cres, &zdir, &pdir, &sdir})
+      memory->create(*a, nmax, 3, "sissm:krylov");
+    memory->create(term, nmax, "sissm:term");
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixSissm::setup(int /*vflag*/)
+{
+  last_iterations = 0;
+  last_measure = 0.0;
+  nsteps_run = iterations_run = unconverged_run = 0;
+  warned = warned_roundoff = 0;
+}
+
+/* ----------------------------------------------------------------------
+   external lagged: pair peri/nosb has just computed its force density (and nothing else has
+   been added yet, other pair-like contributions do not exist with atom_style peri): keep it,
+   for owned and ghost atoms, so that fext = f - fint can be formed at the start of the next
+   step
+------------------------------------------------------------------------- */
+
+void FixSissm::capture_internal_force()
+{
+  if (external_mode != EXT_LAGGED && external_mode != EXT_MIXED) return;
+  grow();
+  double **f = atom->f;
+  const int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++) {
+    fint[i][0] = f[i][0];
+    fint[i][1] = f[i][1];
+    fint[i][2] = f[i][2];
+  }
+}
+
+void FixSissm::setup_pre_reverse(int, int)
+{
+  capture_internal_force();
+}
+
+void FixSissm::pre_reverse(int, int)
+{
+  capture_internal_force();
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixSissm::pack_reverse_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    buf[m++] = fint[i][0];
+    buf[m++] = fint[i][1];
+    buf[m++] = fint[i][2];
+  }
+  return m;
+}
+
+void FixSissm::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    const int j = list[k];
+    fint[j][0] += buf[m++];
+    fint[j][1] += buf[m++];
+    fint[j][2] += buf[m++];
+  }
+}
+
+/* ----------------------------------------------------------------------
+   one force evaluation at the current positions: ghost positions, the peri/nosb force density
+   (without energy/virial; the implicit stiffness for the blocks only when asked), ghost forces
+   folded back, with external implicit the post_force of the other fixes (with
+   v = (y - y^n)/h, so velocity dependent forces such as fix viscous are implicit too), then
+   the backward-Euler residual r_i = rho_i (yhat_i - y_i) + h^2 f_i of the owned atoms of the
+   group into res
+------------------------------------------------------------------------- */
+
+void FixSissm::evaluate(bool blocks)
+{
+  evaluations_++;
+  comm->forward_comm();
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double *rho = atom->rmass;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const double h2 = dtv * dtv;
+
+  contact_incomplete = forces->contact_follow_motion() < 0;
+  for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
+  forces->evaluate(blocks);
+  if (force->newton_pair) comm->reverse_comm();
+  if (external_mode == EXT_IMPLICIT || external_mode == EXT_MIXED) {
+    // the other fixes' force at this iterate, kept in fext (f after minus f before)
+    const double hinv = 1.0 / dtv;
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) {
+          v[i][k] = (x[i][k] - yn[i][k]) * hinv;
+          fext[i][k] = f[i][k];
+        }
+    for (Fix *fix : implicit_fixes) fix->post_force(0);
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) {
+          if (external_mode == EXT_MIXED) f[i][k] += flagged[i][k];
+          fext[i][k] = f[i][k] - fext[i][k];
+        }
+  }
+  if (blocks) forces->implicit_blocks(kblock);
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    PeriSISSM::BackwardEuler::residual(rho[i], yhat[i], x[i], f[i], h2, res[i]);
+    const double r2 = res[i][0] * res[i][0] + res[i][1] * res[i][1] + res[i][2] * res[i][2];
+    if (!std::isfinite(r2))
+      error->one(FLERR, "Fix sissm: non-finite position or force of atom {} at step {}",
+                 atom->tag[i], update->ntimestep);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double **FixSissm::unknowns()
+{
+  return atom->x;
+}
+
+/* ----------------------------------------------------------------------
+   D_i = rho_i I + h^2 block_i of owned atom i (xx yy zz xy xz yz)
+------------------------------------------------------------------------- */
+
+void FixSissm::block(int i, double D[6]) const
+{
+  PeriSISSM::BackwardEuler::block(atom->rmass[i], dtv * dtv, kblock[i], D);
+}
+
+/* ----------------------------------------------------------------------
+   Reductions over the world communicator
+------------------------------------------------------------------------- */
+
+void FixSissm::max(double *values, int n)
+{
+  std::vector<double> all(n);
+  MPI_Allreduce(values, all.data(), n, MPI_DOUBLE, MPI_MAX, world);
+  for (int k = 0; k < n; k++) values[k] = all[k];
+}
+
+void FixSissm::sum(long long *values, int n)
+{
+  std::vector<long long> all(n);
+  MPI_Allreduce(values, all.data(), n, MPI_LONG_LONG, MPI_SUM, world);
+  for (int k = 0; k < n; k++) values[k] = all[k];
+}
+
+double FixSissm::total_rows() const
+{
+  return (double) atom->natoms;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixSissm::check_finite()
+{
+  double **x = atom->x;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if ((mask[i] & groupbit) && !std::isfinite(x[i][0] + x[i][1] + x[i][2]))
+      error->one(FLERR, "Fix sissm: non-finite position of atom {} at step {}", atom->tag[i],
+                 update->ntimestep);
+}
+
+/* ----------------------------------------------------------------------
+   the tolerance this step can meet (asked once, after the first evaluation). Positions are
+   absolute coordinates: an atom at |x| from the origin is known to eps |x| (eps the machine
+   epsilon), and so are its bond vectors, so the force density of particle i is known to about
+   |block_i| eps |x|, and the convergence measure to
+     floor_i = eps (|x_i| / l_i) (1 + h^2 |block_i| / rho_i)      (l_i = V_i^(1/3)),
+   |x| the largest coordinate, |block| the largest diagonal entry of the SISSM block (the row
+   sum of the bond stiffnesses). Measured on a 4x3x3 block at 20 and 100 x the explicit limit
+   (neo-Hookean, random velocities), at the origin and moved 4e4 particle sizes away, the
+   measure stalls at 0.2 to 0.4 x this estimate (1e-12 at the origin, 2e-8 far away, at
+   20 x). A step whose measure is below the larger of the tolerance and half the largest
+   estimate counts as converged; the first time in a run that this exceeds the tolerance, a
+   warning says so.
+   One global max.
+------------------------------------------------------------------------- */
+
+double FixSissm::step_tolerance()
+{
+  double **x = atom->x;
+  double *rho = atom->rmass;
+  double *vfrac = atom->vfrac;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double h2 = dtv * dtv;
+  double local[2] = {0.0, 0.0}, all[2];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double xmax = fmax(fabs(x[i][0]), fmax(fabs(x[i][1]), fabs(x[i][2])));
+    const double bmax = fmax(kblock[i][0], fmax(kblock[i][1], kblock[i][2]));
+    local[0] = fmax(local[0], xmax / cbrt(vfrac[i]) * (1.0 + h2 * bmax / rho[i]));
+    local[1] = fmax(local[1], xmax);
+  }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  // (tolerance 0 asks for every step to use all its iterations: no floor then)
+  const double floor = (tolerance > 0.0) ? 0.5 * DBL_EPSILON * all[0] : 0.0;
+  tol_step = fmax(tolerance, floor);
+  if (floor > tolerance && !warned_roundoff && comm->me == 0)
+    error->warning(FLERR,
+                   "Fix sissm: at step {} round-off in the atom coordinates (up to {:.3g} from "
+                   "the origin) limits the convergence measure to about {:.3g}, above the "
+                   "tolerance {:.3g}: steps that reach it count as converged (a body nearer the "
+                   "origin, or a smaller time step, allows a tighter tolerance; reported once "
+                   "per run)",
+                   update->ntimestep, all[1], floor, tolerance);
+  if (floor > tolerance) warned_roundoff = 1;
+  return tol_step;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixSissm::post_integrate()
+{
+  grow();
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double h = dtv;
+  const int lagged = external_mode == EXT_LAGGED, mixed = external_mode == EXT_MIXED;
+  rows_.n = nlocal;
+  rows_.mask = mask;
+  rows_.bit = groupbit;
+  rows_.volume = atom->vfrac;
+  rows_.density = atom->rmass;
+
+  // lagged: fint of ghosts belongs to their owners (short-range contact with newton on)
+  if ((lagged || mixed) && force->newton_pair) comm->reverse_comm(this);
+  if (mixed) lagged_external_force();
+
+  PeriSISSM::BackwardEuler::begin(rows_, h, x, v, lagged ? f : nullptr, fint, yn, yhat);
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit) fext[i][0] = fext[i][1] = fext[i][2] = 0.0;
+
+  evaluations_ = 0;
+  PeriSISSM::SolveResult result;
+  int free_group;
+  {
+    ImplicitStep step(forces, groupbit);
+    if (solver == KRYLOV) {
+      PeriSISSM::KrylovWork work;
+      work.xbase = xbase;
+      work.rbase = rbase;
+      work.jbase = jbase;
+      work.cres = cres;
+      work.zdir = zdir;
+      work.pdir = pdir;
+      work.sdir = sdir;
+      work.term = term;
+      result = PeriSISSM::solve_newton_krylov(*this, *precond, maxiter, work);
+    } else {
+      PeriSISSM::SweepMemory memory_rows;
+      memory_rows.rprev = rprev;
+      memory_rows.dprev = dprev;
+      result = PeriSISSM::solve_jacobi(*this, maxiter, memory_rows);
+    }
+    free_group = !forces->group_coupled(groupbit);
+  }
+  const double measure = result.measure;
+  if (free_group)
+    PeriSISSM::balance_momentum(rows_, *this, h, x, yn, yhat, lagged ? nullptr : fext, moment);
+  PeriSISSM::BackwardEuler::finish(rows_, h, x, yn, v);
+
+  // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
+  // decides on a neighbor list build): a diverged step ends in an error, not in LAMMPS's
+  // neighbor binning
+  forces->check_motion(measure <= tol_step ? 1 : 0);
+  // short-range contact: a result beyond what the candidates could follow is refused, and
+  // the next step starts from a fresh neighbor list if this one moved atoms far
+  const std::string cause = (measure > tol_step)
+      ? fmt::format("this step stopped at the iteration limit with convergence measure {:.3g} "
+                    "above the tolerance {:.3g}, so the motion may be an artefact of the "
+                    "unconverged solve",
+                    measure, tol_step)
+      : "";
+  if (forces->contact_end_of_step(cause)) next_reneighbor = update->ntimestep;
+
+  const int k = evaluations_;
+  last_iterations = k;
+  last_measure = measure;
+  nsteps_run++;
+  iterations_run += k;
+  if (measure > tol_step) {
+    unconverged_run++;
+    if (!warned && comm->me == 0)
+      error->warning(FLERR,
+                     "Fix sissm: step {} stopped at {} iterations with convergence measure {:.3g} "
+                     "> tolerance {:.3g} (counted in f_{}[4]; reported once per run)",
+                     update->ntimestep, k, measure, tolerance, id);
+    warned = 1;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   external mixed, at the start of a step (positions y^n, velocities v^n): the force of the
+   lagged fixes is what the evaluation that ended the previous step added beyond the pair
+   force (f - fint, at y^n and v^n) minus what the re-evaluated fixes give at y^n and v^n
+   (all of them add forces independent of the force so far, choose_external())
+------------------------------------------------------------------------- */
+
+void FixSissm::lagged_external_force()
+{
+  double **f = atom->f;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < 3; k++) flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
+  for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
+  for (Fix *fix : implicit_fixes) fix->post_force(0);
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit)
+      for (int k = 0; k < 3; k++) flagged[i][k] -= f[i][k];
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixSissm::compute_vector(int n)
+{
+  if (n == 0) return last_iterations;
+  if (n == 1) return last_measure;
+  if (n == 2) return nsteps_run ? (double) iterations_run / nsteps_run : 0.0;
+  return (double) unconverged_run;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixSissm::memory_usage()
+{
+  int arrays = 3 * 3 + 6;    // yn, yhat, res, block
+  if (!implicit_external) arrays += 3;
+  if (relax) arrays += 6;
+  if (solver == KRYLOV) arrays += 22;
+  return (double) arrays * nmax * sizeof(double);
+}

@@ -1,0 +1,123 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix sissm: the semi-implicit successive substitution method, a per-particle Jacobi
+   fixed-point iteration whose fixed point is the backward-Euler step of pair peri/nosb, and
+   its Krylov acceleration (Newton steps solved by conjugate gradients preconditioned with
+   the same per-particle blocks). The LAMMPS glue of the core's solvers (src/core/solvers):
+   it is the nonlinear system they solve (PeriSISSM::NonlinearSystem) over the atoms of its
+   group, with the force model behind the ImplicitForces interface of the pair style.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(sissm,FixSissm);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_SISSM_H
+#define LMP_FIX_SISSM_H
+
+#include "fix.h"
+
+#include "solvers/system.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace PeriSISSM {
+class Preconditioner;
+}
+
+namespace LAMMPS_NS {
+
+class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM::Reductions {
+ public:
+  FixSissm(class LAMMPS *, int, char **);
+  ~FixSissm() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void setup_pre_reverse(int, int) override;
+  void pre_reverse(int, int) override;
+  void post_integrate() override;
+  void reset_dt() override;
+  double compute_vector(int) override;
+  double memory_usage() override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+  // ---- PeriSISSM::NonlinearSystem: the backward-Euler step of the group's atoms ----
+  const PeriSISSM::Rows &rows() const override { return rows_; }
+  PeriSISSM::Reductions &reductions() override { return *this; }
+  double **unknowns() override;
+  void evaluate(bool blocks) override;
+  double **residual() override { return res; }
+  int evaluations() const override { return evaluations_; }
+  bool evaluation_complete() const override { return !contact_incomplete; }
+  void block(int i, double D[6]) const override;
+  double step_tolerance() override;
+  void check_finite() override;
+
+  // ---- PeriSISSM::Reductions over the LAMMPS world communicator ----
+  void max(double *values, int n) override;
+  void sum(long long *values, int n) override;
+  double total_rows() const override;
+
+ protected:
+  enum { JACOBI, KRYLOV };
+  // how the forces of the other fixes enter the step (decided in init from the keyword
+  // external and the fixes present): NONE there are none; IMPLICIT all re-evaluated at every
+  // iterate; MIXED those known to be pure functions of positions and velocities re-evaluated,
+  // the others lagged (their force of the evaluation that ended the previous step); LAGGED all
+  // lagged
+  enum { EXT_NONE, EXT_IMPLICIT, EXT_MIXED, EXT_LAGGED };
+  class ImplicitForces *forces;    // the pair style's side of the step
+  PeriSISSM::Rows rows_;           // the group's atoms (refreshed at every step)
+  std::unique_ptr<PeriSISSM::Preconditioner> precond;
+  int solver;           // JACOBI sweeps or KRYLOV (Newton-CG, SISSM blocks as preconditioner)
+  int maxiter;          // force evaluations per step at most
+  double tolerance;     // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
+  int relax;            // 1: per-particle step factor alpha_i, 0: alpha_i = 1 (jacobi)
+  int implicit_external;    // keyword external: 1 implicit, 0 lagged
+  int external_mode;        // EXT_*, see above
+  std::vector<class Fix *> implicit_fixes;    // re-evaluated at every iterate, in LAMMPS order
+  std::string external_note;                  // what was last logged about them
+  double dtv;
+  double tol_step;      // the tolerance of the current step (attainable_tolerance())
+
+  // statistics (global vector)
+  int last_iterations;
+  double last_measure;
+  bigint nsteps_run, iterations_run, unconverged_run;
+
+  int warned;           // non-convergence already reported in this run
+  int warned_roundoff;  // round-off limit of the tolerance already reported in this run
+  int nmax;
+  int evaluations_;     // force evaluations of the current step
+  int contact_incomplete;    // the last evaluation's contact candidates were incomplete
+  double **fint;        // internal force density at y^n (captured in pre_reverse; lagged, mixed)
+  double **fext;        // force density of the other fixes at the last evaluation (implicit,
+                        //   mixed: used by the momentum balance; lagged: zero, it is in yhat)
+  double **flagged;     // mixed: force density of the lagged fixes for this step
+  double **yn;          // y^n of owned atoms
+  double **yhat;        // predictor y^n + h v^n (+ h^2 f_ext / rho when lagged)
+  double **res;         // backward-Euler residual of the last evaluation
+  double **kblock;      // implicit block sum_j omega_ij (H_i + H_j + S_ij) per owned atom
+  double **rprev, **dprev;   // relax: residual and correction of the previous sweep
+  double **xbase, **rbase, **jbase, **cres, **zdir, **pdir, **sdir;   // krylov vectors
+  double *term;         // krylov: per-atom terms of a global sum
+  double **moment;      // per-atom terms of the momentum balance
+
+  void grow();
+  void destroy_arrays();
+  void choose_external();
+  void capture_internal_force();
+  void lagged_external_force();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

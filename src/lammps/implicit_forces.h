@@ -1,0 +1,61 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   What an implicit integrator (fix sissm) needs from the force model: one force evaluation
+   at the current positions with or without the SISSM blocks, bonds that do not break inside
+   a step, the contact candidates kept complete while the atoms move many times between
+   neighbor list builds, whether a group is coupled to the rest, and the blow-up guard.
+   pair_style peri/nosb implements it; fix sissm sees nothing else of the pair.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_PERISISSM_IMPLICIT_FORCES_H
+#define LMP_PERISISSM_IMPLICIT_FORCES_H
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+class ImplicitForces {
+ public:
+
+  // an implicit step begins: until end_implicit_step() bonds do not break, and contact pairs
+  // that couple an atom of groupbit with one outside it are noted (group_coupled())
+  virtual void begin_implicit_step(int groupbit) = 0;
+  virtual void end_implicit_step() = 0;
+
+  // one force evaluation at the current positions (ghost positions current, forces zeroed by
+  // the caller): adds the force densities to atom->f (ghost parts to be folded back by the
+  // caller under newton on); blocks: also keeps what implicit_blocks() needs
+  virtual void evaluate(bool blocks) = 0;
+  // the SISSM block sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I) of every owned atom (xx yy zz
+  // xy xz yz), from the last evaluation with blocks
+  virtual void implicit_blocks(double **block) = 0;
+
+  // contact candidates while an implicit step moves the atoms: track_contact_motion(1) at
+  // init; contact_follow_motion() after every move (ghost positions current) re-selects the
+  // candidates when needed (1), has nothing to do (0), or finds the atoms moved farther than the
+  // neighbor list covers (-1: the candidates are incomplete for this iterate);
+  // contact_end_of_step() stops with an error when the step's result is that far (cause: what
+  // the integrator knows about the step, may be empty) and returns true when the next step
+  // should start from a new neighbor list
+  virtual void track_contact_motion(int flag) = 0;
+  virtual int contact_follow_motion() = 0;
+  virtual bool contact_end_of_step(const std::string &cause) = 0;
+
+  // true (all ranks) when an unbroken bond joins an owned atom of groupbit with an atom outside
+  // it, or a contact pair did in the evaluations since begin_implicit_step()
+  virtual bool group_coupled(int groupbit) = 0;
+
+  // the blow-up guard once the integrator has moved the atoms: converged 1 (the step
+  // converged), 0 (it did not), -1 (explicit)
+  virtual void check_motion(int converged) = 0;
+
+ protected:
+  // not deleted through this interface (its implementations are LAMMPS styles whose
+  // destructors may throw)
+  ~ImplicitForces() = default;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

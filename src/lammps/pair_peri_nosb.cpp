@@ -1,0 +1,1109 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   pair_style peri/nosb: the LAMMPS glue of the core's peridynamic model (src/core/peri):
+   coefficients, mixing and restart; per-atom state arrays and their halo exchange; the
+   contact candidates from the neighbor list; energy and virial accounting. The model itself
+   (doc/theory.rst): elastic term (peri/elastic.h), stabilization (peri/stabilization.h),
+   breaking rule (peri/breaking.h), short-range contact (peri/contact.h), evaluated in the order
+   of peri/forces.h. E = sum_i V_i W_i + stabilization energy; forces are the exact force
+   densities f_k = -(1/V_k) dE/dy_k; pe tallies sum_i (W_i + stabilization energy density), as
+   the built-in PERI styles tally densities.
+
+   Choices (for the documentation):
+   - influence function w = 1; partial volume beta = 1 up to delta - h/2, then linear down
+     to 1/2 at r = delta, h = mean of the two particles' V^(1/3) (as the built-ins, with h
+     from the volumes instead of the lattice); weights fixed when the families are built.
+   - a particle whose K is singular (kMinShapeConditioning, peri/family.h) has no F: no
+     force state of its own, W = 0; its bonds carry the partners' force states, and their
+     stabilization uses the partner's F alone (a bond between two such particles is inert).
+   - breaking: every force evaluation of a run checks every bond once, before F is formed,
+     against the critical stretch of its type pair, s00_IJ - alpha_IJ max(s_min,i, s_min,j),
+     with the smallest bond stretches s_min of the previous evaluation (kept in atom->s0, which
+     atom_style peri communicates to ghosts, migrates and writes to restart files); a broken
+     bond already counts as broken in that evaluation. The setup evaluation at the start of a
+     run breaks nothing (refreshes s_min); nothing breaks during a minimization.
+   - short-range contact as the built-ins, but only between particles that are not bonded.
+   - per-atom virial: each bond's force is equal and opposite at its two ends; each end
+     tallies half of (x_i - x_j) (x) (force on i), as pair peri/lps does; sum over atoms of
+     the virial equals sum_i V_i tau_i (Kirchhoff stress) for affine deformations.
+   - mixed types: each particle uses the material and Cs of its own type (pair_coeff I I);
+     horizon, s00, alpha, break, contact of a bond come from pair_coeff I J, or, if not
+     given, horizon = max, s00 and alpha of the type with the smaller s00 among the types that
+     break, break and contact on if on for either type, contact stiffness from the mean K.
+------------------------------------------------------------------------- */
+
+#include "pair_peri_nosb.h"
+
+#include "fix_nosb_family.h"
+
+#include "materials/material.h"
+#include "peri/breaking.h"
+#include "peri/contact.h"
+#include "peri/forces.h"
+#include "peri/model.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+static constexpr double MY_PI = 3.14159265358979323846;
+// Default of the stabilize keyword. Zero-energy modes need a stiff control, and with the
+// bond-averaged residual smooth fields hardly feel it (peri/stabilization.h). On the brittle impact
+// deck (examples/impact, s00 = 5e-4) Cs >= 1.75 keeps the damage near the indenter, while
+// Cs <= 1.5 lets a fragmentation avalanche run through the whole cylinder (converged in dt);
+// 2 leaves a margin. Price: the explicit stable time step of an intact sc lattice with horizon
+// 3a falls to ~0.6 of peri/lps's (limits measured: Cs 0.1 > 2.8e-7 s, 0.5 ~2.6e-7, 1 ~1.9e-7,
+// 2 ~1.5e-7, peri/lps ~2.6e-7 for the impact material and spacing).
+static constexpr double DEFAULT_CS = 2.0;
+
+/* ---------------------------------------------------------------------- */
+
+PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
+    Pair(lmp), family(nullptr), modelid(nullptr), bulk(nullptr), shear(nullptr), cut(nullptr),
+    s00(nullptr), alpha(nullptr), cs(nullptr), breakflag(nullptr), contactflag(nullptr),
+    kcontact(nullptr), g0(nullptr), g0_s00(nullptr), model_(new PeriSISSM::Model),
+    any_break(0), any_contact(0), external_breaking(0), stiffness_flag(0), contact_groupbit(0),
+    contact_crossings(0), hmax(0.0), contact_first(nullptr), contact_neigh(nullptr),
+    contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
+    track_motion(0), nmotion(0), xneigh(nullptr), xcontact(nullptr), state_nlocal(-1), nmax(0),
+    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr),
+    comm_rows(nullptr), comm_width(0)
+{
+  single_enable = 0;
+  no_virial_fdotr_compute = 1;    // forces are densities: f.r is not the virial
+  restartinfo = 1;
+  comm_forward = PeriSISSM::ParticleFields::NG;    // the widest field the halo sends
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairPeriNosb::~PairPeriNosb()
+{
+  if (modify->get_fix_by_id("NOSB_FAMILY")) modify->delete_fix("NOSB_FAMILY");
+
+  memory->destroy(gstate);
+  memory->destroy(hstate);
+  memory->destroy(kstate);
+  memory->destroy(wdens);
+  memory->destroy(s0_new);
+  memory->destroy(contact_first);
+  memory->destroy(contact_neigh);
+  memory->destroy(xneigh);
+  memory->destroy(xcontact);
+
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(modelid);
+    memory->destroy(bulk);
+    memory->destroy(shear);
+    memory->destroy(cut);
+    memory->destroy(s00);
+    memory->destroy(alpha);
+    memory->destroy(cs);
+    memory->destroy(breakflag);
+    memory->destroy(contactflag);
+    memory->destroy(kcontact);
+    memory->destroy(g0);
+    memory->destroy(g0_s00);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) setflag[i][j] = 0;
+  memory->create(cutsq, n, n, "pair:cutsq");
+  memory->create(modelid, n, n, "pair:model");
+  memory->create(bulk, n, n, "pair:bulk");
+  memory->create(shear, n, n, "pair:shear");
+  memory->create(cut, n, n, "pair:cut");
+  memory->create(s00, n, n, "pair:s00");
+  memory->create(alpha, n, n, "pair:alpha");
+  memory->create(cs, n, n, "pair:cs");
+  memory->create(breakflag, n, n, "pair:breakflag");
+  memory->create(contactflag, n, n, "pair:contactflag");
+  memory->create(kcontact, n, n, "pair:kcontact");
+  memory->create(g0, n, n, "pair:g0");
+  memory->create(g0_s00, n, n, "pair:g0_s00");
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) g0[i][j] = g0_s00[i][j] = 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   pair_style peri/nosb (no arguments)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::settings(int narg, char **arg)
+{
+  if (narg)
+    error->all(FLERR, "Illegal pair_style peri/nosb command: no arguments expected, got '{}'",
+               arg[0]);
+}
+
+/* ----------------------------------------------------------------------
+   parse a finite number for pair_coeff, naming the parameter on error
+------------------------------------------------------------------------- */
+
+static double coeff_number(const char *what, const char *str, Error *error)
+{
+  if (!utils::is_double(str))
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be a number, got '{}'",
+               what, str);
+  const double value = std::strtod(str, nullptr);
+  if (!std::isfinite(value))
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be finite, got '{}'",
+               what, str);
+  return value;
+}
+
+/* ----------------------------------------------------------------------
+   parse a yes/no keyword value for pair_coeff
+------------------------------------------------------------------------- */
+
+static int coeff_flag(const char *keyword, const char *str, Error *error)
+{
+  const std::string v(str);
+  if (v == "yes" || v == "on" || v == "true" || v == "1") return 1;
+  if (v == "no" || v == "off" || v == "false" || v == "0") return 0;
+  error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be yes or no, got '{}'",
+             keyword, str);
+  return 0;
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] [contact yes/no]
+     [G0 value]   (s00 = NULL with G0)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::coeff(int narg, char **arg)
+{
+  if (narg < 8)
+    error->all(FLERR,
+               "Incorrect number of args for pair_coeff peri/nosb command: expected "
+               "I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] "
+               "[contact yes/no] [G0 value], got {} arguments",
+               narg);
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  const auto &names = PeriSISSM::material_names();
+  const auto found = std::find(names.begin(), names.end(), std::string(arg[2]));
+  if (found == names.end())
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: unknown model '{}' (allowed: {})",
+               arg[2], PeriSISSM::material_names_joined());
+  const int model_one = (int) (found - names.begin());
+
+  const double k_one = coeff_number("bulk modulus K", arg[3], error);
+  const double g_one = coeff_number("shear modulus G", arg[4], error);
+  const double cut_one = coeff_number("horizon", arg[5], error);
+  // s00 = NULL: the critical stretch comes from the G0 keyword (at init, see init_style)
+  const bool s00_null = strcmp(arg[6], "NULL") == 0;
+  const double s00_one = s00_null ? 0.0 : coeff_number("s00", arg[6], error);
+  const double alpha_one = coeff_number("alpha", arg[7], error);
+
+  if (k_one <= 0.0)
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: bulk modulus K must be > 0, got {}",
+               arg[3]);
+  if (g_one <= 0.0)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: shear modulus G must be > 0, got {}",
+               arg[4]);
+  const double nu = (3.0 * k_one - 2.0 * g_one) / (2.0 * (3.0 * k_one + g_one));
+  const auto lame = PeriSISSM::lame_from_bulk_shear(k_one, g_one);
+  if (!(nu > -1.0 && nu < 0.5) || !PeriSISSM::lame_parameters_admissible(lame.mu, lame.lambda))
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: K = {} and G = {} give Poisson's ratio {} "
+               "outside (-1, 0.5)",
+               arg[3], arg[4], nu);
+  if (cut_one <= 0.0)
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: horizon must be > 0, got {}",
+               arg[5]);
+
+  double cs_one = DEFAULT_CS;
+  double g0_one = 0.0;
+  int break_one = 1, contact_one = 1;
+  int iarg = 8;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "stabilize") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb stabilize", error);
+      cs_one = coeff_number("stabilize Cs", arg[iarg + 1], error);
+      if (cs_one < 0.0)
+        error->all(FLERR,
+                   "Illegal pair_coeff peri/nosb command: stabilize Cs must be >= 0, got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "break") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb break", error);
+      break_one = coeff_flag("break", arg[iarg + 1], error);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "contact") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb contact", error);
+      contact_one = coeff_flag("contact", arg[iarg + 1], error);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "G0") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb G0", error);
+      g0_one = coeff_number("G0", arg[iarg + 1], error);
+      if (g0_one <= 0.0)
+        error->all(FLERR, "Illegal pair_coeff peri/nosb command: G0 must be > 0, got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else {
+      error->all(FLERR,
+                 "Illegal pair_coeff peri/nosb command: unknown keyword '{}' (allowed: "
+                 "stabilize, break, contact, G0)",
+                 arg[iarg]);
+    }
+  }
+
+  if (g0_one > 0.0 && !s00_null)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: s00 = {} and G0 = {} both set the critical "
+               "stretch (give s00 as NULL with G0)",
+               arg[6], g0_one);
+  if (g0_one > 0.0 && !break_one)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: G0 = {} sets the critical stretch, but "
+               "bonds cannot break with 'break no'",
+               g0_one);
+  if (s00_null && g0_one == 0.0)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: s00 = NULL needs the G0 keyword (the "
+               "critical energy release rate that sets the critical stretch)");
+  if (break_one && !s00_null && s00_one <= 0.0)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: s00 must be > 0 when bonds can break, got "
+               "{} (use 'break no' to turn bond breaking off)",
+               arg[6]);
+  if (break_one && alpha_one < 0.0)
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: alpha must be >= 0, got {}",
+               arg[7]);
+
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++) {
+    for (int j = std::max(jlo, i); j <= jhi; j++) {
+      modelid[i][j] = model_one;
+      bulk[i][j] = k_one;
+      shear[i][j] = g_one;
+      cut[i][j] = cut_one;
+      s00[i][j] = s00_one;    // with G0: set at init (s00_from_fracture_energy)
+      g0[i][j] = g0_one;
+      g0_s00[i][j] = 0.0;    // log the s00 it gives at the next init
+      alpha[i][j] = alpha_one;
+      cs[i][j] = cs_one;
+      breakflag[i][j] = break_one;
+      contactflag[i][j] = contact_one;
+      setflag[i][j] = 1;
+      count++;
+    }
+  }
+  if (count == 0)
+    error->all(FLERR, "Incorrect args for pair_coeff peri/nosb command: no type pair in {} {}",
+               arg[0], arg[1]);
+}
+
+/* ----------------------------------------------------------------------
+   G0 keyword: the critical stretch of each type pair set with G0, from its own pair_coeff line
+   (K, G, Cs, horizon) and the particle spacing h = mean V^(1/3) of the particles of its two
+   types (of all particles if there are none); logged when it is first set or changes
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::s00_from_fracture_energy()
+{
+  const int n = atom->ntypes;
+  bool any = false;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      if (setflag[i][j] && g0[i][j] > 0.0) any = true;
+  if (!any) return;
+
+  // per type: sum of V^(1/3) and count (index 0: all types)
+  std::vector<double> local(2 * (n + 1), 0.0), total(2 * (n + 1), 0.0);
+  for (int k = 0; k < atom->nlocal; k++) {
+    const double hk = cbrt(atom->vfrac[k]);
+    local[2 * atom->type[k]] += hk;
+    local[2 * atom->type[k] + 1] += 1.0;
+    local[0] += hk;
+    local[1] += 1.0;
+  }
+  MPI_Allreduce(local.data(), total.data(), 2 * (n + 1), MPI_DOUBLE, MPI_SUM, world);
+
+  for (int i = 1; i <= n; i++) {
+    for (int j = i; j <= n; j++) {
+      if (!setflag[i][j] || g0[i][j] <= 0.0) continue;
+      double hsum = total[2 * i] + (j != i ? total[2 * j] : 0.0);
+      double count = total[2 * i + 1] + (j != i ? total[2 * j + 1] : 0.0);
+      if (count == 0.0) {
+        hsum = total[0];
+        count = total[1];
+      }
+      if (count == 0.0)
+        error->all(FLERR,
+                   "pair_coeff peri/nosb G0 {} for types {} {}: no particles to take the "
+                   "particle spacing from",
+                   g0[i][j], i, j);
+      const double h = hsum / count;
+      s00[i][j] = PeriSISSM::s00_from_fracture_energy(g0[i][j], bulk[i][j], shear[i][j], cs[i][j],
+                                                     cut[i][j], h);
+      if (s00[i][j] != g0_s00[i][j] && comm->me == 0)
+        utils::logmesg(lmp,
+                       "peri/nosb: types {} {}: G0 = {:.6g} gives s00 = {:.6g} (K = {:.6g}, "
+                       "G = {:.6g}, Cs = {:.6g}, horizon = {:.6g} = {:.5g} h)\n",
+                       i, j, g0[i][j], s00[i][j], bulk[i][j], shear[i][j], cs[i][j], cut[i][j],
+                       cut[i][j] / h);
+      g0_s00[i][j] = s00[i][j];
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::init_style()
+{
+  if (!atom->peri_flag || !atom->vfrac_flag || !atom->x0)
+    error->all(FLERR, "Pair style peri/nosb requires atom_style peri");
+  if (atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "Pair style peri/nosb requires an atom map, see atom_modify map array");
+  if (!atom->tag_enable) error->all(FLERR, "Pair style peri/nosb requires atom IDs");
+  if (domain->dimension != 3) error->all(FLERR, "Pair style peri/nosb requires a 3d simulation");
+
+  // as a sub-style of hybrid, hybrid/overlay or hybrid/scaled, types mapped to other styles
+  // would get bond families with unset coefficients, and fix sissm would not see the other
+  // styles' forces in its implicit residual: not supported
+
+  if (force->pair != this)
+    error->all(FLERR,
+               "Pair style peri/nosb cannot be a sub-style of pair_style {}: use pair_style "
+               "peri/nosb alone (several materials: pair_coeff per type pair; other "
+               "interactions: fixes such as wall or indent)",
+               force->pair_style);
+
+  const int n = atom->ntypes;
+
+  s00_from_fracture_energy();    // G0 keyword: s00 of those type pairs (before mixing)
+
+  // mixing of unset I,J (I != J): bond parameters from both types
+
+  for (int i = 1; i <= n; i++) {
+    for (int j = i + 1; j <= n; j++) {
+      if (setflag[i][j]) continue;
+      // the critical stretch comes from the weaker of the types whose bonds can break (a
+      // 'break no' type has no meaningful s00)
+      int weak = (s00[i][i] <= s00[j][j]) ? i : j;
+      if (breakflag[i][i] != breakflag[j][j]) weak = breakflag[i][i] ? i : j;
+      modelid[i][j] = modelid[i][i];
+      bulk[i][j] = 0.5 * (bulk[i][i] + bulk[j][j]);
+      shear[i][j] = 0.5 * (shear[i][i] + shear[j][j]);
+      cut[i][j] = std::max(cut[i][i], cut[j][j]);
+      s00[i][j] = s00[weak][weak];
+      alpha[i][j] = alpha[weak][weak];
+      cs[i][j] = 0.0;    // not used: stabilization is per particle
+      breakflag[i][j] = breakflag[i][i] || breakflag[j][j];
+      contactflag[i][j] = contactflag[i][i] || contactflag[j][j];
+    }
+  }
+
+  // mirror, derived per-pair and per-type values, summary flags
+
+  any_break = any_contact = 0;
+  for (int i = 1; i <= n; i++) {
+    for (int j = i; j <= n; j++) {
+      modelid[j][i] = modelid[i][j];
+      bulk[j][i] = bulk[i][j];
+      shear[j][i] = shear[i][j];
+      cut[j][i] = cut[i][j];
+      s00[j][i] = s00[i][j];
+      alpha[j][i] = alpha[i][j];
+      cs[j][i] = cs[i][j];
+      breakflag[j][i] = breakflag[i][j];
+      contactflag[j][i] = contactflag[i][j];
+      const double d2 = cut[i][j] * cut[i][j];
+      kcontact[i][j] = kcontact[j][i] = 15.0 * 18.0 * bulk[i][j] / (MY_PI * d2 * d2);
+      if (breakflag[i][j]) any_break = 1;
+      if (contactflag[i][j]) any_contact = 1;
+    }
+  }
+  configure_model();
+
+  // every bond partner must have one image within reach: a periodic box at least two horizons
+  // wide in each periodic direction (checked here at every run, since change_box can shrink
+  // or create a periodic direction after the families exist; the closest image of a partner
+  // would then be the wrong one)
+
+  double cutmax = 0.0;
+  for (int i = 1; i <= n; i++)
+    for (int j = 1; j <= n; j++) cutmax = std::max(cutmax, cut[i][j]);
+  const double xprd = domain->xprd, yprd = domain->yprd, zprd = domain->zprd;
+  const double xy = domain->triclinic ? domain->xy : 0.0;
+  const double xz = domain->triclinic ? domain->xz : 0.0;
+  const double yz = domain->triclinic ? domain->yz : 0.0;
+  // distances between opposite faces of the (restricted triclinic) box
+  const double bxc = sqrt(yprd * zprd * yprd * zprd + xy * zprd * xy * zprd +
+                          (xy * yz - yprd * xz) * (xy * yz - yprd * xz));
+  const double width[3] = {xprd * yprd * zprd / bxc, yprd * zprd / sqrt(zprd * zprd + yz * yz),
+                           zprd};
+  const int periodicity[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+  for (int d = 0; d < 3; d++)
+    if (periodicity[d] && width[d] < 2.0 * cutmax)
+      error->all(FLERR,
+                 "Pair style peri/nosb: the periodic box is {:.8g} wide in {}, shorter than two "
+                 "horizons (2 x {:.8g}): enlarge the box or make that direction non-periodic",
+                 width[d], "xyz"[d], cutmax);
+
+  // largest particle size, for the contact range
+
+  double hone = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) hone = std::max(hone, cbrt(atom->vfrac[i]));
+  MPI_Allreduce(&hone, &hmax, 1, MPI_DOUBLE, MPI_MAX, world);
+
+  // the bond-family fix, created once (or recreated from a restart file)
+
+  family = dynamic_cast<FixNosbFamily *>(modify->get_fix_by_id("NOSB_FAMILY"));
+  if (!family)
+    family = dynamic_cast<FixNosbFamily *>(modify->add_fix("NOSB_FAMILY all nosb/family"));
+  family->attach(model_.get(), [this]() { neighbor_rebuilt(); });
+
+  // a half neighbor list only for short-range contact (an implicit integrator asks again
+  // for the motion tracking in its own init, which follows this one)
+
+  if (any_contact) neighbor->add_request(this);
+  track_contact_motion(0);
+
+  // minimization: the line searches evaluate trial positions far from the path (up to
+  // min_modify dmax), and bonds breaking there would change the energy being minimized
+
+  if (update->whichflag == 2 && any_break && comm->me == 0)
+    utils::logmesg(lmp,
+                   "Pair peri/nosb: bonds do not break during a minimization; they are checked "
+                   "again from the first step of the next run\n");
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairPeriNosb::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) did_mix = true;
+  return cut[i][j];
+}
+
+/* ----------------------------------------------------------------------
+   the core's model from the (mixed and mirrored) coefficients: per type the material, Cs and
+   K of pair_coeff I I; per type pair the horizon, contact and breaking rule
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::configure_model()
+{
+  const int n = atom->ntypes;
+  model_->set_ntypes(n);
+  for (int i = 1; i <= n; i++) {
+    const auto lame = PeriSISSM::lame_from_bulk_shear(bulk[i][i], shear[i][i]);
+    model_->set_type(
+        i, PeriSISSM::make_material(PeriSISSM::material_names()[modelid[i][i]], lame.mu, lame.lambda),
+        cs[i][i], bulk[i][i]);
+    for (int j = i; j <= n; j++) model_->set_pair(i, j, cut[i][j], contactflag[i][j], kcontact[i][j]);
+  }
+  model_->breaking().configure(
+      n, [this](int i, int j) { return breakflag[i][j] != 0; },
+      [this](int i, int j) { return s00[i][j]; }, [this](int i, int j) { return alpha[i][j]; });
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::grow_peratom()
+{
+  if (atom->nmax <= nmax) return;
+  using PeriSISSM::ParticleFields;
+  nmax = atom->nmax;
+  memory->destroy(gstate);
+  memory->destroy(hstate);
+  memory->destroy(kstate);
+  memory->destroy(wdens);
+  memory->destroy(s0_new);
+  memory->create(kstate, nmax * ParticleFields::NK, "pair:kstate");
+  memory->create(gstate, nmax * ParticleFields::NG, "pair:gstate");
+  memory->create(hstate, nmax * 9, "pair:hstate");
+  memory->create(wdens, nmax, "pair:wdens");
+  memory->create(s0_new, nmax, "pair:s0_new");
+}
+
+/* ----------------------------------------------------------------------
+   the atoms as the core sees them
+------------------------------------------------------------------------- */
+
+PeriSISSM::Particles PairPeriNosb::particles() const
+{
+  PeriSISSM::Particles p;
+  p.nlocal = atom->nlocal;
+  p.x = atom->x[0];
+  p.x0 = atom->x0[0];
+  p.volume = atom->vfrac;
+  p.type = atom->type;
+  p.smin = atom->s0;
+  p.f = atom->f[0];
+  return p;
+}
+
+/* ----------------------------------------------------------------------
+   the core's halo callback: a forward communication of one per-atom field
+------------------------------------------------------------------------- */
+
+namespace LAMMPS_NS {
+class NosbHalo : public PeriSISSM::Halo {
+ public:
+  explicit NosbHalo(PairPeriNosb *pair) : pair_(pair) {}
+  void forward(double *rows, int width) override
+  {
+    pair_->comm_rows = rows;
+    pair_->comm_width = width;
+    pair_->comm->forward_comm(pair_);
+  }
+
+ private:
+  PairPeriNosb *pair_;
+};
+}    // namespace LAMMPS_NS
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  grow_peratom();
+  if (!family->built) return;
+
+  if (any_contact) compute_contact(eflag, vflag);
+
+  // Bonds break in every force evaluation of a run, but not in the setup evaluation at the
+  // start of a run (it only refreshes s_min): a run split into several (or by a restart) then
+  // breaks exactly the bonds the unsplit run breaks. Nothing breaks, and s_min is left alone,
+  // during a minimization (see init_style).
+
+  using PeriSISSM::BreakingRule;
+  const int nobreak = !any_break || external_breaking || update->whichflag == 2;
+  const int mode = nobreak ? BreakingRule::NOBREAK
+                           : update->setupflag ? BreakingRule::S0ONLY : BreakingRule::BREAK;
+  const PeriSISSM::Particles p = particles();
+  PeriSISSM::ParticleFields fields;
+  fields.g = gstate;
+  fields.h = hstate;
+  fields.k = kstate;
+  fields.w = wdens;
+  fields.smin_new = s0_new;
+  PeriSISSM::Virial vir;
+  if (vflag_either) {
+    if (vflag_global) vir.global = virial;
+    if (vflag_atom) vir.peratom = vatom;
+  }
+  NosbHalo halo(this);
+  broke.clear();
+  PeriSISSM::evaluate_bond_terms(*model_, p, family->view(), family->box, mode, stiffness_flag,
+                                 fields, halo, vir, broke);
+  family->forget_broken(broke);
+
+  if (eflag_either) {
+    const int nlocal = atom->nlocal;
+    for (int i = 0; i < nlocal; i++) {
+      if (eflag_global) eng_vdwl += wdens[i];
+      if (eflag_atom) eatom[i] += wdens[i];
+    }
+  }
+  state_nlocal = atom->nlocal;
+}
+
+/* ---------------------------------------------------------------------- */
+
+bool PairPeriNosb::state_current() const
+{
+  return gstate && state_nlocal == atom->nlocal;
+}
+
+/* ---------------------------------------------------------------------- */
+
+const double *PairPeriNosb::deformation_gradient(int i) const
+{
+  return gstate + PeriSISSM::ParticleFields::NG * i;
+}
+
+/* ----------------------------------------------------------------------
+   ImplicitForces: the SISSM blocks from the last evaluation with blocks
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::implicit_blocks(double **block)
+{
+  PeriSISSM::ParticleFields fields;
+  fields.k = kstate;
+  NosbHalo halo(this);
+  PeriSISSM::assemble_blocks(family->view(), atom->nlocal, fields, halo, block);
+}
+
+/* ----------------------------------------------------------------------
+   ImplicitForces: a step and its evaluations
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::begin_implicit_step(int groupbit)
+{
+  external_breaking = 1;
+  contact_groupbit = groupbit;
+  contact_crossings = 0;
+}
+
+void PairPeriNosb::end_implicit_step()
+{
+  external_breaking = 0;
+  stiffness_flag = 0;
+  contact_groupbit = 0;
+}
+
+void PairPeriNosb::evaluate(bool blocks)
+{
+  stiffness_flag = blocks ? 1 : 0;
+  compute(0, 0);
+}
+
+/* ----------------------------------------------------------------------
+   ImplicitForces: no unbroken bond joins an owned atom of the group with one outside it, and no
+   short-range contact acted between them in the evaluations of this step (all ranks)
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::group_coupled(int groupbit)
+{
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  int coupled = contact_crossings > 0;
+  for (int i = 0; i < nlocal && !coupled; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const int *jl = family->jlocal[i];
+    for (int b = 0; b < family->npartner[i]; b++)
+      if (jl[b] >= 0 && !(mask[jl[b]] & groupbit)) {
+        coupled = 1;
+        break;
+      }
+  }
+  int any;
+  MPI_Allreduce(&coupled, &any, 1, MPI_INT, MPI_MAX, world);
+  return any != 0;
+}
+
+void PairPeriNosb::check_motion(int converged)
+{
+  family->check_motion(converged);
+}
+
+/* ----------------------------------------------------------------------
+   is tag jtag an unbroken bond partner of owned atom i
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::bonded(int i, tagint jtag) const
+{
+  const tagint *p = family->partner[i];
+  const int n = family->npartner[i];
+  for (int b = 0; b < n; b++)
+    if (p[b] == jtag) return true;
+  return false;
+}
+
+/* ----------------------------------------------------------------------
+   short-range contact between particles that are not bonded (never were, or whose bond
+   broke), as the built-in PERI styles do for all pairs: a repulsive spring acts when
+   r < d = min(0.9 |X_i - X_j|, 1.35 h), h = mean particle size V^(1/3), with stiffness
+   kc = 15 * 18 K / (pi delta^4): force density on i kc V_j (d - r)/delta along x_i - x_j,
+   energy 1/2 kc (V_i + V_j)/2 (d - r)^2 / delta per pair. Bonded pairs are left to the
+   material model, so that an affine deformation gives exactly W(F) also under compression.
+------------------------------------------------------------------------- */
+
+namespace LAMMPS_NS {
+class NosbContactPairs : public PeriSISSM::ContactPairs {
+ public:
+  explicit NosbContactPairs(PairPeriNosb *pair) : pair_(pair) {}
+  bool bonded(int i, int j) const override { return pair_->bonded(i, pair_->atom->tag[j]); }
+  void acting(int i, int j) override
+  {
+    const int *mask = pair_->atom->mask;
+    if ((mask[i] ^ mask[j]) & pair_->contact_groupbit) pair_->contact_crossings++;
+  }
+  void tally(int i, int j, double energy, double fpair, double dx, double dy, double dz) override
+  {
+    pair_->ev_tally(i, j, pair_->atom->nlocal, pair_->force->newton_pair, energy, 0.0, fpair, dx,
+                    dy, dz);
+  }
+
+ private:
+  PairPeriNosb *pair_;
+};
+}    // namespace LAMMPS_NS
+
+void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
+{
+  // candidates from the short list made at the last neighbor list build
+  // (built here only if that did not happen, e.g. a compute without a run)
+
+  if (contact_inum != list->inum) build_contact_list(neighbor->skin);
+
+  const PeriSISSM::Particles p = particles();
+  PeriSISSM::ContactCandidates cand;
+  cand.inum = contact_inum;
+  cand.ilist = list->ilist;
+  cand.first = contact_first;
+  cand.neigh = contact_neigh;
+  NosbContactPairs pairs(this);
+  PeriSISSM::contact_pass(*model_, p, family->box, contact_reach(), cand, force->newton_pair != 0,
+                          evflag != 0, pairs);
+}
+
+/* ----------------------------------------------------------------------
+   called by fix nosb/family right after every neighbor list build
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::neighbor_rebuilt()
+{
+  if (!any_contact || !list) return;
+  if (track_motion) {
+    grow_motion();
+    double **x = atom->x;
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < 3; k++) xneigh[i][k] = x[i][k];
+  }
+  build_contact_list(neighbor->skin);
+}
+
+/* ----------------------------------------------------------------------
+   largest distance at which two particles touch: 1.35 x the largest particle size
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::contact_reach() const
+{
+  return 1.35 * hmax;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::track_contact_motion(int flag)
+{
+  track_motion = flag && any_contact;
+  if (!track_motion) {
+    memory->destroy(xneigh);
+    memory->destroy(xcontact);
+    nmotion = 0;
+  }
+}
+
+void PairPeriNosb::grow_motion()
+{
+  if (atom->nmax <= nmotion) return;
+  nmotion = atom->nmax;
+  memory->grow(xneigh, nmotion, 3, "pair:xneigh");
+  memory->grow(xcontact, nmotion, 3, "pair:xcontact");
+}
+
+/* ----------------------------------------------------------------------
+   keep the contact candidates complete while an implicit step moves the atoms (see the
+   header). Candidates chosen at positions x_c with a margin m (all pairs of the neighbor list
+   within reach + m) cover every pair within contact reach while no atom has moved m/2 from
+   x_c. Beyond that they are chosen again, at the current positions, with the margin skin/4;
+   the neighbor list holds the pairs within horizon + skin of its build (positions x_n), so the
+   new choice is complete only while reach + skin/4 + 2 max|x - x_n| <= horizon + skin
+   (contact_reachable()). An iterate farther away is evaluated with the candidates it has and
+   reported as incomplete (-1): the solver does not accept it as converged, and the step's
+   end (contact_end_of_step()) refuses a result that is that far. One global max per call.
+------------------------------------------------------------------------- */
+
+int PairPeriNosb::contact_follow_motion()
+{
+  if (!track_motion || !list || contact_inum != list->inum) return 0;
+  double moved;
+  tagint worst;
+  const double dc = motion_since(xcontact, &moved, &worst);
+  if (!contact_reachable(moved)) return -1;
+  if (dc < 0.5 * contact_margin) return 0;
+  build_contact_list(0.25 * neighbor->skin);
+  return 1;
+}
+
+/* ----------------------------------------------------------------------
+   whether contact candidates chosen from the neighbor list with the margin skin/4 are complete
+   after atoms moved by up to `moved` from the neighbor list build (false if not finite)
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_reachable(double moved) const
+{
+  const double skin = neighbor->skin;
+  return contact_reach() + 0.25 * skin + 2.0 * moved <= contact_horizon() + skin;
+}
+
+/* ----------------------------------------------------------------------
+   the smallest horizon among the type pairs with contact (it bounds the neighbor list's reach)
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::contact_horizon() const
+{
+  double hz = DBL_MAX;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (contactflag[i][j]) hz = std::min(hz, cut[i][j]);
+  return hz;
+}
+
+/* ----------------------------------------------------------------------
+   at the end of an implicit step (all ranks): an error when the step moved an atom farther
+   from the last neighbor list build than the contact candidates can follow (its contact
+   forces could not be complete); true when it moved one more than skin/8, so that the
+   integrator asks for a neighbor list build before the next step. A step therefore starts
+   with max|x - x_n| <= skin/8 and may move atoms by (horizon - reach)/2 + skin/4.
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_end_of_step(const std::string &cause)
+{
+  if (!track_motion || !list) return false;
+  double moved;
+  tagint worst;
+  motion_since(xneigh, &moved, &worst);
+  const double skin = neighbor->skin;
+  if (!contact_reachable(moved)) {
+    // name the atom that moved farthest (the smallest ID among equals, on any rank count)
+    tagint idall;
+    MPI_Allreduce(&worst, &idall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+    const double hz = contact_horizon();
+    error->all(FLERR,
+               "Pair peri/nosb: the implicit step {} moved atom {} by {:.4g} from where it was "
+               "at the last neighbor list build, farther than short-range contact can follow "
+               "inside one step with neighbor skin {:.4g} (a step may move atoms by (horizon - "
+               "1.35 x particle size) / 2 + skin / 4 = {:.4g}){}; use a smaller time step, a "
+               "neighbor skin of at least {:.4g}, or turn contact off for these types "
+               "(pair_coeff ... contact no)",
+               update->ntimestep, idall, moved, skin, 0.5 * (hz - contact_reach()) + 0.25 * skin,
+               cause.empty() ? "" : "; " + cause, 2.0 * (2.0 * moved + contact_reach() - hz));
+  }
+  return moved > 0.125 * skin;
+}
+
+/* ----------------------------------------------------------------------
+   largest distance of an owned atom from its position in ref (all ranks); also the largest
+   distance from the last neighbor list build and (in *worst) the ID of the atom that moved
+   farthest from it on this rank if that is the global largest, else MAXTAGINT
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::motion_since(double **ref, double *moved, tagint *worst)
+{
+  grow_motion();
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  double local[2] = {0.0, 0.0}, all[2];
+  int iworst = -1;
+  for (int i = 0; i < nlocal; i++) {
+    double dr = 0.0, dn = 0.0;
+    for (int k = 0; k < 3; k++) {
+      dr += (x[i][k] - ref[i][k]) * (x[i][k] - ref[i][k]);
+      dn += (x[i][k] - xneigh[i][k]) * (x[i][k] - xneigh[i][k]);
+    }
+    local[0] = std::max(local[0], dr);
+    if (dn > local[1]) {
+      local[1] = dn;
+      iworst = i;
+    }
+  }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  *moved = sqrt(all[1]);
+  *worst = (iworst >= 0 && local[1] == all[1]) ? atom->tag[iworst] : MAXTAGINT;
+  return sqrt(all[0]);
+}
+
+/* ----------------------------------------------------------------------
+   pairs of the neighbor list closer than the contact range + margin (the skin at a neighbor
+   list build): the pair neighbor list reaches horizon + skin, but only these pairs can come
+   within the contact range before the next neighbor list build (each atom moves less than
+   skin/2 from where it was at the build)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::build_contact_list(double margin)
+{
+  double **x = atom->x;
+  contact_margin = margin;
+  const double rc = contact_reach() + margin;
+  const double rcsq = rc * rc;
+  const int inum = list->inum;
+  int *ilist = list->ilist;
+  int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  if (inum + 1 > contact_maxfirst) {
+    contact_maxfirst = inum + 1;
+    memory->destroy(contact_first);
+    memory->create(contact_first, contact_maxfirst, "pair:contact_first");
+  }
+  int n = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    contact_first[ii] = n;
+    if (n + jnum > contact_maxneigh) {
+      contact_maxneigh = std::max(2 * contact_maxneigh, n + jnum);
+      memory->grow(contact_neigh, contact_maxneigh, "pair:contact_neigh");
+    }
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = x[i][0] - x[j][0];
+      const double dy = x[i][1] - x[j][1];
+      const double dz = x[i][2] - x[j][2];
+      if (dx * dx + dy * dy + dz * dz < rcsq) contact_neigh[n++] = j;
+    }
+  }
+  contact_first[inum] = n;
+  contact_inum = inum;
+  if (track_motion) {
+    grow_motion();
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < 3; k++) xcontact[i][k] = x[i][k];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairPeriNosb::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                    int * /*pbc*/)
+{
+  int m = 0;
+  for (int ii = 0; ii < n; ii++) {
+    const double *row = comm_rows + (bigint) comm_width * list[ii];
+    for (int k = 0; k < comm_width; k++) buf[m++] = row[k];
+  }
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::unpack_forward_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  const int last = first + n;
+  for (int i = first; i < last; i++) {
+    double *row = comm_rows + (bigint) comm_width * i;
+    for (int k = 0; k < comm_width; k++) row[k] = buf[m++];
+  }
+}
+
+/* ----------------------------------------------------------------------
+   proc 0 writes to restart file
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::write_restart(FILE *fp)
+{
+  const int version = RESTART_VERSION;
+  fwrite(&version, sizeof(int), 1, fp);
+  for (int i = 1; i <= atom->ntypes; i++) {
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      if (setflag[i][j]) {
+        const std::string &name = PeriSISSM::material_names()[modelid[i][j]];
+        const int len = (int) name.size() + 1;
+        fwrite(&len, sizeof(int), 1, fp);
+        fwrite(name.c_str(), sizeof(char), len, fp);
+        fwrite(&breakflag[i][j], sizeof(int), 1, fp);
+        fwrite(&contactflag[i][j], sizeof(int), 1, fp);
+        fwrite(&bulk[i][j], sizeof(double), 1, fp);
+        fwrite(&shear[i][j], sizeof(double), 1, fp);
+        fwrite(&cut[i][j], sizeof(double), 1, fp);
+        fwrite(&s00[i][j], sizeof(double), 1, fp);
+        fwrite(&alpha[i][j], sizeof(double), 1, fp);
+        fwrite(&cs[i][j], sizeof(double), 1, fp);
+      }
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   proc 0 reads from restart file, bcasts; the model is stored by name, and a file of another
+   format version is refused (rather than read as garbage)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::read_restart(FILE *fp)
+{
+  allocate();
+  const int me = comm->me;
+  int version = 0;
+  if (me == 0) utils::sfread(FLERR, &version, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&version, 1, MPI_INT, 0, world);
+  if (version != RESTART_VERSION)
+    error->all(FLERR,
+               "Pair peri/nosb: the restart file holds pair data of format version {}, this "
+               "build reads version {}: write the restart file again with this build (or use "
+               "the build that wrote it)",
+               version, (int) RESTART_VERSION);
+  for (int i = 1; i <= atom->ntypes; i++) {
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      if (!setflag[i][j]) continue;
+      int len = 0;
+      if (me == 0) utils::sfread(FLERR, &len, sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&len, 1, MPI_INT, 0, world);
+      if (len < 1 || len > 256)
+        error->all(FLERR, "Pair peri/nosb: restart file is corrupt (model name of {} chars)", len);
+      std::vector<char> name(len);
+      int iv[2];
+      double dv[6];
+      if (me == 0) {
+        utils::sfread(FLERR, name.data(), sizeof(char), len, fp, nullptr, error);
+        utils::sfread(FLERR, iv, sizeof(int), 2, fp, nullptr, error);
+        utils::sfread(FLERR, dv, sizeof(double), 6, fp, nullptr, error);
+      }
+      MPI_Bcast(name.data(), len, MPI_CHAR, 0, world);
+      MPI_Bcast(iv, 2, MPI_INT, 0, world);
+      MPI_Bcast(dv, 6, MPI_DOUBLE, 0, world);
+      name[len - 1] = '\0';
+      const auto &names = PeriSISSM::material_names();
+      const auto found = std::find(names.begin(), names.end(), std::string(name.data()));
+      if (found == names.end())
+        error->all(FLERR,
+                   "Pair peri/nosb: restart file names model '{}', which this build does not "
+                   "have (allowed: {})",
+                   name.data(), PeriSISSM::material_names_joined());
+      modelid[i][j] = (int) (found - names.begin());
+      breakflag[i][j] = iv[0];
+      contactflag[i][j] = iv[1];
+      bulk[i][j] = dv[0];
+      shear[i][j] = dv[1];
+      cut[i][j] = dv[2];
+      s00[i][j] = dv[3];
+      alpha[i][j] = dv[4];
+      cs[i][j] = dv[5];
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairPeriNosb::memory_usage()
+{
+  using PeriSISSM::ParticleFields;
+  double bytes = (double) nmax * (ParticleFields::NG + ParticleFields::NK + 9 + 2) * sizeof(double);
+  bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
+  const double n = atom->ntypes + 1;
+  bytes += n * n * (11.0 * sizeof(double) + 4.0 * sizeof(int));
+  return bytes;
+}

@@ -1,0 +1,131 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   pair_style peri/nosb: non-ordinary state-based (correspondence) peridynamics with
+   isotropic hyperelastic models, zero-energy-mode stabilization, bond breaking and
+   short-range contact.
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(peri/nosb,PairPeriNosb);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_PERI_NOSB_H
+#define LMP_PAIR_PERI_NOSB_H
+
+#include "pair.h"
+
+#include "implicit_forces.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace PeriSISSM {
+class Model;
+struct Particles;
+}
+
+namespace LAMMPS_NS {
+
+class PairPeriNosb : public Pair, public ImplicitForces {
+ public:
+  PairPeriNosb(class LAMMPS *);
+  ~PairPeriNosb() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  double memory_usage() override;
+
+  // ---- for compute nosb/atom ----
+
+  // the model (materials, horizons, breaking rule; valid after init)
+  const PeriSISSM::Model &model() const { return *model_; }
+  // true when compute() has filled the per-atom state of the current owned atoms
+  bool state_current() const;
+  // F (row-major 3x3) of owned atom i at the last compute() (the identity if its K is singular)
+  const double *deformation_gradient(int i) const;
+  // W(F) + stabilization energy density of owned atom i (what pe tallies per atom)
+  double energy_density(int i) const { return wdens[i]; }
+  class FixNosbFamily *family;
+
+  // ---- ImplicitForces (fix sissm) ----
+
+  void begin_implicit_step(int groupbit) override;
+  void end_implicit_step() override;
+  void evaluate(bool blocks) override;
+  void implicit_blocks(double **block) override;
+  void track_contact_motion(int flag) override;
+  int contact_follow_motion() override;
+  bool contact_end_of_step(const std::string &cause) override;
+  bool group_coupled(int groupbit) override;
+  void check_motion(int converged) override;
+
+ protected:
+  // per type pair (as given for i <= j; mixed and mirrored in init_style)
+  int **modelid;            // index into PeriSISSM::material_names()
+  double **bulk, **shear, **cut, **s00, **alpha, **cs;
+  int **breakflag, **contactflag;
+  double **kcontact;        // short-range contact stiffness 15 * 18 K / (pi delta^4)
+  double **g0;              // G0 keyword (critical energy release rate), 0 = s00 given
+  double **g0_s00;          // s00 that G0 gave at the last init (to log it once)
+  std::unique_ptr<PeriSISSM::Model> model_;    // the core's view of the above (init_style)
+  // summary flags
+  int any_break, any_contact;
+  int external_breaking;    // 1: compute() does not break bonds (inside an implicit step)
+  int stiffness_flag;       // 1: compute() keeps the implicit stiffness for implicit_blocks()
+  int contact_groupbit;     // contact pairs crossing this group's boundary are counted
+  bigint contact_crossings;
+  double hmax;              // largest particle size V^(1/3) (contact range)
+  int *contact_first, *contact_neigh;    // short list of contact candidates
+  int contact_maxfirst, contact_maxneigh, contact_inum;
+  double contact_margin;    // the candidates hold the pairs within contact_reach() + this
+  int track_motion;         // keep the positions below (fix sissm)
+  int nmotion;              // their allocated length
+  double **xneigh;          // positions of owned atoms at the last neighbor list build
+  double **xcontact;        // positions of owned atoms when the contact candidates were chosen
+  double contact_reach() const;    // largest contact range, 1.35 hmax
+  void grow_motion();
+  double motion_since(double **ref, double *moved, tagint *worst);
+  bool contact_reachable(double moved) const;
+  double contact_horizon() const;
+  int state_nlocal;         // nlocal when compute() last filled the per-atom state
+  enum { RESTART_VERSION = 2 };
+
+  // per-atom results of the last compute() (owned atoms; ghosts as communicated), rows of
+  // PeriSISSM::ParticleFields
+  int nmax;
+  double *gstate;           // F, C, regular flag
+  double *hstate;           // H = (P + Q) K^-1
+  double *kstate;           // implicit stiffness and C (fix sissm)
+  double *wdens;            // energy density
+  double *s0_new;
+  std::vector<int> broke;   // atoms that lost bonds in the last compute()
+  double *comm_rows;        // the field forward_comm sends, comm_width doubles per atom
+  int comm_width;
+
+  void allocate();
+  void s00_from_fracture_energy();
+  void configure_model();
+  PeriSISSM::Particles particles() const;
+  void grow_peratom();
+  void compute_contact(int, int);
+  void build_contact_list(double margin);
+  void neighbor_rebuilt();
+  bool bonded(int i, tagint jtag) const;
+  friend class NosbHalo;
+  friend class NosbContactPairs;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Rerun the example decks that have reference logs and compare their thermo output.
+
+Each examples/<scene>/log.<date>.<name>.g++.<N> was written by `lmp -in in.<name>` on N MPI
+ranks in that folder. This reruns every such deck of peri/nosb or fix sissm (decks that use
+only LAMMPS's built-in styles are skipped: this package cannot change them) with build/lmp and
+compares every thermo row with the log's, column by column, as printed; the cpu column
+(wall time) is ignored. Exit status 0 when every compared deck reproduces its log.
+
+    python3 tools/check_logs.py [--lmp build/lmp] [--only SUBSTRING] [--jobs 1]
+"""
+import argparse
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+IGNORED = {"cpu", "cpuremain", "spcpu"}
+
+
+def thermo_rows(text):
+    """(header, rows) of every thermo table, rows as lists of printed strings."""
+    tables = []
+    header = None
+    for line in text.splitlines():
+        words = line.split()
+        if words and words[0] == "Step":
+            header = words
+            tables.append((header, []))
+            continue
+        if header is not None:
+            if len(words) == len(header) and re.match(r"^-?\d+$", words[0]):
+                tables[-1][1].append(words)
+            elif line.startswith("Loop time"):
+                header = None
+    return tables
+
+
+def compare(ref, new):
+    if len(ref) != len(new):
+        return f"{len(ref)} thermo tables in the log, {len(new)} in the rerun"
+    for t, ((h1, r1), (h2, r2)) in enumerate(zip(ref, new)):
+        if h1 != h2:
+            return f"table {t}: header {h1} != {h2}"
+        if len(r1) != len(r2):
+            return f"table {t}: {len(r1)} rows in the log, {len(r2)} in the rerun"
+        keep = [k for k, name in enumerate(h1) if name.lower() not in IGNORED]
+        for a, b in zip(r1, r2):
+            for k in keep:
+                if a[k] != b[k]:
+                    return f"table {t} step {a[0]}: {h1[k]} {a[k]} (log) != {b[k]} (rerun)"
+    return None
+
+
+def uses_package(deck):
+    text = deck.read_text()
+    return "peri/nosb" in text or "sissm" in text or "include" in text and any(
+        "peri/nosb" in (deck.parent / m).read_text() or "sissm" in (deck.parent / m).read_text()
+        for m in re.findall(r"^include\s+(\S+)", text, re.M)
+        if (deck.parent / m).exists())
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--lmp", default=str(ROOT / "build" / "lmp"))
+    ap.add_argument("--only", default="", help="only logs whose path contains this")
+    args = ap.parse_args()
+    logs = sorted(ROOT.glob("examples/*/log.*.g++.*"))
+    failed = 0
+    done = 0
+    start = time.time()
+    for log in logs:
+        if args.only not in str(log):
+            continue
+        m = re.match(r"log\.[^.]+\.(.+)\.g\+\+\.(\d+)$", log.name)
+        if not m:
+            continue
+        deck = log.parent / f"in.{m.group(1)}"
+        ranks = int(m.group(2))
+        if not deck.exists() or not uses_package(deck):
+            continue
+        with tempfile.TemporaryDirectory() as tmp:
+            work = pathlib.Path(tmp) / log.parent.name
+            shutil.copytree(log.parent, work)
+            cmd = [args.lmp, "-in", deck.name, "-log", "log.rerun", "-screen", "none"]
+            if ranks > 1:
+                cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
+            proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+            rerun = (work / "log.rerun").read_text() if (work / "log.rerun").exists() else ""
+        done += 1
+        problem = (f"exit {proc.returncode}: {proc.stderr.strip()[-300:]}" if proc.returncode
+                   else compare(thermo_rows(log.read_text()), thermo_rows(rerun)))
+        status = "SAME" if problem is None else "DIFFERENT"
+        failed += problem is not None
+        print(f"{status:9s} {log.relative_to(ROOT)}" + ("" if problem is None else f": {problem}"),
+              flush=True)
+        print(f"[{done}] elapsed {time.time() - start:.0f}s", file=sys.stderr, flush=True)
+    print(f"{done - failed} of {done} logs reproduced")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,348 @@
+// The solvers alone, on toy systems without LAMMPS: backward-Euler steps of particles joined by
+// nonlinear springs (a chain and a small lattice), solved by the SISSM Jacobi sweeps and by
+// Newton-Krylov with the block preconditioner; and the momentum balance of a truncated solve.
+
+#include "linalg/reductions.h"
+#include "solvers/backward_euler.h"
+#include "solvers/jacobi.h"
+#include "solvers/momentum.h"
+#include "solvers/newton_krylov.h"
+#include "solvers/preconditioner.h"
+#include "solvers/system.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+namespace {
+
+using namespace PeriSISSM;
+
+// Rows of 3 doubles with row pointers (the layout LAMMPS gives per-atom arrays).
+struct Table {
+  explicit Table(int n, int width = 3) : data(n * width, 0.0), rows(n)
+  {
+    for (int i = 0; i < n; i++) rows[i] = data.data() + width * i;
+  }
+  std::vector<double> data;
+  std::vector<double *> rows;
+  double **ptr() { return rows.data(); }
+};
+
+// Particles i, j joined by springs of energy 1/2 k (|y_j - y_i| - L)^2, a constant body force
+// density g, densities rho and volumes V. Backward Euler: r = rho (yhat - y) + h^2 f(y), with
+// f the force density; block = rho I + h^2 sum_j k I (the spring stiffness along any
+// direction at rest length, as the SISSM block takes it).
+class Springs : public NonlinearSystem {
+ public:
+  Springs(int n, double h) : n_(n), h_(h), y(n), v(n), yn(n), yhat(n), res(n), red_(n)
+  {
+    mask_.assign(n, 1);
+    rho_.assign(n, 1.0);
+    vol_.assign(n, 1.0);
+    kdiag_.assign(n, 0.0);
+    rows_.n = n;
+    rows_.mask = mask_.data();
+    rows_.bit = 1;
+    rows_.volume = vol_.data();
+    rows_.density = rho_.data();
+  }
+  void spring(int i, int j, double k, double L)
+  {
+    springs_.push_back({i, j, k, L});
+    kdiag_[i] += k;
+    kdiag_[j] += k;
+  }
+  void pin(int i) { mask_[i] = 0; }
+  void set_density(int i, double rho) { rho_[i] = rho; }
+  void set_volume(int i, double vol) { vol_[i] = vol; }
+
+  // start a step from y, v
+  void begin() { BackwardEuler::begin(rows_, h_, y.ptr(), v.ptr(), nullptr, nullptr, yn.ptr(), yhat.ptr()); evals_ = 0; }
+  void finish() { BackwardEuler::finish(rows_, h_, y.ptr(), yn.ptr(), v.ptr()); }
+
+  // NonlinearSystem
+  const Rows &rows() const override { return rows_; }
+  Reductions &reductions() override { return red_; }
+  double **unknowns() override { return y.ptr(); }
+  double **residual() override { return res.ptr(); }
+  int evaluations() const override { return evals_; }
+  bool evaluation_complete() const override { return true; }
+  double step_tolerance() override { return tol; }
+  void check_finite() override
+  {
+    for (double d : y.data)
+      if (!std::isfinite(d)) throw std::runtime_error("non-finite");
+  }
+  void evaluate(bool) override
+  {
+    evals_++;
+    std::vector<double> f(3 * n_, 0.0);
+    for (int i = 0; i < n_; i++)
+      for (int k = 0; k < 3; k++) f[3 * i + k] = g[k];
+    for (const auto &s : springs_) {
+      double d[3], r2 = 0.0;
+      for (int k = 0; k < 3; k++) {
+        d[k] = y.rows[s.j][k] - y.rows[s.i][k];
+        r2 += d[k] * d[k];
+      }
+      const double r = std::sqrt(r2), t = s.k * (r - s.L) / r;
+      for (int k = 0; k < 3; k++) {
+        f[3 * s.i + k] += t * d[k] / vol_[s.i];
+        f[3 * s.j + k] -= t * d[k] / vol_[s.j];
+      }
+    }
+    for (int i = 0; i < n_; i++)
+      if (mask_[i]) BackwardEuler::residual(rho_[i], yhat.rows[i], y.rows[i], &f[3 * i], h_ * h_, res.rows[i]);
+  }
+  void block(int i, double D[6]) const override
+  {
+    const double K[6] = {kdiag_[i] / vol_[i], kdiag_[i] / vol_[i], kdiag_[i] / vol_[i], 0, 0, 0};
+    BackwardEuler::block(rho_[i], h_ * h_, K, D);
+  }
+
+  double tol = 1e-10;
+  double g[3] = {0.0, 0.0, 0.0};
+
+ private:
+  struct Spring {
+    int i, j;
+    double k, L;
+  };
+  int n_;
+  double h_;
+
+ public:
+  Table y, v, yn, yhat, res;
+
+ private:
+  SerialReductions red_;
+  Rows rows_;
+  std::vector<int> mask_;
+  std::vector<double> rho_, vol_, kdiag_;
+  std::vector<Spring> springs_;
+  int evals_ = 0;
+};
+
+// a hanging chain of n particles, spacing 1, the first pinned, gravity along -z, stiff springs
+// (h^2 k / rho = 400: far beyond an explicit step)
+Springs chain(int n, double h)
+{
+  Springs s(n, h);
+  for (int i = 0; i < n; i++) s.y.rows[i][0] = i;
+  for (int i = 0; i + 1 < n; i++) s.spring(i, i + 1, 400.0 / (h * h), 1.0);
+  s.pin(0);
+  s.g[2] = -10.0;
+  return s;
+}
+
+struct KrylovTables {
+  explicit KrylovTables(int n) : xb(n), rb(n), jb(n), cr(n), zd(n), pd(n), sd(n), term(n) {}
+  KrylovWork work()
+  {
+    KrylovWork w;
+    w.xbase = xb.ptr();
+    w.rbase = rb.ptr();
+    w.jbase = jb.ptr();
+    w.cres = cr.ptr();
+    w.zdir = zd.ptr();
+    w.pdir = pd.ptr();
+    w.sdir = sd.ptr();
+    w.term = term.data();
+    return w;
+  }
+  Table xb, rb, jb, cr, zd, pd, sd;
+  std::vector<double> term;
+};
+
+// Both solvers reach the backward-Euler step of the chain: the residual measure below the
+// tolerance, the two solutions within the distance the tolerance allows (measure < tol bounds
+// |y - y*| by about tol * size / (1 - contraction); 1e-8 here with tol 1e-10), Newton-Krylov
+// in far fewer evaluations.
+TEST(Solvers, JacobiAndNewtonKrylovReachTheSameStep)
+{
+  const int n = 12;
+  const double h = 0.05;
+  Springs a = chain(n, h), b = chain(n, h);
+  a.begin();
+  b.begin();
+  const SolveResult ra = solve_jacobi(a, 20000, SweepMemory());
+  BlockPreconditioner pc;
+  KrylovTables kt(n);
+  const SolveResult rb = solve_newton_krylov(b, pc, 200, kt.work());
+  EXPECT_TRUE(ra.converged()) << ra.measure;
+  EXPECT_TRUE(rb.converged()) << rb.measure;
+  EXPECT_LT(b.evaluations(), a.evaluations() / 5) << b.evaluations() << " vs " << a.evaluations();
+  double diff = 0.0, sag = 0.0;
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++) {
+      diff = std::max(diff, std::fabs(a.y.rows[i][k] - b.y.rows[i][k]));
+      sag = std::max(sag, std::fabs(a.y.rows[i][k] - a.yn.rows[i][k]));
+    }
+  EXPECT_GT(sag, 1e-3);    // the step moved the chain
+  EXPECT_LT(diff, 1e-8);
+}
+
+// The documented equivalence: Newton-Krylov with a budget of one evaluation is the plain SISSM
+// sweep, to the last bit.
+TEST(Solvers, OneEvaluationOfKrylovIsOneSweep)
+{
+  Springs a = chain(8, 0.05), b = chain(8, 0.05);
+  a.begin();
+  b.begin();
+  solve_jacobi(a, 1, SweepMemory());
+  BlockPreconditioner pc;
+  KrylovTables kt(8);
+  solve_newton_krylov(b, pc, 1, kt.work());
+  EXPECT_EQ(a.y.data, b.y.data);
+  EXPECT_EQ(a.evaluations(), 1);
+  EXPECT_EQ(b.evaluations(), 1);
+}
+
+// A small lattice (3 x 3 x 2, springs to the 18 nearest and face-diagonal neighbours, unequal
+// densities and volumes, one face pinned) under a body force: Newton-Krylov converges within its
+// budget and the converged step is a fixed point of the SISSM sweep (one more sweep moves no
+// particle by more than the tolerance allows).
+TEST(Solvers, LatticeStepIsAFixedPointOfTheSweep)
+{
+  const int nx = 3, ny = 3, nz = 2, n = nx * ny * nz;
+  const double h = 0.02;
+  Springs s(n, h);
+  std::mt19937_64 rng(5u);
+  std::uniform_real_distribution<double> u(0.7, 1.3);
+  auto id = [&](int i, int j, int k) { return (i * ny + j) * nz + k; };
+  for (int i = 0; i < nx; i++)
+    for (int j = 0; j < ny; j++)
+      for (int k = 0; k < nz; k++) {
+        const int p = id(i, j, k);
+        s.y.rows[p][0] = i;
+        s.y.rows[p][1] = j;
+        s.y.rows[p][2] = k;
+        s.set_density(p, u(rng));
+        s.set_volume(p, u(rng));
+        if (i == 0) s.pin(p);
+      }
+  for (int p = 0; p < n; p++)
+    for (int q = p + 1; q < n; q++) {
+      double r2 = 0.0;
+      for (int k = 0; k < 3; k++) r2 += std::pow(s.y.rows[q][k] - s.y.rows[p][k], 2);
+      if (r2 < 2.01) s.spring(p, q, 50.0 / (h * h), std::sqrt(r2));
+    }
+  s.g[1] = 3.0;
+  s.g[2] = -10.0;
+  s.begin();
+  BlockPreconditioner pc;
+  KrylovTables kt(n);
+  const SolveResult r = solve_newton_krylov(s, pc, 300, kt.work());
+  ASSERT_TRUE(r.converged()) << r.measure;
+  const std::vector<double> y = s.y.data;
+  s.evaluate(true);
+  EXPECT_LE(scaled_max(s, s.residual(), true), r.tolerance * 1.0001);
+  sissm_sweep(s, true, SweepMemory());
+  double moved = 0.0;
+  for (size_t k = 0; k < y.size(); k++) moved = std::max(moved, std::fabs(s.y.data[k] - y[k]));
+  EXPECT_LT(moved, 1e-8);
+}
+
+// A free body (no pins, no body force) with random velocities, solved with a budget far too
+// small to converge: the truncated step changes the momentum; balance_momentum restores
+// P^{n+1} = P^n and L^{n+1} = L^n (no external force) to round-off, and moves the body rigidly
+// (every spring length unchanged).
+TEST(Momentum, TruncatedSolveKeepsMomentumAfterTheBalance)
+{
+  const int n = 10;
+  const double h = 0.05;
+  Springs s(n, h);
+  std::mt19937_64 rng(9u);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), w(0.5, 1.5);
+  for (int i = 0; i < n; i++) {
+    for (int k = 0; k < 3; k++) {
+      s.y.rows[i][k] = 2.0 * u(rng) + (k == 0 ? 1.3 * i : 0.0);
+      s.v.rows[i][k] = u(rng);
+    }
+    s.set_density(i, w(rng));
+    s.set_volume(i, w(rng));
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = i + 1; j < std::min(n, i + 3); j++) {
+      double r2 = 0.0;
+      for (int k = 0; k < 3; k++) r2 += std::pow(s.y.rows[j][k] - s.y.rows[i][k], 2);
+      s.spring(i, j, 200.0 / (h * h), 0.8 * std::sqrt(r2));
+    }
+  auto momenta = [&](Table &vel, Table &pos, double P[3], double L[3]) {
+    double m = 0.0, c[3] = {0, 0, 0};
+    for (int i = 0; i < n; i++) {
+      const double mi = s.rows().density[i] * s.rows().volume[i];
+      m += mi;
+      for (int k = 0; k < 3; k++) c[k] += mi * pos.rows[i][k];
+    }
+    for (int k = 0; k < 3; k++) {
+      c[k] /= m;
+      P[k] = L[k] = 0.0;
+    }
+    for (int i = 0; i < n; i++) {
+      const double mi = s.rows().density[i] * s.rows().volume[i];
+      const Eigen::Vector3d q(pos.rows[i][0] - c[0], pos.rows[i][1] - c[1], pos.rows[i][2] - c[2]);
+      const Eigen::Vector3d vv(vel.rows[i][0], vel.rows[i][1], vel.rows[i][2]);
+      const Eigen::Vector3d l = mi * q.cross(vv);
+      for (int k = 0; k < 3; k++) {
+        P[k] += mi * vel.rows[i][k];
+        L[k] += l(k);
+      }
+    }
+  };
+  double P0[3], L0[3];
+  momenta(s.v, s.y, P0, L0);
+  s.begin();
+  BlockPreconditioner pc;
+  KrylovTables kt(n);
+  const SolveResult r = solve_newton_krylov(s, pc, 3, kt.work());
+  EXPECT_FALSE(r.converged());
+
+  // without the balance the truncated step has picked up momentum
+  {
+    Table v1(n);
+    for (int i = 0; i < n; i++)
+      for (int k = 0; k < 3; k++) v1.rows[i][k] = (s.y.rows[i][k] - s.yn.rows[i][k]) / h;
+    double P1[3], L1[3];
+    momenta(v1, s.y, P1, L1);
+    double dp = 0.0;
+    for (int k = 0; k < 3; k++) dp = std::max(dp, std::fabs(P1[k] - P0[k]));
+    EXPECT_GT(dp, 1e-6);
+  }
+  std::vector<double> len0;
+  for (int i = 0; i + 1 < n; i++) {
+    double r2 = 0.0;
+    for (int k = 0; k < 3; k++) r2 += std::pow(s.y.rows[i + 1][k] - s.y.rows[i][k], 2);
+    len0.push_back(std::sqrt(r2));
+  }
+  Table moment(n, kMomentumColumns);
+  SerialReductions red(n);
+  balance_momentum(s.rows(), red, h, s.y.ptr(), s.yn.ptr(), s.yhat.ptr(), nullptr, moment.ptr());
+  s.finish();
+  // P^{n+1} = sum m v^{n+1}; L^{n+1} = (1/h) sum m q^n x r = sum m q^n x v^{n+1} (about the
+  // centre of mass at the start: sum m q^n = 0)
+  double P1[3], L1[3];
+  momenta(s.v, s.yn, P1, L1);
+  double pscale = 0.0, lscale = 0.0;
+  for (int k = 0; k < 3; k++) {
+    pscale = std::max(pscale, std::fabs(P0[k]));
+    lscale = std::max(lscale, std::fabs(L0[k]));
+  }
+  for (int k = 0; k < 3; k++) {
+    EXPECT_NEAR(P1[k], P0[k], 1e-12 * (pscale + 1.0));
+    EXPECT_NEAR(L1[k], L0[k], 1e-10 * (lscale + 1.0));
+  }
+  for (int i = 0; i + 1 < n; i++) {
+    double r2 = 0.0;
+    for (int k = 0; k < 3; k++) r2 += std::pow(s.y.rows[i + 1][k] - s.y.rows[i][k], 2);
+    EXPECT_NEAR(std::sqrt(r2), len0[i], 1e-12 * len0[i]);
+  }
+}
+
+}  // namespace
