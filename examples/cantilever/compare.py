@@ -148,7 +148,7 @@ def main():
               f"({(-r['final'] / (1.04 * w_eb) - 1) * 100:+.0f}% off Timoshenko): the section is 8 "
               "particles = 2.7 horizons thick, so only its 2 x 2 core has complete families; "
               "near the surfaces the affine fit of F averages the bending strain over a "
-              "truncated family (math.md, thin bodies).  Halving the spacing at fixed "
+              "truncated family (doc/theory.rst, thin bodies).  Halving the spacing at fixed "
               "delta/a would show the convergence; 8x the particles is beyond an example.")
     for name in ("sissm", "jacobi"):
         if name not in results or "nosb" not in results:

@@ -169,6 +169,7 @@ void FixSissm::init()
   choose_external();
   forces->track_contact_motion(1);
   precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
+  scheme = std::make_unique<PeriSISSM::BackwardEuler>();
   // the options of this run decide which work arrays exist: allocate them anew
   destroy_arrays();
   nmax = 0;
@@ -381,7 +382,6 @@ void FixSissm::evaluate(bool blocks)
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  const double h2 = dtv * dtv;
 
   contact_incomplete = forces->contact_follow_motion() < 0;
   for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
@@ -408,7 +408,7 @@ void FixSissm::evaluate(bool blocks)
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    PeriSISSM::BackwardEuler::residual(rho[i], yhat[i], x[i], f[i], h2, res[i]);
+    scheme->residual(rho[i], yhat[i], x[i], f[i], res[i]);
     const double r2 = res[i][0] * res[i][0] + res[i][1] * res[i][1] + res[i][2] * res[i][2];
     if (!std::isfinite(r2))
       error->one(FLERR, "Fix sissm: non-finite position or force of atom {} at step {}",
@@ -429,7 +429,7 @@ double **FixSissm::unknowns()
 
 void FixSissm::block(int i, double D[6]) const
 {
-  PeriSISSM::BackwardEuler::block(atom->rmass[i], dtv * dtv, kblock[i], D);
+  scheme->block(atom->rmass[i], kblock[i], D);
 }
 
 /* ----------------------------------------------------------------------
@@ -538,7 +538,8 @@ void FixSissm::post_integrate()
   if ((lagged || mixed) && force->newton_pair) comm->reverse_comm(this);
   if (mixed) lagged_external_force();
 
-  PeriSISSM::BackwardEuler::begin(rows_, h, x, v, lagged ? f : nullptr, fint, yn, yhat);
+  scheme->set_step(h);
+  scheme->begin(rows_, x, v, lagged ? f : nullptr, lagged ? fint : nullptr, yn, yhat);
   for (int i = 0; i < nlocal; i++)
     if (mask[i] & groupbit) fext[i][0] = fext[i][1] = fext[i][2] = 0.0;
 
@@ -569,7 +570,7 @@ void FixSissm::post_integrate()
   const double measure = result.measure;
   if (free_group)
     PeriSISSM::balance_momentum(rows_, *this, h, x, yn, yhat, lagged ? nullptr : fext, moment);
-  PeriSISSM::BackwardEuler::finish(rows_, h, x, yn, v);
+  scheme->finish(rows_, x, yn, v);
 
   // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
   // decides on a neighbor list build): a diverged step ends in an error, not in LAMMPS's

@@ -28,6 +28,7 @@ FixStyle(sissm,FixSissm);
 
 namespace PeriSISSM {
 class Preconditioner;
+class TimeScheme;
 }
 
 namespace LAMMPS_NS {
@@ -75,7 +76,8 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   enum { EXT_NONE, EXT_IMPLICIT, EXT_MIXED, EXT_LAGGED };
   class ImplicitForces *forces;    // the pair style's side of the step
   PeriSISSM::Rows rows_;           // the group's atoms (refreshed at every step)
-  std::unique_ptr<PeriSISSM::Preconditioner> precond;
+  std::unique_ptr<PeriSISSM::Preconditioner> precond;    // of the Krylov solver
+  std::unique_ptr<PeriSISSM::TimeScheme> scheme;         // which implicit step
   int solver;           // JACOBI sweeps or KRYLOV (Newton-CG, SISSM blocks as preconditioner)
   int maxiter;          // force evaluations per step at most
   double tolerance;     // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it

@@ -1,5 +1,5 @@
 """Independent reference values for the peri/nosb tests, computed in numpy from the formulas of
-interface.md and math.md (not from the C++): strain energy densities on signed singular values,
+doc/pair_peri_nosb.rst and doc/theory.rst (not from the C++): strain energy densities on signed singular values,
 the non-affine part of a deformation (the zero-energy-mode measure |eta - F xi|), and the
 elastic constants of LAMMPS's peri/lps on a simple cubic lattice.
 """
@@ -15,7 +15,7 @@ HORIZON_TEST = 3.0002 * A_TEST  # horizon: 3 spacings
 
 
 def lame(K: float = K_TEST, G: float = G_TEST):
-    """mu, lambda from bulk and shear modulus (interface.md)."""
+    """mu, lambda from bulk and shear modulus (doc/pair_peri_nosb.rst)."""
     return G, K - 2.0 * G / 3.0
 
 
@@ -24,7 +24,7 @@ def young_poisson(K: float = K_TEST, G: float = G_TEST):
 
 
 def signed_singular_values(F) -> np.ndarray:
-    """Singular values of F with the sign convention of interface.md: F = U diag(s) V^T with
+    """Singular values of F with the sign convention of doc/pair_peri_nosb.rst: F = U diag(s) V^T with
     det U = det V = +1, so the smallest one is negative exactly when det F < 0."""
     s = np.linalg.svd(np.asarray(F, float), compute_uv=False)  # descending, >= 0
     if np.linalg.det(F) < 0.0:
@@ -34,7 +34,7 @@ def signed_singular_values(F) -> np.ndarray:
 
 def neohookean_volumetric(J: float, mu: float, lam: float, J0: float = 0.1) -> float:
     """g(J) = -mu ln J + lambda/2 (ln J)^2, continued below J0 by its Taylor polynomial of
-    second order about J0 (interface.md: 'continued smoothly and documented below a small
+    second order about J0 (doc/pair_peri_nosb.rst: 'continued smoothly and documented below a small
     positive J'; J0 = 0.1 for lambda >= 0 as documented in material_neohookean.h)."""
     assert lam >= 0.0, "the continuation threshold differs for lambda < 0"
     if J >= J0:
@@ -47,7 +47,7 @@ def neohookean_volumetric(J: float, mu: float, lam: float, J0: float = 0.1) -> f
 
 
 def strain_energy_density(model: str, F, K: float = K_TEST, G: float = G_TEST) -> float:
-    """W(F) of the models of interface.md."""
+    """W(F) of the models of doc/pair_peri_nosb.rst."""
     F = np.asarray(F, float)
     mu, lam = lame(K, G)
     if model == "linear":
@@ -76,7 +76,7 @@ def signed_svd(F):
 
 
 def first_piola(model: str, F, K: float = K_TEST, G: float = G_TEST) -> np.ndarray:
-    """P = dW/dF of the models of interface.md (closed forms; test_nosb_reference checks them
+    """P = dW/dF of the models of doc/pair_peri_nosb.rst (closed forms; test_nosb_reference checks them
     against finite differences of strain_energy_density)."""
     F = np.asarray(F, float)
     mu, lam = lame(K, G)
@@ -101,8 +101,8 @@ def first_piola(model: str, F, K: float = K_TEST, G: float = G_TEST) -> np.ndarr
 
 def affine_force_vectors(X: np.ndarray, V: np.ndarray, horizon: float = HORIZON_TEST,
                          chunk: int = 256) -> np.ndarray:
-    """Geometry part of the correspondence forces of an affine deformation (math.md section
-    1): with the same first Piola stress P at every particle (the stabilization term
+    """Geometry part of the correspondence forces of an affine deformation (doc/theory.rst,
+    "Correspondence"): with the same first Piola stress P at every particle (the stabilization term
     vanishes), f_i = sum_j omega_ij (P K_i^-1 + P K_j^-1) xi_ij = P d_i with
     d_i = sum_j omega_ij (K_i^-1 + K_j^-1) xi_ij and K_i = sum_j omega_ij xi_ij xi_ij^T.
     Returns d (n x 3); the force densities are d @ P.T."""
@@ -163,7 +163,7 @@ def bond_weights(X: np.ndarray, V: np.ndarray, horizon: float = HORIZON_TEST):
 def nonaffine_measure(X: np.ndarray, Y: np.ndarray, V: np.ndarray,
                       horizon: float = HORIZON_TEST) -> float:
     """RMS non-affine bond strain: sqrt( sum_ij omega |eta - F_i xi|^2 / sum_ij omega |xi|^2 )
-    with F_i the weighted least-squares fit of eta ~ F xi over i's family (math.md section 1).
+    with F_i the weighted least-squares fit of eta ~ F xi over i's family (doc/theory.rst).
     Zero for any affine deformation; it measures the zero-energy-mode content of Y."""
     xi, omega = bond_weights(X, V, horizon)
     eta = Y[None, :, :] - Y[:, None, :]

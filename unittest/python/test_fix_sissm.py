@@ -1,4 +1,4 @@
-"""fix sissm (issue 4, interface.md 'fix sissm', math.md section 3): the converged step is the
+"""fix sissm (issue 4, doc/fix_sissm.rst, doc/theory.rst): the converged step is the
 backward-Euler step of the peri/nosb force, solved here independently; free fall, first-order
 convergence to fix nve, energy decay of a stiff block far beyond the explicit limit, the
 non-convergence counter and warning, and bad input.
@@ -208,7 +208,7 @@ def test_free_fall_far_beyond_the_limit_is_not_silently_wrong(tmp_path):
     # block by g h^2 rho / (rho + h^2 A) ~ 2.5e-5 g h^2 (A: row-sum block, ~4e4 rho / h^2 at
     # 100x), which is ~1e-9 of the spacing, far below the tolerance: the stopping test on the
     # size of the correction declares convergence while the iterate is ~g h^2 from the
-    # solution. The contract (interface.md) is "converged, or counted in f_ID[4] with a
+    # solution. The contract (doc/fix_sissm.rst) is "converged, or counted in f_ID[4] with a
     # warning": either the fall is right to 1 % or the steps are reported as unconverged.
     system = "block 3x3x3"
     h = 100.0 * EXPLICIT_LIMIT[system]

@@ -129,7 +129,7 @@ def test_indenter_pushes_a_free_block(tmp_path):
     # block bounces off the faster sphere and leaves at ~2 m/s (fix nve at 1e-7 s: 2.00 m/s
     # after 1 ms; fully converged SISSM at 2e-5 s: 2.00 m/s).
     # Stable and the force acts: finite, momentum along +x, the block moves away.
-    # Converged or reported (interface.md): either the block reaches 1 m/s or the steps that
+    # Converged or reported (doc/fix_sissm.rst): either the block reaches 1 m/s or the steps that
     # did not converge are counted. (Measured with the defaults: 0.038 m/s after 1 ms, the
     # sphere 0.9 mm deep in the block, with 19 of 50 steps counted in f[4]: the lagged force
     # acts on a rigid mode that each sweep moves by only ~rho/(h^2 A) ~ 1e-3 of its

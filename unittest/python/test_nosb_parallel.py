@@ -1,4 +1,4 @@
-"""peri/nosb on several MPI ranks and across restart files (issue 3, interface.md 'Restart and
+"""peri/nosb on several MPI ranks and across restart files (issue 3, doc/pair_peri_nosb.rst 'Restart and
 parallel runs'): results do not depend on the number of ranks beyond round-off, and a run split
 by write_restart/read_restart continues as if it had not been split."""
 from pathlib import Path

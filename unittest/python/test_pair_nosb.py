@@ -1,6 +1,6 @@
 """pair_style peri/nosb (issue 3): affine deformations, momentum, energy conservation and
 zero-energy-mode stabilization, against values computed independently in numpy
-(nosb_reference.py) from the formulas of interface.md and math.md."""
+(nosb_reference.py) from the formulas of doc/pair_peri_nosb.rst and doc/theory.rst."""
 from pathlib import Path
 
 import numpy as np
@@ -54,7 +54,7 @@ def affine_runs(tmp_path_factory):
 @pytest.mark.parametrize("name", list(GRADIENTS))
 @pytest.mark.parametrize("model", MODELS)
 def test_affine_energy_is_n_times_w(affine_runs, model, name):
-    # For y = F X every particle's F_i is F (also near surfaces, math.md section 1), so
+    # For y = F X every particle's F_i is F (also near surfaces, doc/theory.rst), so
     # pe = N W(F). F_i = M_i K_i^-1 is reproduced to ~1e-15 relative (sums of ~100 bonds, a
     # 3x3 inverse); W's relative round-off is at most eps / |s - 1| ~ 1e-13 for these strains,
     # and the sum over N adds ~sqrt(N) eps: 1e-9 leaves four orders of margin and would still
@@ -89,7 +89,7 @@ def affine_geometry(affine_runs):
 @pytest.mark.parametrize("model", MODELS)
 def test_affine_forces(affine_runs, affine_geometry, model, name):
     # Under y = F X all particles have the same P = P(F) and
-    # f_i = sum_j omega (P K_i^-1 + P K_j^-1) xi (math.md section 1), computed here in numpy
+    # f_i = sum_j omega (P K_i^-1 + P K_j^-1) xi (doc/theory.rst), computed here in numpy
     # from the reference lattice (nosb_reference.affine_force_vectors). Both sides sum the
     # same ~100 terms of the size of the surface force, so 1e-9 of the largest force is a
     # thousandfold margin over round-off; a wrong weight (beta, V_j), a transposed K^-1 or a
@@ -191,7 +191,7 @@ def momentum_columns(run, k=0):
 @pytest.mark.parametrize("vrel", [0.0, 0.4])
 def test_internal_forces_conserve_momentum(tmp_path, model, vrel):
     # Each bond ij adds V_i V_j omega-terms to V_i f_i and the same with opposite sign to
-    # V_j f_j (math.md section 1; beta is symmetric in i, j), so sum_i V_i f_i = 0 for any
+    # V_j f_j (doc/theory.rst; beta is symmetric in i, j), so sum_i V_i f_i = 0 for any
     # positions and also for unequal volumes (vrel: V_i = a^3 (1 + vrel h_i)). Random
     # displacements of 0.3 spacings make every F_i different and far from the identity.
     # The sum cancels terms of size sum_i |V_i f_i|; round-off leaves ~1e-16 of that per term
@@ -215,7 +215,7 @@ def energy_error(run):
 
 @pytest.mark.parametrize("model", MODELS)
 def test_elastic_vibration_conserves_energy(tmp_path, model):
-    # etotal = sum_i (rho v^2/2 + W_i) on a uniform lattice (interface.md) is conserved by
+    # etotal = sum_i (rho v^2/2 + W_i) on a uniform lattice (doc/pair_peri_nosb.rst) is conserved by
     # velocity Verlet up to its O(dt^2) error, when the forces are the exact gradient of pe.
     # Block of 6^3, vibration of ~1.5% strain (nonlinear regime) plus a random velocity
     # pattern (excites the short waves and the stabilization), bonds unbreakable.
@@ -273,7 +273,7 @@ def test_stabilization_controls_zero_energy_modes(tmp_path):
 
 def test_singular_families_stay_finite(tmp_path):
     # A single layer of particles: every family is coplanar, K_i is singular for every
-    # particle (math.md: 'handle it explicitly ... never with NaN'). The documented fallback
+    # particle (doc/pair_peri_nosb.rst: handled explicitly, never with NaN). The documented fallback
     # (compute_nosb_atom.cpp, src/core/peri/elastic.cpp) reports F = I (J = 1, W = 0) and gives the
     # particle no force state of its own; the run must stay finite.
     deck = (DECKS / "nosb_plate.lmp")

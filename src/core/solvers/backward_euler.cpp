@@ -4,10 +4,10 @@
 
 namespace PeriSISSM {
 
-void BackwardEuler::begin(const Rows &rows, double h, double **y, double **v, double **fa,
-                          double **fb, double **yn, double **yhat)
+void BackwardEuler::begin(const Rows &rows, double **y, double **v, double **fa, double **fb,
+                          double **yn, double **yhat)
 {
-  const double h2 = h * h;
+  const double h = h_, h2 = h2_;
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
     for (int k = 0; k < 3; k++) {
@@ -19,11 +19,11 @@ void BackwardEuler::begin(const Rows &rows, double h, double **y, double **v, do
   }
 }
 
-void BackwardEuler::finish(const Rows &rows, double h, double **y, double **yn, double **v)
+void BackwardEuler::finish(const Rows &rows, double **y, double **yn, double **v) const
 {
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
-    for (int d = 0; d < 3; d++) v[i][d] = (y[i][d] - yn[i][d]) / h;
+    for (int d = 0; d < 3; d++) v[i][d] = (y[i][d] - yn[i][d]) / h_;
   }
 }
 

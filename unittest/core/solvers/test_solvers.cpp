@@ -63,8 +63,13 @@ class Springs : public NonlinearSystem {
   void set_volume(int i, double vol) { vol_[i] = vol; }
 
   // start a step from y, v
-  void begin() { BackwardEuler::begin(rows_, h_, y.ptr(), v.ptr(), nullptr, nullptr, yn.ptr(), yhat.ptr()); evals_ = 0; }
-  void finish() { BackwardEuler::finish(rows_, h_, y.ptr(), yn.ptr(), v.ptr()); }
+  void begin()
+  {
+    scheme_.set_step(h_);
+    scheme_.begin(rows_, y.ptr(), v.ptr(), nullptr, nullptr, yn.ptr(), yhat.ptr());
+    evals_ = 0;
+  }
+  void finish() { scheme_.finish(rows_, y.ptr(), yn.ptr(), v.ptr()); }
 
   // NonlinearSystem
   const Rows &rows() const override { return rows_; }
@@ -98,12 +103,12 @@ class Springs : public NonlinearSystem {
       }
     }
     for (int i = 0; i < n_; i++)
-      if (mask_[i]) BackwardEuler::residual(rho_[i], yhat.rows[i], y.rows[i], &f[3 * i], h_ * h_, res.rows[i]);
+      if (mask_[i]) scheme_.residual(rho_[i], yhat.rows[i], y.rows[i], &f[3 * i], res.rows[i]);
   }
   void block(int i, double D[6]) const override
   {
     const double K[6] = {kdiag_[i] / vol_[i], kdiag_[i] / vol_[i], kdiag_[i] / vol_[i], 0, 0, 0};
-    BackwardEuler::block(rho_[i], h_ * h_, K, D);
+    scheme_.block(rho_[i], K, D);
   }
 
   double tol = 1e-10;
@@ -122,6 +127,7 @@ class Springs : public NonlinearSystem {
 
  private:
   SerialReductions red_;
+  BackwardEuler scheme_;
   Rows rows_;
   std::vector<int> mask_;
   std::vector<double> rho_, vol_, kdiag_;

@@ -1,0 +1,300 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   pair_style peri/nosb, short-range contact: the candidate pairs from the neighbor list (the
+   pairs that can come within contact range before the next neighbor list build), the contact
+   pass of the core (peri/contact.h) with what only LAMMPS knows (bonds by atom ID, energy and
+   virial tallies), and, for implicit steps that move the atoms many times between neighbor
+   list builds, the motion tracking that keeps the candidates complete.
+------------------------------------------------------------------------- */
+
+#include "pair_peri_nosb.h"
+
+#include "fix_nosb_family.h"
+
+#include "peri/contact.h"
+#include "peri/model.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <string>
+
+using namespace LAMMPS_NS;
+
+/* ----------------------------------------------------------------------
+   is tag jtag an unbroken bond partner of owned atom i
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::bonded(int i, tagint jtag) const
+{
+  const tagint *p = family->partner[i];
+  const int n = family->npartner[i];
+  for (int b = 0; b < n; b++)
+    if (p[b] == jtag) return true;
+  return false;
+}
+
+/* ----------------------------------------------------------------------
+   short-range contact between particles that are not bonded (never were, or whose bond
+   broke), as the built-in PERI styles do for all pairs: a repulsive spring acts when
+   r < d = min(0.9 |X_i - X_j|, 1.35 h), h = mean particle size V^(1/3), with stiffness
+   kc = 15 * 18 K / (pi delta^4): force density on i kc V_j (d - r)/delta along x_i - x_j,
+   energy 1/2 kc (V_i + V_j)/2 (d - r)^2 / delta per pair. Bonded pairs are left to the
+   material model, so that an affine deformation gives exactly W(F) also under compression.
+------------------------------------------------------------------------- */
+
+namespace LAMMPS_NS {
+class NosbContactPairs : public PeriSISSM::ContactPairs {
+ public:
+  explicit NosbContactPairs(PairPeriNosb *pair) : pair_(pair) {}
+  bool bonded(int i, int j) const override { return pair_->bonded(i, pair_->atom->tag[j]); }
+  void acting(int i, int j) override
+  {
+    const int *mask = pair_->atom->mask;
+    if ((mask[i] ^ mask[j]) & pair_->contact_groupbit) pair_->contact_crossings++;
+  }
+  void tally(int i, int j, double energy, double fpair, double dx, double dy, double dz) override
+  {
+    pair_->ev_tally(i, j, pair_->atom->nlocal, pair_->force->newton_pair, energy, 0.0, fpair, dx,
+                    dy, dz);
+  }
+
+ private:
+  PairPeriNosb *pair_;
+};
+}    // namespace LAMMPS_NS
+
+void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
+{
+  // candidates from the short list made at the last neighbor list build
+  // (built here only if that did not happen, e.g. a compute without a run)
+
+  if (contact_inum != list->inum) build_contact_list(neighbor->skin);
+
+  const PeriSISSM::Particles p = particles();
+  PeriSISSM::ContactCandidates cand;
+  cand.inum = contact_inum;
+  cand.ilist = list->ilist;
+  cand.first = contact_first;
+  cand.neigh = contact_neigh;
+  NosbContactPairs pairs(this);
+  PeriSISSM::contact_pass(*model_, p, family->box, contact_reach(), cand, force->newton_pair != 0,
+                          evflag != 0, pairs);
+}
+
+/* ----------------------------------------------------------------------
+   called by fix nosb/family right after every neighbor list build
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::neighbor_rebuilt()
+{
+  if (!any_contact || !list) return;
+  if (track_motion) {
+    grow_motion();
+    double **x = atom->x;
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < 3; k++) xneigh[i][k] = x[i][k];
+  }
+  build_contact_list(neighbor->skin);
+}
+
+/* ----------------------------------------------------------------------
+   largest distance at which two particles touch: 1.35 x the largest particle size
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::contact_reach() const
+{
+  return 1.35 * hmax;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairPeriNosb::track_contact_motion(int flag)
+{
+  track_motion = flag && any_contact;
+  if (!track_motion) {
+    memory->destroy(xneigh);
+    memory->destroy(xcontact);
+    nmotion = 0;
+  }
+}
+
+void PairPeriNosb::grow_motion()
+{
+  if (atom->nmax <= nmotion) return;
+  nmotion = atom->nmax;
+  memory->grow(xneigh, nmotion, 3, "pair:xneigh");
+  memory->grow(xcontact, nmotion, 3, "pair:xcontact");
+}
+
+/* ----------------------------------------------------------------------
+   keep the contact candidates complete while an implicit step moves the atoms (see the
+   header). Candidates chosen at positions x_c with a margin m (all pairs of the neighbor list
+   within reach + m) cover every pair within contact reach while no atom has moved m/2 from
+   x_c. Beyond that they are chosen again, at the current positions, with the margin skin/4;
+   the neighbor list holds the pairs within horizon + skin of its build (positions x_n), so the
+   new choice is complete only while reach + skin/4 + 2 max|x - x_n| <= horizon + skin
+   (contact_reachable()). An iterate farther away is evaluated with the candidates it has and
+   reported as incomplete (-1): the solver does not accept it as converged, and the step's
+   end (contact_end_of_step()) refuses a result that is that far. One global max per call.
+------------------------------------------------------------------------- */
+
+int PairPeriNosb::contact_follow_motion()
+{
+  if (!track_motion || !list || contact_inum != list->inum) return 0;
+  double moved;
+  tagint worst;
+  const double dc = motion_since(xcontact, &moved, &worst);
+  if (!contact_reachable(moved)) return -1;
+  if (dc < 0.5 * contact_margin) return 0;
+  build_contact_list(0.25 * neighbor->skin);
+  return 1;
+}
+
+/* ----------------------------------------------------------------------
+   whether contact candidates chosen from the neighbor list with the margin skin/4 are complete
+   after atoms moved by up to `moved` from the neighbor list build (false if not finite)
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_reachable(double moved) const
+{
+  const double skin = neighbor->skin;
+  return contact_reach() + 0.25 * skin + 2.0 * moved <= contact_horizon() + skin;
+}
+
+/* ----------------------------------------------------------------------
+   the smallest horizon among the type pairs with contact (it bounds the neighbor list's reach)
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::contact_horizon() const
+{
+  double hz = DBL_MAX;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (contactflag[i][j]) hz = std::min(hz, cut[i][j]);
+  return hz;
+}
+
+/* ----------------------------------------------------------------------
+   at the end of an implicit step (all ranks): an error when the step moved an atom farther
+   from the last neighbor list build than the contact candidates can follow (its contact
+   forces could not be complete); true when it moved one more than skin/8, so that the
+   integrator asks for a neighbor list build before the next step. A step therefore starts
+   with max|x - x_n| <= skin/8 and may move atoms by (horizon - reach)/2 + skin/4.
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_end_of_step(const std::string &cause)
+{
+  if (!track_motion || !list) return false;
+  double moved;
+  tagint worst;
+  motion_since(xneigh, &moved, &worst);
+  const double skin = neighbor->skin;
+  if (!contact_reachable(moved)) {
+    // name the atom that moved farthest (the smallest ID among equals, on any rank count)
+    tagint idall;
+    MPI_Allreduce(&worst, &idall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+    const double hz = contact_horizon();
+    error->all(FLERR,
+               "Pair peri/nosb: the implicit step {} moved atom {} by {:.4g} from where it was "
+               "at the last neighbor list build, farther than short-range contact can follow "
+               "inside one step with neighbor skin {:.4g} (a step may move atoms by (horizon - "
+               "1.35 x particle size) / 2 + skin / 4 = {:.4g}){}; use a smaller time step, a "
+               "neighbor skin of at least {:.4g}, or turn contact off for these types "
+               "(pair_coeff ... contact no)",
+               update->ntimestep, idall, moved, skin, 0.5 * (hz - contact_reach()) + 0.25 * skin,
+               cause.empty() ? "" : "; " + cause, 2.0 * (2.0 * moved + contact_reach() - hz));
+  }
+  return moved > 0.125 * skin;
+}
+
+/* ----------------------------------------------------------------------
+   largest distance of an owned atom from its position in ref (all ranks); also the largest
+   distance from the last neighbor list build and (in *worst) the ID of the atom that moved
+   farthest from it on this rank if that is the global largest, else MAXTAGINT
+------------------------------------------------------------------------- */
+
+double PairPeriNosb::motion_since(double **ref, double *moved, tagint *worst)
+{
+  grow_motion();
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  double local[2] = {0.0, 0.0}, all[2];
+  int iworst = -1;
+  for (int i = 0; i < nlocal; i++) {
+    double dr = 0.0, dn = 0.0;
+    for (int k = 0; k < 3; k++) {
+      dr += (x[i][k] - ref[i][k]) * (x[i][k] - ref[i][k]);
+      dn += (x[i][k] - xneigh[i][k]) * (x[i][k] - xneigh[i][k]);
+    }
+    local[0] = std::max(local[0], dr);
+    if (dn > local[1]) {
+      local[1] = dn;
+      iworst = i;
+    }
+  }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  *moved = sqrt(all[1]);
+  *worst = (iworst >= 0 && local[1] == all[1]) ? atom->tag[iworst] : MAXTAGINT;
+  return sqrt(all[0]);
+}
+
+/* ----------------------------------------------------------------------
+   pairs of the neighbor list closer than the contact range + margin (the skin at a neighbor
+   list build): the pair neighbor list reaches horizon + skin, but only these pairs can come
+   within the contact range before the next neighbor list build (each atom moves less than
+   skin/2 from where it was at the build)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::build_contact_list(double margin)
+{
+  double **x = atom->x;
+  contact_margin = margin;
+  const double rc = contact_reach() + margin;
+  const double rcsq = rc * rc;
+  const int inum = list->inum;
+  int *ilist = list->ilist;
+  int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  if (inum + 1 > contact_maxfirst) {
+    contact_maxfirst = inum + 1;
+    memory->destroy(contact_first);
+    memory->create(contact_first, contact_maxfirst, "pair:contact_first");
+  }
+  int n = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    contact_first[ii] = n;
+    if (n + jnum > contact_maxneigh) {
+      contact_maxneigh = std::max(2 * contact_maxneigh, n + jnum);
+      memory->grow(contact_neigh, contact_maxneigh, "pair:contact_neigh");
+    }
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = x[i][0] - x[j][0];
+      const double dy = x[i][1] - x[j][1];
+      const double dz = x[i][2] - x[j][2];
+      if (dx * dx + dy * dy + dz * dz < rcsq) contact_neigh[n++] = j;
+    }
+  }
+  contact_first[inum] = n;
+  contact_inum = inum;
+  if (track_motion) {
+    grow_motion();
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < 3; k++) xcontact[i][k] = x[i][k];
+  }
+}

@@ -1,0 +1,67 @@
+"""The layout the architecture promises (README "Layout"): the core in src/core uses neither
+LAMMPS nor MPI and builds and passes its tests alone; nothing in the repository points at design
+notes outside it."""
+import pathlib
+import re
+import shutil
+import subprocess
+
+import pytest
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+
+
+def test_core_includes_no_lammps_or_mpi():
+    """Every #include of src/core is the core's own, Eigen or the standard library."""
+    bad = []
+    for path in sorted((REPO / "src" / "core").rglob("*")):
+        if path.suffix not in (".h", ".cpp"):
+            continue
+        for n, line in enumerate(path.read_text().splitlines(), 1):
+            m = re.match(r'\s*#\s*include\s*[<"]([^>"]+)[>"]', line)
+            if not m:
+                continue
+            inc = m.group(1)
+            own = (REPO / "src" / "core" / inc).exists()
+            if not (own or inc.startswith("Eigen/") or re.fullmatch(r"[a-z_]+", inc)):
+                bad.append(f"{path.relative_to(REPO)}:{n}: {inc}")
+    assert not bad, "includes outside the core, Eigen and the standard library:\n" + "\n".join(bad)
+    text = "\n".join(p.read_text() for p in (REPO / "src" / "core").rglob("*") if p.is_file())
+    assert "lammps" not in text and "MPI_" not in text
+
+
+def test_no_pointers_outside_the_repository():
+    """Docs and comments cite papers or files of the repository, never the design notes the
+    project started from."""
+    pattern = re.compile(r"math\.md|interface\.md|style\.md|notes\.md|\.\./shared|the talk",
+                         re.IGNORECASE)
+    hits = []
+    for top in ("src", "doc", "examples", "unittest", "tools", "README.md", "CMakeLists.txt"):
+        root = REPO / top
+        paths = [root] if root.is_file() else sorted(root.rglob("*"))
+        for path in paths:
+            if not path.is_file() or path.suffix in (".png", ".csv") or path.name.startswith("log."):
+                continue
+            if path == pathlib.Path(__file__):
+                continue
+            for n, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+                if pattern.search(line):
+                    hits.append(f"{path.relative_to(REPO)}:{n}: {line.strip()}")
+    assert not hits, "\n".join(hits)
+
+
+@pytest.mark.skipif(shutil.which("cmake") is None, reason="cmake not installed")
+def test_core_builds_and_passes_alone(tmp_path):
+    """Configure the project without LAMMPS: only the core and its unit tests are built, and
+    they pass."""
+    build = tmp_path / "core"
+    subprocess.run(["cmake", "-S", str(REPO), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"],
+                   check=True, capture_output=True, text=True)
+    out = subprocess.run(["cmake", "--build", str(build), "-j", "2"], capture_output=True,
+                         text=True)
+    assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
+    assert not list(build.rglob("perisissmplugin.so")), "the plugin was built without LAMMPS"
+    run = subprocess.run([str(build / "unittest" / "core" / "test_core"), "--gtest_brief=1"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout[-3000:]
+    assert re.search(r"\[  PASSED  \] \d+ tests", run.stdout), run.stdout[-2000:]
