@@ -41,6 +41,7 @@
 #include "peri/breaking.h"
 #include "peri/contact.h"
 #include "peri/forces.h"
+#include "materials/material_file.h"
 #include "peri/model.h"
 
 #include "atom.h"
@@ -196,15 +197,41 @@ static int coeff_flag(const char *keyword, const char *str, Error *error)
 /* ----------------------------------------------------------------------
    pair_coeff I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] [contact yes/no]
      [G0 value]   (s00 = NULL with G0)
+   pair_coeff I J MODEL material FILE NAME horizon s00 alpha [keywords]: K and G from a
+     material file (and G0 when s00 is NULL and the file gives one)
 ------------------------------------------------------------------------- */
 
-void PairPeriNosb::coeff(int narg, char **arg)
+void PairPeriNosb::coeff(int narg, char **argin)
 {
+  // with a material file the two words FILE NAME stand where K G would: read the entry and
+  // go on with its K and G in their place
+  std::vector<char *> args(argin, argin + narg);
+  std::string k_text, g_text, file_material;
+  double file_g0 = 0.0, file_density = 0.0;
+  if (narg > 3 && strcmp(argin[3], "material") == 0) {
+    if (narg < 9)
+      error->all(FLERR,
+                 "Incorrect number of args for pair_coeff peri/nosb command: expected "
+                 "I J MODEL material FILE NAME horizon s00 alpha [keywords], got {} arguments",
+                 narg);
+    const auto entry = read_material(argin[4], argin[5]);
+    k_text = fmt::format("{:.17g}", entry.bulk);
+    g_text = fmt::format("{:.17g}", entry.shear);
+    file_material = argin[5];
+    file_g0 = entry.g0;
+    file_density = entry.density;
+    args.erase(args.begin() + 3, args.begin() + 6);
+    args.insert(args.begin() + 3, {k_text.data(), g_text.data()});
+    narg = (int) args.size();
+  }
+  char **arg = args.data();
+
   if (narg < 8)
     error->all(FLERR,
                "Incorrect number of args for pair_coeff peri/nosb command: expected "
                "I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] "
-               "[contact yes/no] [G0 value], got {} arguments",
+               "[contact yes/no] [G0 value] (or MODEL material FILE NAME in place of MODEL K "
+               "G), got {} arguments",
                narg);
   if (!allocated) allocate();
 
@@ -281,6 +308,8 @@ void PairPeriNosb::coeff(int narg, char **arg)
     }
   }
 
+  // s00 = NULL without the G0 keyword: the material file's G0, if it gives one
+  if (s00_null && g0_one == 0.0 && file_g0 > 0.0 && break_one) g0_one = file_g0;
   if (g0_one > 0.0 && !s00_null)
     error->all(FLERR,
                "Illegal pair_coeff peri/nosb command: s00 = {} and G0 = {} both set the critical "
@@ -294,7 +323,9 @@ void PairPeriNosb::coeff(int narg, char **arg)
   if (s00_null && g0_one == 0.0)
     error->all(FLERR,
                "Illegal pair_coeff peri/nosb command: s00 = NULL needs the G0 keyword (the "
-               "critical energy release rate that sets the critical stretch)");
+               "critical energy release rate that sets the critical stretch){}",
+               file_material.empty() ? ""
+                                     : fmt::format("; material {} gives no G0", file_material));
   if (break_one && !s00_null && s00_one <= 0.0)
     error->all(FLERR,
                "Illegal pair_coeff peri/nosb command: s00 must be > 0 when bonds can break, got "
@@ -325,6 +356,14 @@ void PairPeriNosb::coeff(int narg, char **arg)
   if (count == 0)
     error->all(FLERR, "Incorrect args for pair_coeff peri/nosb command: no type pair in {} {}",
                arg[0], arg[1]);
+
+  // the density of the file's entry, checked against the atoms of the type at init
+  material_density.resize(atom->ntypes + 1, 0.0);
+  material_name.resize(atom->ntypes + 1);
+  for (int i = std::max(ilo, jlo); i <= std::min(ihi, jhi); i++) {
+    material_density[i] = file_density;
+    material_name[i] = file_material;
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -406,6 +445,7 @@ void PairPeriNosb::init_style()
   const int n = atom->ntypes;
 
   s00_from_fracture_energy();    // G0 keyword: s00 of those type pairs (before mixing)
+  check_material_density();      // types whose K and G came from a material file
 
   // mixing of unset I,J (I != J): bond parameters from both types
 

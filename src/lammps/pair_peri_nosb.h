@@ -26,6 +26,7 @@ PairStyle(peri/nosb,PairPeriNosb);
 namespace PeriSISSM {
 class Model;
 struct Particles;
+struct MaterialEntry;
 }
 
 namespace LAMMPS_NS {
@@ -78,6 +79,9 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   double **g0;              // G0 keyword (critical energy release rate), 0 = s00 given
   double **g0_s00;          // s00 that G0 gave at the last init (to log it once)
   std::unique_ptr<PeriSISSM::Model> model_;    // the core's view of the above (init_style)
+  // per type: density and name of the material file entry of pair_coeff I I (0: numbers given)
+  std::vector<double> material_density;
+  std::vector<std::string> material_name;
   // summary flags
   int any_break, any_contact;
   int external_breaking;    // 1: compute() does not break bonds (inside an implicit step)
@@ -113,6 +117,8 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   int comm_width;
 
   void allocate();
+  PeriSISSM::MaterialEntry read_material(const std::string &file, const std::string &name);
+  void check_material_density();
   void s00_from_fracture_energy();
   void configure_model();
   PeriSISSM::Particles particles() const;

@@ -1,0 +1,60 @@
+/* PERI-SISSM core: material parameter files (the .nosb files in potentials/).
+
+   A material file is a text file in LAMMPS's potential-file conventions:
+
+     # DATE: 2026-11-24 UNITS: si CONTRIBUTOR: ...        (first line: the unit style)
+     # comments start with '#'
+     # name   K        G        density   G0
+     steel    1.59e11  7.75e10  7850      -      # source of the values
+
+   one entry per line: a name, the bulk modulus K, the shear modulus G, the mass density and
+   the critical energy release rate G0 ('-' when the file gives none), in the unit style of
+   the UNITS: tag. The comment after an entry is its source. Names are unique in a file.
+
+   Values are converted between the mechanical unit styles whose mass, length and time units
+   are powers of ten of the SI ones (si, cgs, micro, nano); other styles (metal, real, lj,
+   electron) are refused. Errors are thrown as std::runtime_error naming the file and line.
+*/
+#ifndef PERISISSM_CORE_MATERIAL_FILE_H
+#define PERISISSM_CORE_MATERIAL_FILE_H
+
+#include <string>
+#include <vector>
+
+namespace PeriSISSM {
+
+struct MaterialEntry {
+  std::string name;
+  double bulk = 0.0;       // K
+  double shear = 0.0;      // G
+  double density = 0.0;    // rho
+  double g0 = 0.0;         // critical energy release rate; 0 = not given
+  std::string source;      // the comment after the entry
+  int line = 0;            // line number in the file
+};
+
+struct MaterialFile {
+  std::string units;    // the UNITS: tag of the first line ("" if none)
+  std::string date;     // the DATE: tag of the first line ("" if none)
+  std::vector<MaterialEntry> entries;
+
+  // the entry called name, or nullptr
+  const MaterialEntry *find(const std::string &name) const;
+  // the names of all entries, separated by ", "
+  std::string names() const;
+};
+
+// parse the text of a material file; filename only names it in error messages
+MaterialFile parse_material_file(const std::string &text, const std::string &filename);
+
+// the unit styles a material file can be given in or converted to
+const std::vector<std::string> &material_unit_styles();
+
+// the entry with its values converted from unit style 'from' to 'to' (both from
+// material_unit_styles(); throws std::runtime_error naming the styles otherwise)
+MaterialEntry convert_material(const MaterialEntry &entry, const std::string &from,
+                               const std::string &to);
+
+}    // namespace PeriSISSM
+
+#endif
