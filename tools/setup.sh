@@ -155,7 +155,8 @@ write_wrapper() {
 # Written by tools/setup.sh: LAMMPS (pinned build) with the PERI-SISSM plugin auto-loaded.
 export LAMMPS_PLUGIN_PATH="$here/build\${LAMMPS_PLUGIN_PATH:+:\$LAMMPS_PLUGIN_PATH}"
 export LD_LIBRARY_PATH="$lbuild\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}"
-export LAMMPS_POTENTIALS="$here/potentials"
+# your own potential folders (LAMMPS_POTENTIALS) first, then this package's material files
+export LAMMPS_POTENTIALS="\${LAMMPS_POTENTIALS:+\$LAMMPS_POTENTIALS:}$here/potentials"
 exec "$lbuild/lmp" "\$@"
 WRAP
   chmod +x "$w"
