@@ -16,9 +16,10 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import time
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+from progress import Progress  # noqa: E402
 IGNORED = {"cpu", "cpuremain", "spcpu"}
 
 
@@ -69,20 +70,18 @@ def main():
     ap.add_argument("--lmp", default=str(ROOT / "build" / "lmp"))
     ap.add_argument("--only", default="", help="only logs whose path contains this")
     args = ap.parse_args()
-    logs = sorted(ROOT.glob("examples/*/log.*.g++.*"))
-    failed = 0
-    done = 0
-    start = time.time()
-    for log in logs:
-        if args.only not in str(log):
-            continue
+    runs = []
+    for log in sorted(ROOT.glob("examples/*/log.*.g++.*")):
         m = re.match(r"log\.[^.]+\.(.+)\.g\+\+\.(\d+)$", log.name)
-        if not m:
+        if args.only not in str(log) or not m:
             continue
         deck = log.parent / f"in.{m.group(1)}"
-        ranks = int(m.group(2))
-        if not deck.exists() or not uses_package(deck):
-            continue
+        if deck.exists() and uses_package(deck):
+            runs.append((log, deck, int(m.group(2))))
+    failed = 0
+    done = 0
+    progress = Progress(len(runs), "check_logs")
+    for log, deck, ranks in runs:
         with tempfile.TemporaryDirectory() as tmp:
             work = pathlib.Path(tmp) / log.parent.name
             shutil.copytree(log.parent, work)
@@ -98,7 +97,7 @@ def main():
         failed += problem is not None
         print(f"{status:9s} {log.relative_to(ROOT)}" + ("" if problem is None else f": {problem}"),
               flush=True)
-        print(f"[{done}] elapsed {time.time() - start:.0f}s", file=sys.stderr, flush=True)
+        progress.step(log.name)
     print(f"{done - failed} of {done} logs reproduced")
     return 1 if failed else 0
 

@@ -48,6 +48,9 @@ REPO = HERE.parents[2]
 sys.path.insert(0, str(REPO / "unittest" / "python"))
 import lammps_run  # noqa: E402  (parse_thermo; LMP default honours PERI_SISSM_LMP)
 
+sys.path.insert(0, str(REPO / "tools"))
+from progress import Progress  # noqa: E402
+
 # ----------------------------------------------------------------------------------------------
 # fix sissm variants: ONE place.  Each entry is the option string given to fix sissm.  Entries
 # with "solver krylov" (or any other keyword the build rejects) are probed with a tiny run and
@@ -134,10 +137,23 @@ LABEL = {"lps": "peri/lps + fix nve", "nosb": "peri/nosb + fix nve",
 COLOR = {"lps": "tab:blue", "nosb": "tab:green", "jacobi": "tab:red", "krylov": "tab:purple"}
 
 
+def previous_run_count(quick: bool):
+    """The number of LAMMPS runs the last full report says it took (None for --quick, whose
+    report goes elsewhere, or without a report)."""
+    report = REPO / "doc" / "reports" / "error-vs-time.md"
+    if quick or not report.exists():
+        return None
+    found = re.search(r"\((\d+) LAMMPS runs", report.read_text())
+    return int(found.group(1)) if found else None
+
+
 class Runner:
-    def __init__(self, lmp: Path, work: Path, log=print):
+    def __init__(self, lmp: Path, work: Path, log=print, expected=None):
         self.lmp, self.work, self.log = lmp, work, log
         self.count, self.total_wall = 0, 0.0
+        # how many runs there will be depends on the bisections' outcomes: the estimate of the
+        # time left uses the count of the last report of the same kind, when there is one
+        self.progress = Progress(expected, "error-vs-time", approximate=True)
 
     # a guard against a hung lmp only (the longest run of the full benchmark takes ~150 s);
     # a hit stops the benchmark with an error that names the run
@@ -160,6 +176,7 @@ class Runner:
             raise RuntimeError(f"{deck} {variables} in {wd} did not finish within the "
                                f"{self.HANG_GUARD_S} s hang guard") from None
         self.total_wall += time.time() - t0
+        self.progress.step(f"{deck}, {time.time() - t0:.1f} s")
         log = (wd / "log.lammps").read_text(errors="replace") if (wd / "log.lammps").exists() \
             else ""
         errors = [ln for ln in (proc.stdout + log).splitlines() if ln.startswith("ERROR")]
@@ -239,7 +256,8 @@ class Benchmark:
         self.beam = self.cfg["beam"]
         self.work = Path(tempfile.mkdtemp(prefix="evt-")) if not args.keep else args.keep
         self.work.mkdir(parents=True, exist_ok=True)
-        self.runner = Runner(args.lmp, self.work, log=self.say)
+        self.runner = Runner(args.lmp, self.work, log=self.say,
+                             expected=previous_run_count(args.quick))
         self.rows = {"static": [], "dynamic": [], "stiff": []}
         self.notes = []
         self.t0 = time.time()

@@ -24,7 +24,9 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "unittest" / "python"))
+sys.path.insert(0, str(REPO / "tools"))
 from lammps_run import run_deck  # noqa: E402
+from progress import Progress  # noqa: E402
 
 IMPACT = REPO / "examples" / "impact"
 # column name -> deck; later styles add their decks here
@@ -61,6 +63,7 @@ def main():
     args = parser.parse_args()
 
     results, iterations = {}, {}
+    progress = Progress(len(args.ranks) * len(args.styles), "bench_impact")
     with tempfile.TemporaryDirectory() as tmp:
         for ranks in args.ranks:
             for style in args.styles:
@@ -68,6 +71,7 @@ def main():
                 work.mkdir()
                 results[style, ranks], iterations[style, ranks] = measure(
                     STYLES[style], ranks, args.steps, work, EXTRA.get(style))
+                progress.step(f"{style} on {ranks} rank(s)")
 
     print(f"impact deck, {args.steps} steps: microseconds per particle-step "
           "(ratio to peri/lps at the same rank count)")

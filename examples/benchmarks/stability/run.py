@@ -43,6 +43,9 @@ REPO = HERE.parents[2]
 sys.path.insert(0, str(REPO / "unittest" / "python"))
 import lammps_run  # noqa: E402
 
+sys.path.insert(0, str(REPO / "tools"))
+from progress import Progress  # noqa: E402
+
 MATRIX_DECK = HERE / "in.stability.matrix"
 EXTREME_DECK = HERE / "in.stability.extreme"
 GEOMETRY = HERE / "stability.geometry"
@@ -912,6 +915,7 @@ def main():
 
     matrix = {}
     rows = []
+    progress = Progress(len(active) * len(cfg.stiffness) * len(cfg.factors), "stability matrix")
     for m in active:
         matrix[m.key] = {}
         for E in cfg.stiffness:
@@ -925,7 +929,7 @@ def main():
                 o.log, o.table = "", {}
                 cmd = command_line(MATRIX_DECK, variables)
                 matrix[m.key][(E, f)] = {"outcome": o, "command": cmd}
-                log(f"matrix {m.key} E={E:g} {f:g}x dt={dt:.3g}: {short(o)} ({wall:.1f} s)")
+                progress.step(f"{m.key} E={E:g} {f:g}x dt={dt:.3g}: {short(o)}, {wall:.1f} s")
                 rows.append({"method": m.key, "E_Pa": f"{E:g}", "strain_v0_over_c": f"{V0 / math.sqrt(E / RHO):.3g}",
                              "factor": f"{f:g}", "dt_s": f"{dt:.6g}", "steps": cfg.matrix_steps,
                              "simulated_time_s": f"{dt * cfg.matrix_steps:.4g}",
@@ -943,38 +947,38 @@ def main():
 
     extreme = []
     xrows = []
-    for xm in extreme_methods(active, cfg):
-        models = cfg.models if xm.pair == "nosb" else ["-"]
-        for model in models:
-            for case in cfg.cases:
-                res = run_extreme(xm, model if model != "-" else "linear", case, cfg, limits,
-                                  work, imgdir)
-                o = res["outcome"]
-                o.log, o.table = "", {}
-                extreme.append(res)
-                m = res["metrics"]
-                log(f"extreme {xm.key} {res['model']} {case}: {res['verdict']} rms={fmt(m.get('rms'))} "
-                    f"Jdev={fmt(m.get('Jdev'))} ({o.wall:.1f} s)")
-                xrows.append({"method": xm.key, "model": res["model"], "case": case,
-                              "dt_s": f"{res['dt']:.6g}", "steps": res["steps"],
-                              "viscous_gamma": f"{res['gamma']:.4g}",
-                              "verdict": res["verdict"], "status": o.status, "detail": o.detail,
-                              "rms_over_a": fmt(m.get("rms"), ".4g"),
-                              "rms_mirror_over_a": fmt(m.get("rms_mirror"), ".4g"),
-                              "extents_over_a": " ".join(f"{e:.3g}" for e in m.get("extents", [])),
-                              "Jmin": fmt(m.get("Jmin"), ".4g"), "Jmax": fmt(m.get("Jmax"), ".4g"),
-                              "max_abs_J_minus_1": fmt(m.get("Jdev"), ".4g"),
-                              "before_rms_over_a": fmt(res["before"].get("rms"), ".4g"),
-                              "before_Jmin": fmt(res["before"].get("Jmin"), ".4g"),
-                              "before_Jmax": fmt(res["before"].get("Jmax"), ".4g"),
-                              "final_v_rms_m_s": fmt(res["v_rms"], ".3g"),
-                              "final_p_kg_m_s": fmt(m.get("p"), ".4g"),
-                              "final_L_kg_m2_s": fmt(m.get("L"), ".4g"),
-                              "sissm_mean_iterations": fmt(o.iterations, ".4g"),
-                              "sissm_unconverged_steps": fmt(o.unconverged, ".0f"),
-                              "error": o.error, "suspicious": o.suspicious,
-                              "images": " ".join(res["images"].values()),
-                              "wall_s": f"{o.wall:.2f}", "command": res["command"]})
+    xruns = [(xm, model, case) for xm in extreme_methods(active, cfg)
+             for model in (cfg.models if xm.pair == "nosb" else ["-"]) for case in cfg.cases]
+    progress = Progress(len(xruns), "stability extreme")
+    for xm, model, case in xruns:
+        res = run_extreme(xm, model if model != "-" else "linear", case, cfg, limits,
+                          work, imgdir)
+        o = res["outcome"]
+        o.log, o.table = "", {}
+        extreme.append(res)
+        m = res["metrics"]
+        progress.step(f"{xm.key} {res['model']} {case}: {res['verdict']} rms={fmt(m.get('rms'))} "
+                      f"Jdev={fmt(m.get('Jdev'))}, {o.wall:.1f} s")
+        xrows.append({"method": xm.key, "model": res["model"], "case": case,
+                      "dt_s": f"{res['dt']:.6g}", "steps": res["steps"],
+                      "viscous_gamma": f"{res['gamma']:.4g}",
+                      "verdict": res["verdict"], "status": o.status, "detail": o.detail,
+                      "rms_over_a": fmt(m.get("rms"), ".4g"),
+                      "rms_mirror_over_a": fmt(m.get("rms_mirror"), ".4g"),
+                      "extents_over_a": " ".join(f"{e:.3g}" for e in m.get("extents", [])),
+                      "Jmin": fmt(m.get("Jmin"), ".4g"), "Jmax": fmt(m.get("Jmax"), ".4g"),
+                      "max_abs_J_minus_1": fmt(m.get("Jdev"), ".4g"),
+                      "before_rms_over_a": fmt(res["before"].get("rms"), ".4g"),
+                      "before_Jmin": fmt(res["before"].get("Jmin"), ".4g"),
+                      "before_Jmax": fmt(res["before"].get("Jmax"), ".4g"),
+                      "final_v_rms_m_s": fmt(res["v_rms"], ".3g"),
+                      "final_p_kg_m_s": fmt(m.get("p"), ".4g"),
+                      "final_L_kg_m2_s": fmt(m.get("L"), ".4g"),
+                      "sissm_mean_iterations": fmt(o.iterations, ".4g"),
+                      "sissm_unconverged_steps": fmt(o.unconverged, ".0f"),
+                      "error": o.error, "suspicious": o.suspicious,
+                      "images": " ".join(res["images"].values()),
+                      "wall_s": f"{o.wall:.2f}", "command": res["command"]})
     with open(imgdir / "extreme.csv", "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(xrows[0]))
         w.writeheader()
