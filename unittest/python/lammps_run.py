@@ -100,10 +100,16 @@ def library_environment() -> dict:
         if line.startswith("export ") and "=" in line:
             name, value = line[len("export "):].split("=", 1)
             value = value.strip('"')
-            # the wrapper appends the caller's value as ${NAME:+:$NAME}
-            value = value.split("${")[0]
             old = os.environ.get(name)
-            env[name] = value + (":" + old if old else "")
+            prefix = "${%s:+$%s:}" % (name, name)
+            if value.startswith(prefix):
+                # the caller's value first: ${NAME:+$NAME:}VALUE
+                value = value[len(prefix):]
+                env[name] = (old + ":" if old else "") + value
+            else:
+                # the caller's value appended: VALUE${NAME:+:$NAME}
+                value = value.split("${")[0]
+                env[name] = value + (":" + old if old else "")
     cache = (LMP.parent / "CMakeCache.txt").read_text()
     src = next(ln.split("=", 1)[1] for ln in cache.splitlines()
                if ln.startswith("LAMMPS_SOURCE_DIR:"))
