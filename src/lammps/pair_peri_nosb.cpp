@@ -38,10 +38,10 @@
 #include "fix_nosb_family.h"
 
 #include "materials/material.h"
+#include "materials/material_file.h"
 #include "peri/breaking.h"
 #include "peri/contact.h"
 #include "peri/forces.h"
-#include "materials/material_file.h"
 #include "peri/model.h"
 
 #include "atom.h"

@@ -34,19 +34,16 @@ using namespace LAMMPS_NS;
 PeriSISSM::MaterialEntry PairPeriNosb::read_material(const std::string &file,
                                                      const std::string &name)
 {
-  std::string text;
+  std::string text, path;
   int found = 0;
   if (comm->me == 0) {
-    const std::string path = utils::get_potential_file_path(file);
-    if (!path.empty()) {
-      std::ifstream in(path);
+    path = utils::get_potential_file_path(file);
+    std::ifstream in(path);
+    if (!path.empty() && in.is_open()) {
       std::ostringstream all;
       all << in.rdbuf();
       text = all.str();
-      found = in.good() || in.eof() ? 1 : 0;
-      const std::string date = utils::get_potential_date(path, "peri/nosb material");
-      if (found && !date.empty())
-        utils::logmesg(lmp, "Reading material file {} with DATE: {}\n", path, date);
+      found = 1;
     }
   }
   MPI_Bcast(&found, 1, MPI_INT, 0, world);
@@ -63,6 +60,8 @@ PeriSISSM::MaterialEntry PairPeriNosb::read_material(const std::string &file,
   PeriSISSM::MaterialEntry entry;
   try {
     const auto parsed = PeriSISSM::parse_material_file(text, file);
+    if (comm->me == 0 && !parsed.date.empty())
+      utils::logmesg(lmp, "Reading material file {} with DATE: {}\n", path, parsed.date);
     const auto *hit = parsed.find(name);
     if (!hit)
       error->all(FLERR,

@@ -127,21 +127,12 @@ MaterialFile parse_material_file(const std::string &text, const std::string &fil
   return file;
 }
 
-const std::vector<std::string> &material_unit_styles()
-{
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> all;
-    for (const auto &style : kUnitStyles) all.emplace_back(style.name);
-    return all;
-  }();
-  return names;
-}
-
 MaterialEntry convert_material(const MaterialEntry &entry, const std::string &from,
                                const std::string &to)
 {
   std::string allowed;
-  for (const auto &name : material_unit_styles()) allowed += (allowed.empty() ? "" : ", ") + name;
+  for (const auto &style : kUnitStyles)
+    allowed += (allowed.empty() ? "" : ", ") + std::string(style.name);
   const UnitStyle *src = unit_style(from);
   const UnitStyle *dst = unit_style(to);
   if (!src)

@@ -47,11 +47,8 @@ struct MaterialFile {
 // parse the text of a material file; filename only names it in error messages
 MaterialFile parse_material_file(const std::string &text, const std::string &filename);
 
-// the unit styles a material file can be given in or converted to
-const std::vector<std::string> &material_unit_styles();
-
-// the entry with its values converted from unit style 'from' to 'to' (both from
-// material_unit_styles(); throws std::runtime_error naming the styles otherwise)
+// the entry with its values converted from unit style 'from' to 'to' (both one of si, cgs,
+// micro, nano; throws std::runtime_error naming the styles otherwise)
 MaterialEntry convert_material(const MaterialEntry &entry, const std::string &from,
                                const std::string &to);
 
