@@ -73,20 +73,24 @@ class ImplicitStep {
 /* ---------------------------------------------------------------------- */
 
 FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV), maxiter(100), tolerance(1.0e-6),
-    relax(0), implicit_external(1), external_mode(EXT_NONE), dtv(0.0), tol_step(1.0e-6),
+    Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV), precond_type(default_precond()),
+    maxiter(100), tolerance(1.0e-6), relax(0), implicit_external(1), external_mode(EXT_NONE),
+    unconverged(UNCONVERGED_CUTBACK), max_cutback(4), dtv(0.0), hstep(0.0), tol_step(1.0e-6),
     last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
-    warned(0), warned_roundoff(0), nmax(0), evaluations_(0), contact_incomplete(0), fint(nullptr),
+    last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), warned(0), warned_roundoff(0), nmax(0), evaluations_(0),
+    contact_incomplete(0), fint(nullptr),
     fext(nullptr), flagged(nullptr),
     yn(nullptr), yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr),
     xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
-    sdir(nullptr), term(nullptr), moment(nullptr)
+    sdir(nullptr), term(nullptr), moment(nullptr), xstart(nullptr), vstart(nullptr),
+    gnode(nullptr)
 {
   time_integrate = 1;
   force_reneighbor = 1;    // after steps that moved atoms far (short-range contact)
   next_reneighbor = -1;
   vector_flag = 1;
-  size_vector = 4;
+  size_vector = 8;
+  comm_forward = 1;    // amg: global node numbers of the ghosts
   global_freq = 1;
   extvector = 0;
 
@@ -127,15 +131,58 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
                    "Illegal fix sissm command: external must be implicit or lagged, got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "precond") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm precond", error);
+      if (strcmp(arg[iarg + 1], "block") == 0) precond_type = PRECOND_BLOCK;
+      else if (strcmp(arg[iarg + 1], "amg") == 0) precond_type = PRECOND_AMG;
+      else
+        error->all(FLERR, "Illegal fix sissm command: precond must be block or amg, got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+      if (iarg < narg && strcmp(arg[iarg], "petsc") == 0) {
+        if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm precond amg petsc", error);
+        if (precond_type != PRECOND_AMG)
+          error->all(FLERR, "Illegal fix sissm command: petsc options need precond amg");
+        petsc_options = arg[iarg + 1];
+        iarg += 2;
+      }
+    } else if (strcmp(arg[iarg], "unconverged") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm unconverged", error);
+      if (strcmp(arg[iarg + 1], "warn") == 0) unconverged = UNCONVERGED_WARN;
+      else if (strcmp(arg[iarg + 1], "error") == 0) unconverged = UNCONVERGED_ERROR;
+      else if (strcmp(arg[iarg + 1], "cutback") == 0) unconverged = UNCONVERGED_CUTBACK;
+      else
+        error->all(FLERR,
+                   "Illegal fix sissm command: unconverged must be warn, error or cutback, "
+                   "got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+      if (unconverged == UNCONVERGED_CUTBACK && iarg < narg && isdigit(arg[iarg][0])) {
+        max_cutback = utils::inumeric(FLERR, arg[iarg], false, lmp);
+        if (max_cutback < 1 || max_cutback > 20)
+          error->all(FLERR,
+                     "Illegal fix sissm command: unconverged cutback levels must be 1 to 20, "
+                     "got {}",
+                     arg[iarg]);
+        iarg++;
+      }
     } else {
       error->all(FLERR,
                  "Illegal fix sissm command: unknown keyword '{}' (allowed: iterations, "
-                 "tolerance, solver, relax, external)",
+                 "tolerance, solver, precond, unconverged, relax, external)",
                  arg[iarg]);
     }
   }
   if (relax && solver != JACOBI)
     error->all(FLERR, "Illegal fix sissm command: relax yes requires solver jacobi");
+  if (solver == JACOBI) precond_type = PRECOND_BLOCK;    // sweeps use the blocks themselves
+#ifndef PERISISSM_HAVE_PETSC
+  if (precond_type == PRECOND_AMG)
+    error->all(FLERR,
+               "Fix sissm precond amg needs PETSc, and this build of the plugin has none "
+               "(install Debian's petsc-dev and rebuild, e.g. with tools/setup.sh); "
+               "use precond block");
+#endif
 }
 
 /* ---------------------------------------------------------------------- */
@@ -168,7 +215,8 @@ void FixSissm::init()
   comm_reverse = 3;
   choose_external();
   forces->track_contact_motion(1);
-  precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
+  if (precond_type == PRECOND_AMG) precond = make_amg();
+  else precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
   scheme = std::make_unique<PeriSISSM::BackwardEuler>();
   // the options of this run decide which work arrays exist: allocate them anew
   destroy_arrays();
@@ -268,9 +316,10 @@ void FixSissm::reset_dt()
 void FixSissm::destroy_arrays()
 {
   for (double ***a : {&fint, &fext, &flagged, &yn, &yhat, &res, &kblock, &rprev, &dprev, &xbase,
-                      &rbase, &jbase, &cres, &zdir, &pdir, &sdir, &moment})
+                      &rbase, &jbase, &cres, &zdir, &pdir, &sdir, &moment, &xstart, &vstart})
     memory->destroy(*a);
   memory->destroy(term);
+  memory->destroy(gnode);
 }
 
 void FixSissm::grow()
@@ -286,7 +335,13 @@ void FixSissm::grow()
   memory->create(moment, nmax, PeriSISSM::kMomentumColumns, "sissm:moment");
   if (external_mode == EXT_LAGGED || external_mode == EXT_MIXED)
     memory->create(fint, nmax, 3, "sissm:fint");
-  if (external_mode == EXT_MIXED) memory->create(flagged, nmax, 3, "sissm:flagged");
+  if (external_mode == EXT_MIXED || external_mode == EXT_LAGGED)
+    memory->create(flagged, nmax, 3, "sissm:flagged");
+  if (unconverged == UNCONVERGED_CUTBACK) {
+    memory->create(xstart, nmax, 3, "sissm:xstart");
+    memory->create(vstart, nmax, 3, "sissm:vstart");
+  }
+  if (precond_type == PRECOND_AMG) memory->create(gnode, nmax, "sissm:gnode");
   if (relax) {
     memory->create(rprev, nmax, 3, "sissm:rprev");
     memory->create(dprev, nmax, 3, "sissm:dprev");
@@ -304,7 +359,9 @@ void FixSissm::setup(int /*vflag*/)
 {
   last_iterations = 0;
   last_measure = 0.0;
-  nsteps_run = iterations_run = unconverged_run = 0;
+  last_substeps = 1;
+  last_newton = last_krylov = 0;
+  nsteps_run = iterations_run = unconverged_run = cutback_run = 0;
   warned = warned_roundoff = 0;
 }
 
@@ -363,6 +420,21 @@ void FixSissm::unpack_reverse_comm(int n, int *list, double *buf)
 }
 
 /* ----------------------------------------------------------------------
+   amg: the global node numbers reach the ghosts
+------------------------------------------------------------------------- */
+
+int FixSissm::pack_forward_comm(int n, int *list, double *buf, int, int *)
+{
+  for (int k = 0; k < n; k++) buf[k] = gnode[list[k]];
+  return n;
+}
+
+void FixSissm::unpack_forward_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; k++) gnode[first + k] = buf[k];
+}
+
+/* ----------------------------------------------------------------------
    one force evaluation at the current positions: ghost positions, the peri/nosb force density
    (without energy/virial; the implicit stiffness for the blocks only when asked), ghost forces
    folded back, with external implicit the post_force of the other fixes (with
@@ -389,7 +461,7 @@ void FixSissm::evaluate(bool blocks)
   if (force->newton_pair) comm->reverse_comm();
   if (external_mode == EXT_IMPLICIT || external_mode == EXT_MIXED) {
     // the other fixes' force at this iterate, kept in fext (f after minus f before)
-    const double hinv = 1.0 / dtv;
+    const double hinv = 1.0 / hstep;
     for (int i = 0; i < nlocal; i++)
       if (mask[i] & groupbit)
         for (int k = 0; k < 3; k++) {
@@ -491,7 +563,7 @@ double FixSissm::step_tolerance()
   double *vfrac = atom->vfrac;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const double h2 = dtv * dtv;
+  const double h2 = scheme->force_factor();
   double local[2] = {0.0, 0.0}, all[2];
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -516,6 +588,99 @@ double FixSissm::step_tolerance()
   return tol_step;
 }
 
+/* ----------------------------------------------------------------------
+   one implicit step of length h for the group from the atoms' current positions and
+   velocities (flag: the lagged force density the predictor carries, or null): predictor, solve,
+   momentum balance of a free group, end velocities. The evaluations are counted from zero.
+------------------------------------------------------------------------- */
+
+PeriSISSM::SolveResult FixSissm::solve_step(double h, double **flag)
+{
+  double **x = atom->x;
+  double **v = atom->v;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  hstep = h;
+  scheme->set_step(h);
+  scheme->begin(rows_, x, v, flag, yn, yhat);
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit) fext[i][0] = fext[i][1] = fext[i][2] = 0.0;
+
+  evaluations_ = 0;
+  PeriSISSM::SolveResult result;
+  if (solver == KRYLOV) {
+    PeriSISSM::KrylovWork work;
+    work.xbase = xbase;
+    work.rbase = rbase;
+    work.jbase = jbase;
+    work.cres = cres;
+    work.zdir = zdir;
+    work.pdir = pdir;
+    work.sdir = sdir;
+    work.term = term;
+    result = PeriSISSM::solve_newton_krylov(*this, *precond, maxiter, work);
+  } else {
+    PeriSISSM::SweepMemory memory_rows;
+    memory_rows.rprev = rprev;
+    memory_rows.dprev = dprev;
+    result = PeriSISSM::solve_jacobi(*this, maxiter, memory_rows);
+  }
+  last_newton += result.newton;
+  last_krylov += result.krylov;
+  if (!forces->group_coupled(groupbit))
+    PeriSISSM::balance_momentum(rows_, *this, h, x, yn, yhat, flag ? nullptr : fext, moment);
+  scheme->finish(rows_, x, yn, v);
+  return result;
+}
+
+/* ----------------------------------------------------------------------
+   unconverged cutback: the step is redone from y^n, v^n (kept in xstart, vstart) as 2, 4, ...
+   2^max_cutback equal sub-steps until every sub-step converges. Atoms outside the group (held,
+   or moved by fix move or another integrator, already at t^{n+1}) sit at x^{n+1} - (1 - t) h v
+   at the end t (a fraction of the step) of each sub-step, and at x^{n+1} afterwards; the other
+   fixes' forces are those of t^{n+1} throughout. Returns true when a level converged (its
+   sub-step count in substeps); false leaves the last level's unconverged result.
+------------------------------------------------------------------------- */
+
+bool FixSissm::cut_back(int &substeps, PeriSISSM::SolveResult &result, int &evaluations,
+                        double **flag)
+{
+  double **x = atom->x;
+  double **v = atom->v;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  auto place_others = [&](double t) {
+    for (int i = 0; i < nlocal; i++)
+      if (!(mask[i] & groupbit))
+        for (int k = 0; k < 3; k++) x[i][k] = xstart[i][k] - (1.0 - t) * dtv * v[i][k];
+  };
+  bool done = false;
+  for (int level = 1; level <= max_cutback && !done; level++) {
+    const int n = 1 << level;
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) {
+          x[i][k] = xstart[i][k];
+          v[i][k] = vstart[i][k];
+        }
+    done = true;
+    for (int s = 0; s < n; s++) {
+      place_others((double) (s + 1) / n);
+      result = solve_step(dtv / n, flag);
+      evaluations += evaluations_;
+      if (!result.converged()) {
+        done = false;
+        break;
+      }
+    }
+    substeps = n;
+  }
+  place_others(1.0);
+  hstep = dtv;
+  scheme->set_step(dtv);
+  return done;
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixSissm::post_integrate()
@@ -526,7 +691,6 @@ void FixSissm::post_integrate()
   double **f = atom->f;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const double h = dtv;
   const int lagged = external_mode == EXT_LAGGED, mixed = external_mode == EXT_MIXED;
   rows_.n = nlocal;
   rows_.mask = mask;
@@ -537,40 +701,43 @@ void FixSissm::post_integrate()
   // lagged: fint of ghosts belongs to their owners (short-range contact with newton on)
   if ((lagged || mixed) && force->newton_pair) comm->reverse_comm(this);
   if (mixed) lagged_external_force();
+  if (lagged)
+    for (int i = 0; i < nlocal; i++)
+      for (int k = 0; k < 3; k++) flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
+  if (unconverged == UNCONVERGED_CUTBACK)
+    for (int i = 0; i < nlocal; i++)
+      for (int k = 0; k < 3; k++) {
+        xstart[i][k] = x[i][k];
+        vstart[i][k] = v[i][k];
+      }
 
-  scheme->set_step(h);
-  scheme->begin(rows_, x, v, lagged ? f : nullptr, lagged ? fint : nullptr, yn, yhat);
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit) fext[i][0] = fext[i][1] = fext[i][2] = 0.0;
-
-  evaluations_ = 0;
   PeriSISSM::SolveResult result;
-  int free_group;
+  int evaluations = 0, substeps = 1;
+  last_newton = last_krylov = 0;
   {
     ImplicitStep step(forces, groupbit);
-    if (solver == KRYLOV) {
-      PeriSISSM::KrylovWork work;
-      work.xbase = xbase;
-      work.rbase = rbase;
-      work.jbase = jbase;
-      work.cres = cres;
-      work.zdir = zdir;
-      work.pdir = pdir;
-      work.sdir = sdir;
-      work.term = term;
-      result = PeriSISSM::solve_newton_krylov(*this, *precond, maxiter, work);
-    } else {
-      PeriSISSM::SweepMemory memory_rows;
-      memory_rows.rprev = rprev;
-      memory_rows.dprev = dprev;
-      result = PeriSISSM::solve_jacobi(*this, maxiter, memory_rows);
+    result = solve_step(dtv, lagged ? flagged : nullptr);
+    evaluations = evaluations_;
+    if (!result.converged() && unconverged == UNCONVERGED_CUTBACK) {
+      if (cut_back(substeps, result, evaluations, lagged ? flagged : nullptr)) {
+        cutback_run++;
+        if (comm->me == 0)
+          utils::logmesg(lmp,
+                         "Fix sissm {}: step {} did not converge in {} iterations; redone as {} "
+                         "sub-steps of {:.6g} (counted in f_{}[6])\n",
+                         id, update->ntimestep, maxiter, substeps, dtv / substeps, id);
+      } else {
+        error->all(FLERR,
+                   "Fix sissm {}: step {} did not converge in {} iterations per step, not even "
+                   "as {} sub-steps of {:.6g} (convergence measure {:.3g} > tolerance {:.3g}): "
+                   "raise iterations, lower the time step, or accept unconverged steps with "
+                   "'unconverged warn'",
+                   id, update->ntimestep, maxiter, substeps, dtv / substeps, result.measure,
+                   result.tolerance);
+      }
     }
-    free_group = !forces->group_coupled(groupbit);
   }
   const double measure = result.measure;
-  if (free_group)
-    PeriSISSM::balance_momentum(rows_, *this, h, x, yn, yhat, lagged ? nullptr : fext, moment);
-  scheme->finish(rows_, x, yn, v);
 
   // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
   // decides on a neighbor list build): a diverged step ends in an error, not in LAMMPS's
@@ -586,18 +753,23 @@ void FixSissm::post_integrate()
       : "";
   if (forces->contact_end_of_step(cause)) next_reneighbor = update->ntimestep;
 
-  const int k = evaluations_;
-  last_iterations = k;
+  last_iterations = evaluations;
   last_measure = measure;
+  last_substeps = substeps;
   nsteps_run++;
-  iterations_run += k;
+  iterations_run += evaluations;
   if (measure > tol_step) {
     unconverged_run++;
+    if (unconverged == UNCONVERGED_ERROR)
+      error->all(FLERR,
+                 "Fix sissm {}: step {} stopped at {} iterations with convergence measure {:.3g} "
+                 "> tolerance {:.3g} (unconverged error)",
+                 id, update->ntimestep, evaluations, measure, tol_step);
     if (!warned && comm->me == 0)
       error->warning(FLERR,
                      "Fix sissm: step {} stopped at {} iterations with convergence measure {:.3g} "
                      "> tolerance {:.3g} (counted in f_{}[4]; reported once per run)",
-                     update->ntimestep, k, measure, tolerance, id);
+                     update->ntimestep, evaluations, measure, tolerance, id);
     warned = 1;
   }
 }
@@ -631,7 +803,11 @@ double FixSissm::compute_vector(int n)
   if (n == 0) return last_iterations;
   if (n == 1) return last_measure;
   if (n == 2) return nsteps_run ? (double) iterations_run / nsteps_run : 0.0;
-  return (double) unconverged_run;
+  if (n == 3) return (double) unconverged_run;
+  if (n == 4) return last_substeps;
+  if (n == 5) return (double) cutback_run;
+  if (n == 6) return last_krylov;
+  return last_newton;
 }
 
 /* ---------------------------------------------------------------------- */

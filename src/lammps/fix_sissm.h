@@ -20,7 +20,7 @@ FixStyle(sissm,FixSissm);
 
 #include "fix.h"
 
-#include "solvers/system.h"
+#include "solvers/jacobi.h"
 
 #include <memory>
 #include <string>
@@ -48,6 +48,8 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   double memory_usage() override;
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
 
   // ---- PeriSISSM::NonlinearSystem: the backward-Euler step of the group's atoms ----
   const PeriSISSM::Rows &rows() const override { return rows_; }
@@ -68,6 +70,8 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
 
  protected:
   enum { JACOBI, KRYLOV };
+  enum { PRECOND_BLOCK, PRECOND_AMG };
+  enum { UNCONVERGED_WARN, UNCONVERGED_ERROR, UNCONVERGED_CUTBACK };
   // how the forces of the other fixes enter the step (decided in init from the keyword
   // external and the fixes present): NONE there are none; IMPLICIT all re-evaluated at every
   // iterate; MIXED those known to be pure functions of positions and velocities re-evaluated,
@@ -78,7 +82,11 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   PeriSISSM::Rows rows_;           // the group's atoms (refreshed at every step)
   std::unique_ptr<PeriSISSM::Preconditioner> precond;    // of the Krylov solver
   std::unique_ptr<PeriSISSM::TimeScheme> scheme;         // which implicit step
-  int solver;           // JACOBI sweeps or KRYLOV (Newton-CG, SISSM blocks as preconditioner)
+  int solver;           // JACOBI sweeps or KRYLOV (Newton-CG)
+  int precond_type;     // PRECOND_BLOCK (the SISSM blocks) or PRECOND_AMG (PETSc)
+  std::string petsc_options;    // keyword petsc: options for PETSc's preconditioner
+  int unconverged;      // UNCONVERGED_*: what a step that misses the tolerance does
+  int max_cutback;      // cutback: at most 2^max_cutback sub-steps
   int maxiter;          // force evaluations per step at most
   double tolerance;     // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
   int relax;            // 1: per-particle step factor alpha_i, 0: alpha_i = 1 (jacobi)
@@ -87,12 +95,16 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   std::vector<class Fix *> implicit_fixes;    // re-evaluated at every iterate, in LAMMPS order
   std::string external_note;                  // what was last logged about them
   double dtv;
+  double hstep;         // the step being solved (dtv, or a sub-step of a cut-back step)
   double tol_step;      // the tolerance of the current step (attainable_tolerance())
 
   // statistics (global vector)
   int last_iterations;
   double last_measure;
   bigint nsteps_run, iterations_run, unconverged_run;
+  int last_substeps;    // sub-steps of the last step (1: not cut back)
+  int last_newton, last_krylov;    // Newton steps and Krylov iterations of the last step
+  bigint cutback_run;   // steps cut back since the run started
 
   int warned;           // non-convergence already reported in this run
   int warned_roundoff;  // round-off limit of the tolerance already reported in this run
@@ -111,12 +123,20 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   double **xbase, **rbase, **jbase, **cres, **zdir, **pdir, **sdir;   // krylov vectors
   double *term;         // krylov: per-atom terms of a global sum
   double **moment;      // per-atom terms of the momentum balance
+  double **xstart, **vstart;   // cutback: y^n, v^n of the group; end positions of the others
+  double *gnode;        // amg: global node number of each atom (-1: not an unknown)
+  friend class SissmAmg;
 
   void grow();
   void destroy_arrays();
   void choose_external();
   void capture_internal_force();
   void lagged_external_force();
+  PeriSISSM::SolveResult solve_step(double h, double **flag);
+  bool cut_back(int &substeps, PeriSISSM::SolveResult &result, int &evaluations,
+                double **flag);
+  std::unique_ptr<PeriSISSM::Preconditioner> make_amg();
+  static int default_precond();
 };
 
 }    // namespace LAMMPS_NS

@@ -13,6 +13,10 @@
 
 #include <string>
 
+namespace PeriSISSM {
+struct BondSprings;
+}
+
 namespace LAMMPS_NS {
 
 class ImplicitForces {
@@ -30,6 +34,9 @@ class ImplicitForces {
   // the SISSM block sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I) of every owned atom (xx yy zz
   // xy xz yz), from the last evaluation with blocks
   virtual void implicit_blocks(double **block) = 0;
+  // the bond-projected stiffness of the owned atoms' unbroken bonds in the current positions
+  // (core peri/bond_stiffness.h), from the last evaluation with blocks after implicit_blocks()
+  virtual void bond_springs(PeriSISSM::BondSprings &springs) = 0;
 
   // contact candidates while an implicit step moves the atoms: track_contact_motion(1) at
   // init; contact_follow_motion() after every move (ghost positions current) re-selects the

@@ -39,6 +39,7 @@
 
 #include "materials/material.h"
 #include "materials/material_file.h"
+#include "peri/bond_stiffness.h"
 #include "peri/breaking.h"
 #include "peri/contact.h"
 #include "peri/forces.h"
@@ -699,6 +700,17 @@ void PairPeriNosb::implicit_blocks(double **block)
   fields.k = kstate;
   NosbHalo halo(this);
   PeriSISSM::assemble_blocks(family->view(), atom->nlocal, fields, halo, block);
+}
+
+/* ----------------------------------------------------------------------
+   ImplicitForces: the bond-projected stiffness (implicit_blocks() has sent H+ to the ghosts)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::bond_springs(PeriSISSM::BondSprings &springs)
+{
+  PeriSISSM::ParticleFields fields;
+  fields.k = kstate;
+  PeriSISSM::bond_springs(family->view(), particles(), fields, springs);
 }
 
 /* ----------------------------------------------------------------------

@@ -64,6 +64,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   void end_implicit_step() override;
   void evaluate(bool blocks) override;
   void implicit_blocks(double **block) override;
+  void bond_springs(PeriSISSM::BondSprings &springs) override;
   void track_contact_motion(int flag) override;
   int contact_follow_motion() override;
   bool contact_end_of_step(const std::string &cause) override;

@@ -4,7 +4,7 @@
 
 namespace PeriSISSM {
 
-void BackwardEuler::begin(const Rows &rows, double **y, double **v, double **fa, double **fb,
+void BackwardEuler::begin(const Rows &rows, double **y, double **v, double **flag,
                           double **yn, double **yhat)
 {
   const double h = h_, h2 = h2_;
@@ -13,7 +13,7 @@ void BackwardEuler::begin(const Rows &rows, double **y, double **v, double **fa,
     for (int k = 0; k < 3; k++) {
       yn[i][k] = y[i][k];
       yhat[i][k] = y[i][k] + h * v[i][k];
-      if (fa) yhat[i][k] += h2 * (fa[i][k] - fb[i][k]) / rows.density[i];
+      if (flag) yhat[i][k] += h2 * flag[i][k] / rows.density[i];
       y[i][k] += h * v[i][k];
     }
   }

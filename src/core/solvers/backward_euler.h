@@ -19,8 +19,9 @@ class BackwardEuler : public TimeScheme {
     h_ = h;
     h2_ = h * h;
   }
-  void begin(const Rows &rows, double **y, double **v, double **fa, double **fb, double **yn,
+  void begin(const Rows &rows, double **y, double **v, double **flag, double **yn,
              double **yhat) override;
+  double force_factor() const override { return h2_; }
   void residual(double rho, const double *yhat, const double *y, const double *f,
                 double *r) const override
   {

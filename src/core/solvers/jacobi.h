@@ -17,6 +17,8 @@ namespace PeriSISSM {
 struct SolveResult {
   double measure = 0.0;
   double tolerance = 0.0;
+  int newton = 0;    // Newton steps (krylov)
+  int krylov = 0;    // conjugate-gradient iterations over all Newton steps (krylov)
   bool converged() const { return measure <= tolerance; }
 };
 

@@ -16,6 +16,7 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
   const SweepMemory plain;
   SolveResult out;
   double measure_prev = 0.0, phi_base = 0.0, eta = 1.0e-2;
+  double slope0 = 0.0, tstep = 1.0;    // <s, r(base)>, and the fraction of s being tried
   int have_base = 0, halvings = 0;
 
   auto axpy_positions = [&](double **base, double c, double **dir) {
@@ -36,10 +37,30 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
       break;
     }
     const double phi = merit(sys, w.term);
-    const int worse = have_base && phi > phi_base;
+    // Is the iterate base + t s acceptable? r = -(1/V) grad Pi of the step's incremental
+    // potential Pi (a hyperelastic model: kinetic term plus stored energy minus the work of
+    // conservative loads), so Pi'(t) = -<s, r(base + t s)>; by the trapezoid rule
+    // Pi(t) - Pi(0) ~ -t/2 (g0 + g(t)), g(t) = <s, r(base + t s)>, and the Armijo condition
+    // Pi(t) - Pi(0) <= -c t g0 reads g(t) >= -(1 - 2c) g0. The residual norm phi may grow on
+    // a good Newton step (a linearized rotation stretches the bonds it turns), so it decides
+    // only where s is not a descent direction (g0 <= 0).
+    int worse = 0;
+    double slope = 0.0;
+    if (have_base) {
+      if (slope0 > 0.0) {
+        slope = dot(sys, w.sdir, res, w.term);
+        worse = slope < -(1.0 - 2.0e-4) * slope0;
+      } else {
+        worse = phi > phi_base;
+      }
+    }
     if (worse && halvings < 4 && sys.evaluations() < maxiter) {
+      // the minimum of the quadratic model of Pi on [0, t] (Pi' linear from -g0 to -g(t)),
+      // kept within [t/10, t/2]
       halvings++;
-      axpy_positions(w.xbase, ldexp(1.0, -halvings), w.sdir);
+      const double cut = (slope0 > 0.0) ? slope0 / (slope0 - slope) : 0.5;
+      tstep *= fmin(0.5, fmax(0.1, cut));
+      axpy_positions(w.xbase, tstep, w.sdir);
       continue;
     }
     if (worse && sys.evaluations() >= maxiter) {
@@ -71,10 +92,12 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
           w.rbase[i][k] = w.cres[i][k] = res[i][k];
           w.sdir[i][k] = 0.0;
         }
+    precond.prepare(sys);
     precond.apply(sys, w.cres, w.zdir);
     for (int i = 0; i < n; i++)
       if (rows.has(i))
-        for (int k = 0; k < 3; k++) w.pdir[i][k] = w.jbase[i][k] = w.zdir[i][k];
+        for (int k = 0; k < 3; k++) w.pdir[i][k] = w.zdir[i][k];
+    BlockPreconditioner().apply(sys, w.rbase, w.jbase);
     double rz = dot(sys, w.cres, w.zdir, w.term);
     const double target = fmax(0.25 * out.tolerance, eta * measure);
     int cg = 0;
@@ -112,6 +135,10 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
         if (rows.has(i))
           for (int k = 0; k < 3; k++) w.pdir[i][k] = w.zdir[i][k] + beta * w.pdir[i][k];
     }
+    out.newton++;
+    out.krylov += cg;
+    slope0 = dot(sys, w.sdir, w.rbase, w.term);
+    tstep = 1.0;
     axpy_positions(w.xbase, 1.0, w.sdir);
     sys.check_finite();
   }

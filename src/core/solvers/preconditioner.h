@@ -10,6 +10,9 @@ namespace PeriSISSM {
 class Preconditioner {
  public:
   virtual ~Preconditioner() = default;
+  // a Newton step begins at the last evaluation (with blocks): a preconditioner that is built
+  // from the current configuration is (re)built here
+  virtual void prepare(NonlinearSystem &) {}
   virtual void apply(NonlinearSystem &sys, double **r, double **z) = 0;
 };
 

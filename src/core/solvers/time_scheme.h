@@ -16,10 +16,13 @@ class TimeScheme {
   // the time step h
   virtual void set_step(double h) = 0;
   // Start of a step for the unknown rows: keep y^n and v^n as the scheme needs them, the
-  // predictor yhat, and the first iterate in y. fa, fb (both null or both given): a force
-  // density fa - fb taken from the previous step (lagged) that the predictor carries.
-  virtual void begin(const Rows &rows, double **y, double **v, double **fa, double **fb,
-                     double **yn, double **yhat) = 0;
+  // predictor yhat, and the first iterate in y. flag (may be null): a force density taken from
+  // the previous step (lagged) that the predictor carries.
+  virtual void begin(const Rows &rows, double **y, double **v, double **flag, double **yn,
+                     double **yhat) = 0;
+  // the factor of the force Jacobian in -dr/dy (h^2 for backward Euler): J = rho I - factor
+  // df/dy
+  virtual double force_factor() const = 0;
   // residual of one row from its force density f at the current iterate y
   virtual void residual(double rho, const double *yhat, const double *y, const double *f,
                         double *r) const = 0;

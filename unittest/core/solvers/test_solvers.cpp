@@ -66,7 +66,7 @@ class Springs : public NonlinearSystem {
   void begin()
   {
     scheme_.set_step(h_);
-    scheme_.begin(rows_, y.ptr(), v.ptr(), nullptr, nullptr, yn.ptr(), yhat.ptr());
+    scheme_.begin(rows_, y.ptr(), v.ptr(), nullptr, yn.ptr(), yhat.ptr());
     evals_ = 0;
   }
   void finish() { scheme_.finish(rows_, y.ptr(), yn.ptr(), v.ptr()); }

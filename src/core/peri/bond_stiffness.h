@@ -1,0 +1,46 @@
+// The bond-projected stiffness (doc/theory.rst, "The coarse level"): a sparse symmetric
+// positive semi-definite matrix spectrally equivalent to the correspondence tangent, for an
+// algebraic multigrid preconditioner. Every unbroken bond (i, j) of the owned particles acts as
+// a spring along its current direction e = eta / |eta| (geometric terms dropped, so the matrix
+// stays positive semi-definite and all six rigid-body modes are its exact zero modes):
+//   V_i P_ij = -k_ij e e^T  (j != i),     V_i P_ii = sum_j k_ij e e^T,
+//   k_ij = c_bb V_i omega_ij e^T (H+_i + H+_j) e,
+// H+ the implicit stiffness of each end (particle.h; kappa (2 mu + lambda) I for the linear
+// model) and omega_ij = w beta V_j the bond weight, so that k_ij = k_ji.
+// Calibration c_bb = 5/3: with H+ = kappa c I, kappa = 15 / (4 pi delta^5) (w = 1, full
+// sphere), the springs store under a uniform strain eps the energy density
+//   W = (c_bb 2 kappa c) pi delta^5 / 75 (tr(eps)^2 + 2 eps:eps),
+// an isotropic material with lambda = mu (nu = 1/4) whose P-wave modulus 2 mu + lambda equals
+// c: the springs match the material's stiffness along a bond.
+
+#ifndef PERISISSM_PERI_BOND_STIFFNESS_H
+#define PERISISSM_PERI_BOND_STIFFNESS_H
+
+#include "peri/family.h"
+#include "peri/fields.h"
+
+#include <vector>
+
+namespace PeriSISSM {
+
+constexpr double kBondProjectionFactor = 5.0 / 3.0;
+
+// The springs of the owned particles, bond by bond in family order (unbroken bonds only).
+struct BondSprings {
+  std::vector<int> first;      // nlocal + 1 offsets: the springs of particle i are
+                               //   first[i] .. first[i+1]-1
+  std::vector<int> partner;    // local index of the partner (owned or ghost)
+  std::vector<double> k;       // k_ij (energy / length^2)
+  std::vector<double> e;       // unit direction, 3 per spring
+};
+
+// Inputs: families; p (x current for owned and ghost rows, volume); fields.k (H+ and C of
+// owned and ghost rows, as after assemble_blocks()).
+// Outputs: springs (resized; one entry per unbroken bond of the owned particles). A bond of
+// zero current length gets e = 0 (it adds nothing).
+void bond_springs(const Families &fam, const Particles &p, const ParticleFields &fields,
+                  BondSprings &springs);
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_PERI_BOND_STIFFNESS_H

@@ -1,0 +1,61 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   A distributed algebraic multigrid preconditioner from PETSc (smoothed aggregation, PCGAMG,
+   by default): z = M^-1 b for a sparse symmetric matrix M with three unknowns per node (block
+   size 3), assembled from coordinate (COO) lists in global node numbers, with the six
+   rigid-body modes of the nodes' coordinates as its near-null space. Knows MPI and PETSc, not
+   LAMMPS: fix sissm numbers the nodes and fills the lists (fix_sissm_amg.cpp). Errors are
+   thrown as std::runtime_error with PETSc's message.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_PERISISSM_PETSC_AMG_H
+#define LMP_PERISISSM_PETSC_AMG_H
+
+#include <mpi.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PetscAmg {
+ public:
+  // comm: the processes that share the matrix; prefix: options prefix of this instance in
+  // PETSc's options database (e.g. "sissm_ID_"); options: PETSc options given by the user,
+  // without the prefix ("-pc_type hypre -pc_hypre_type boomeramg"), applied after the defaults
+  PetscAmg(MPI_Comm comm, const std::string &prefix, const std::string &options);
+  ~PetscAmg();
+  PetscAmg(const PetscAmg &) = delete;
+  PetscAmg &operator=(const PetscAmg &) = delete;
+
+  // nodes: owned nodes of this process (global numbers first .. first + nodes - 1, numbered
+  // contiguously over the processes in rank order); rows, cols: global node numbers of the
+  // 3x3 blocks this process adds (each entry is one block, 9 values); entries of repeated
+  // blocks are summed. Rebuilds the matrix (and drops the hierarchy).
+  void set_pattern(int nodes, const std::vector<int> &rows, const std::vector<int> &cols);
+  // values: 9 per block of set_pattern(), row-major; coords: 3 per owned node (the
+  // near-null space). Then the preconditioner is set up (the first time: the hierarchy;
+  // later: again, reusing the interpolation when the options allow it).
+  void set_values(const std::vector<double> &values, const double *coords);
+  // z = M^-1 b, 3 * nodes values each
+  void apply(const double *b, double *z);
+
+  // what PETSc built, one line (after set_values): preconditioner type, levels, operator
+  // complexity
+  std::string describe() const;
+  bool ready() const { return ready_; }
+
+  // true when PETSc has been started by this process (PetscInitialize called by anyone)
+  static bool petsc_started();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> d_;
+  bool ready_ = false;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
