@@ -77,7 +77,8 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     maxiter(100), tolerance(1.0e-6), relax(0), implicit_external(1), external_mode(EXT_NONE),
     unconverged(UNCONVERGED_CUTBACK), max_cutback(4), dtv(0.0), hstep(0.0), tol_step(1.0e-6),
     last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
-    last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), warned(0), warned_roundoff(0), nmax(0), evaluations_(0),
+    last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), fallback_run(0),
+    warned_fallback(0), block_first(0), warned(0), warned_roundoff(0), nmax(0), evaluations_(0),
     contact_incomplete(0), fint(nullptr),
     fext(nullptr), flagged(nullptr),
     yn(nullptr), yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr),
@@ -89,7 +90,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
   force_reneighbor = 1;    // after steps that moved atoms far (short-range contact)
   next_reneighbor = -1;
   vector_flag = 1;
-  size_vector = 8;
+  size_vector = 9;
   comm_forward = 1;    // amg: global node numbers of the ghosts
   global_freq = 1;
   extvector = 0;
@@ -215,8 +216,9 @@ void FixSissm::init()
   comm_reverse = 3;
   choose_external();
   forces->track_contact_motion(1);
-  if (precond_type == PRECOND_AMG) precond = make_amg();
-  else precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
+  block_precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
+  if (precond_type == PRECOND_AMG) amg_precond = make_amg();
+  precond = amg_precond ? amg_precond.get() : block_precond.get();
   scheme = std::make_unique<PeriSISSM::BackwardEuler>();
   // the options of this run decide which work arrays exist: allocate them anew
   destroy_arrays();
@@ -337,7 +339,7 @@ void FixSissm::grow()
     memory->create(fint, nmax, 3, "sissm:fint");
   if (external_mode == EXT_MIXED || external_mode == EXT_LAGGED)
     memory->create(flagged, nmax, 3, "sissm:flagged");
-  if (unconverged == UNCONVERGED_CUTBACK) {
+  if (unconverged == UNCONVERGED_CUTBACK || precond_type == PRECOND_AMG) {
     memory->create(xstart, nmax, 3, "sissm:xstart");
     memory->create(vstart, nmax, 3, "sissm:vstart");
   }
@@ -361,8 +363,9 @@ void FixSissm::setup(int /*vflag*/)
   last_measure = 0.0;
   last_substeps = 1;
   last_newton = last_krylov = 0;
-  nsteps_run = iterations_run = unconverged_run = cutback_run = 0;
-  warned = warned_roundoff = 0;
+  nsteps_run = iterations_run = unconverged_run = cutback_run = fallback_run = 0;
+  warned = warned_roundoff = warned_fallback = 0;
+  block_first = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -657,12 +660,7 @@ bool FixSissm::cut_back(int &substeps, PeriSISSM::SolveResult &result, int &eval
   bool done = false;
   for (int level = 1; level <= max_cutback && !done; level++) {
     const int n = 1 << level;
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit)
-        for (int k = 0; k < 3; k++) {
-          x[i][k] = xstart[i][k];
-          v[i][k] = vstart[i][k];
-        }
+    restore_start();
     done = true;
     for (int s = 0; s < n; s++) {
       place_others((double) (s + 1) / n);
@@ -679,6 +677,24 @@ bool FixSissm::cut_back(int &substeps, PeriSISSM::SolveResult &result, int &eval
   hstep = dtv;
   scheme->set_step(dtv);
   return done;
+}
+
+/* ----------------------------------------------------------------------
+   the group back at y^n, v^n (the start of the step, kept in xstart, vstart)
+------------------------------------------------------------------------- */
+
+void FixSissm::restore_start()
+{
+  double **x = atom->x;
+  double **v = atom->v;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit)
+      for (int k = 0; k < 3; k++) {
+        x[i][k] = xstart[i][k];
+        v[i][k] = vstart[i][k];
+      }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -704,7 +720,7 @@ void FixSissm::post_integrate()
   if (lagged)
     for (int i = 0; i < nlocal; i++)
       for (int k = 0; k < 3; k++) flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
-  if (unconverged == UNCONVERGED_CUTBACK)
+  if (xstart)
     for (int i = 0; i < nlocal; i++)
       for (int k = 0; k < 3; k++) {
         xstart[i][k] = x[i][k];
@@ -716,8 +732,30 @@ void FixSissm::post_integrate()
   last_newton = last_krylov = 0;
   {
     ImplicitStep step(forces, groupbit);
+    // precond amg: the preconditioner that converged the last step goes first
+    precond = (amg_precond && !block_first) ? amg_precond.get() : block_precond.get();
     result = solve_step(dtv, lagged ? flagged : nullptr);
     evaluations = evaluations_;
+    if (!result.converged() && amg_precond) {
+      // a step that one preconditioner could not converge is redone with the other (measured:
+      // a free, rotating soft block at 100x the explicit limit, where the AMG-preconditioned
+      // Newton steps diverge after some steps and the blocks converge)
+      restore_start();
+      precond = (precond == block_precond.get()) ? amg_precond.get() : block_precond.get();
+      result = solve_step(dtv, lagged ? flagged : nullptr);
+      evaluations += evaluations_;
+      if (result.converged()) block_first = precond == block_precond.get();
+      fallback_run++;
+      if (!warned_fallback && comm->me == 0)
+        error->warning(FLERR,
+                       "Fix sissm {}: step {} did not converge with precond {}; redone with "
+                       "the {} preconditioner ({}; the one that converged goes first from now "
+                       "on; counted in f_{}[9]; reported once per run)",
+                       id, update->ntimestep, precond == block_precond.get() ? "amg" : "block",
+                       precond == block_precond.get() ? "block" : "amg",
+                       result.converged() ? "converged" : "not converged either", id);
+      warned_fallback = 1;
+    }
     if (!result.converged() && unconverged == UNCONVERGED_CUTBACK) {
       if (cut_back(substeps, result, evaluations, lagged ? flagged : nullptr)) {
         cutback_run++;
@@ -727,6 +765,7 @@ void FixSissm::post_integrate()
                          "sub-steps of {:.6g} (counted in f_{}[6])\n",
                          id, update->ntimestep, maxiter, substeps, dtv / substeps, id);
       } else {
+        precond = amg_precond ? amg_precond.get() : block_precond.get();
         error->all(FLERR,
                    "Fix sissm {}: step {} did not converge in {} iterations per step, not even "
                    "as {} sub-steps of {:.6g} (convergence measure {:.3g} > tolerance {:.3g}): "
@@ -737,6 +776,7 @@ void FixSissm::post_integrate()
       }
     }
   }
+  precond = amg_precond ? amg_precond.get() : block_precond.get();
   const double measure = result.measure;
 
   // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
@@ -807,7 +847,8 @@ double FixSissm::compute_vector(int n)
   if (n == 4) return last_substeps;
   if (n == 5) return (double) cutback_run;
   if (n == 6) return last_krylov;
-  return last_newton;
+  if (n == 7) return last_newton;
+  return (double) fallback_run;
 }
 
 /* ---------------------------------------------------------------------- */

@@ -80,7 +80,10 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   enum { EXT_NONE, EXT_IMPLICIT, EXT_MIXED, EXT_LAGGED };
   class ImplicitForces *forces;    // the pair style's side of the step
   PeriSISSM::Rows rows_;           // the group's atoms (refreshed at every step)
-  std::unique_ptr<PeriSISSM::Preconditioner> precond;    // of the Krylov solver
+  // of the Krylov solver: precond points at amg_precond (precond amg) or block_precond (precond
+  // block, and a step that amg did not converge)
+  PeriSISSM::Preconditioner *precond = nullptr;
+  std::unique_ptr<PeriSISSM::Preconditioner> amg_precond, block_precond;
   std::unique_ptr<PeriSISSM::TimeScheme> scheme;         // which implicit step
   int solver;           // JACOBI sweeps or KRYLOV (Newton-CG)
   int precond_type;     // PRECOND_BLOCK (the SISSM blocks) or PRECOND_AMG (PETSc)
@@ -105,6 +108,9 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   int last_substeps;    // sub-steps of the last step (1: not cut back)
   int last_newton, last_krylov;    // Newton steps and Krylov iterations of the last step
   bigint cutback_run;   // steps cut back since the run started
+  bigint fallback_run;  // steps that amg did not converge, redone with the blocks
+  int warned_fallback;
+  int block_first;      // precond amg: the blocks converged the last step that amg did not
 
   int warned;           // non-convergence already reported in this run
   int warned_roundoff;  // round-off limit of the tolerance already reported in this run
@@ -133,6 +139,7 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   void capture_internal_force();
   void lagged_external_force();
   PeriSISSM::SolveResult solve_step(double h, double **flag);
+  void restore_start();
   bool cut_back(int &substeps, PeriSISSM::SolveResult &result, int &evaluations,
                 double **flag);
   std::unique_ptr<PeriSISSM::Preconditioner> make_amg();

@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""A cube of ~10^5 particles under gravity at 100 x the explicit step with fix sissm on 1 and 2
+MPI ranks: evaluations per step and parallel efficiency (issue 11).
+
+    /usr/bin/python3 examples/benchmarks/solver/cube.py [--quick] [--sizes 30 46] [--steps 3]
+
+Scene: N^3 particles on a simple cubic lattice (a = 10 mm), pair_style peri/nosb linear with the
+soft solid of examples/cantilever (K = 10 MPa, G = 6 MPa, rho = 1000 kg/m^3; bonds unbreakable),
+horizon 3.0015 a; the bottom three layers (one horizon) are clamped (outside the integrated
+group), gravity acts on the rest. (A steel-like cube would sag under gravity by ~1e-6 particle
+sizes, the solver's tolerance: its steps would converge at the first residual and measure
+nothing. The soft solid sags by ~1e-2 a, and the step of 100 x the explicit limit is about two
+wave crossings of the cube.) The explicit step is the estimate of compute nosb/atom column 11
+(smallest over the atoms, `run 0`); dt = 100 x that. Then STEPS steps of `fix sissm` with its
+defaults (precond amg, iterations 100, tolerance 1e-6, unconverged cutback), thermo every step,
+and 5 steps of fix nve at the explicit step on the same cube (the time of one force
+evaluation, t_nve).
+
+Printed per size and rank count: the explicit estimate and dt, force evaluations per step
+(f_ID[1]; + 1 for the regular evaluation ending each step is not included), Newton steps and CG
+iterations per step (f_ID[8], f_ID[7]), CG per Newton step, unconverged steps / steps cut back
+(f_ID[4], f_ID[6]), fix sissm's loop time, the time those evaluations alone would take
+(evaluations x t_nve: the rest is assembly, AMG set-up and applications), and the peak resident
+memory per rank (/usr/bin/time). Parallel efficiency t1 / (2 t2) of the loop time and, since the
+AMG hierarchy and with it the CG counts depend on the partition, also per force evaluation.
+Wall times are information only (shared machine). --quick: N = 20.
+"""
+from __future__ import annotations
+
+import argparse
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+REPO = HERE.parents[2]
+sys.path.insert(0, str(REPO / "unittest" / "python"))
+sys.path.insert(0, str(REPO / "tools"))
+from lammps_run import LMP, mpirun_prefix, parse_thermo  # noqa: E402
+from progress import Progress  # noqa: E402
+
+LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+RSS = re.compile(r"PEAKRSS (\d+)")
+
+DECK = """\
+# clamped cube of {N}^3 particles under gravity (examples/benchmarks/solver/cube.py)
+units           si
+boundary        s s s
+atom_style      peri
+atom_modify     map array
+variable        a equal 0.01
+variable        K equal 1.0e7
+variable        G equal 6.0e6
+variable        rho equal 1000
+variable        horizon equal 3.0015*v_a
+neighbor        $(0.5*v_a) bin
+lattice         sc ${{a}}
+region          cube block -0.25 {hi} -0.25 {hi} -0.25 {hi} units lattice
+create_box      1 cube
+create_atoms    1 region cube
+set             group all density ${{rho}}
+set             group all volume $(v_a^3)
+region          clampzone block INF INF INF INF INF 2.5 units lattice
+group           clamp region clampzone
+group           free subtract all clamp
+fix             grav free gravity 9.81 vector 0 0 -1
+pair_style      peri/nosb
+pair_coeff      * * linear ${{K}} ${{G}} ${{horizon}} 0.5 0.0 break no
+compute         top free reduce ave z
+variable        sag equal c_top-{zmid}*v_a
+
+compute         nosb all nosb/atom
+compute         dtmin all reduce min c_nosb[11]
+thermo_style    custom step c_dtmin
+thermo_modify   format float %.10g
+run             0
+variable        dtexp equal $(c_dtmin:%.10g)
+print           "EXPLICIT_STEP ${{dtexp}}"
+uncompute       dtmin
+uncompute       nosb
+
+fix             integrate free sissm
+timestep        $(100*v_dtexp)
+thermo_style    custom step time v_sag cpu f_integrate[1] f_integrate[2] f_integrate[4] &
+                f_integrate[5] f_integrate[6] f_integrate[7] f_integrate[8]
+thermo          1
+run             {steps}
+
+unfix           integrate
+fix             integrate free nve
+timestep        ${{dtexp}}
+thermo_style    custom step cpu
+thermo          5
+run             5
+"""
+
+
+def run(N: int, ranks: int, steps: int, workdir: Path) -> dict:
+    workdir.mkdir(parents=True, exist_ok=True)
+    deck = workdir / "in.cube"
+    deck.write_text(DECK.format(N=N, hi=N - 0.75, zmid=(N + 2) / 2, steps=steps))
+    log = workdir / "log.lammps"
+    cmd = mpirun_prefix(ranks) + ["/usr/bin/time", "-f", "PEAKRSS %M", str(LMP), "-in",
+                                  str(deck), "-log", str(log), "-echo", "log", "-nocite"]
+    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True,
+                          stdin=subprocess.DEVNULL)
+    text = log.read_text(errors="replace") if log.exists() else ""
+    out = dict(N=N, ranks=ranks, ok=proc.returncode == 0 and "ERROR" not in text,
+               rss=[int(v) for v in RSS.findall(proc.stderr)])
+    if not out["ok"]:
+        out["error"] = "\n".join((proc.stdout + proc.stderr).splitlines()[-15:])
+        return out
+    tables = parse_thermo(text)          # run 0, fix sissm, fix nve
+    loops = LOOP.findall(text)
+    t = tables[1]
+    out.update(
+        atoms=int(loops[1][3]), dtexp=float(re.search(r"EXPLICIT_STEP ([0-9.eE+-]+)", text)[1]),
+        loop=float(loops[1][0]), t_nve=float(loops[2][0]) / int(loops[2][2]),
+        evals=t["f_integrate[1]"][1:].astype(int), measure=t["f_integrate[2]"][1:],
+        krylov=t["f_integrate[7]"][1:].astype(int), newton=t["f_integrate[8]"][1:].astype(int),
+        unconverged=int(t["f_integrate[4]"][-1]), cutback=int(t["f_integrate[6]"][-1]),
+        substeps=t["f_integrate[5]"][1:].astype(int), sag=t["v_sag"][1:],
+        step_times=np.diff(t["CPU"]),
+        amg=[ln.split(": ", 1)[1] for ln in text.splitlines() if "precond amg:" in ln][:1],
+        warnings=[ln for ln in text.splitlines() if ln.startswith("WARNING")],
+        petsc=[ln for ln in (proc.stdout + proc.stderr).splitlines()
+               if "PETSC" in ln.upper() and "precond amg:" not in ln])
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--sizes", type=int, nargs="+")
+    ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--steps", type=int, default=3)
+    args = ap.parse_args()
+    sizes = args.sizes or ([20] if args.quick else [30, 46])
+    cases = [(N, r) for N in sizes for r in args.ranks]
+    progress = Progress(sum(N ** 3 / r for N, r in cases), "cube")
+    results = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for N, r in cases:
+            results.append(run(N, r, args.steps, Path(tmp) / f"cube{N}-{r}"))
+            progress.step(f"{N}^3 on {r} rank(s)", weight=N ** 3 / r)
+    progress.done()
+
+    print(f"clamped soft cube under gravity, fix sissm defaults (precond amg, iterations 100, "
+          f"tolerance 1e-6, unconverged cutback), dt = 100 x the explicit estimate, "
+          f"{args.steps} steps")
+    hdr = (f"{'N^3':>6} {'atoms':>7} {'ranks':>5} {'dt (s)':>10} {'evals/step':>16} "
+           f"{'Newton/step':>12} {'CG/step':>14} {'CG/Newton':>9} {'unconv/cut':>10} "
+           f"{'loop (s)':>9} {'evals x t_nve':>13} {'peak RSS/rank (GB)':>18}")
+    print(hdr)
+    print("-" * len(hdr))
+    for r in results:
+        if not r["ok"]:
+            print(f"{r['N']:>4}^3 {'':>7} {r['ranks']:>5}  FAILED (peak RSS "
+                  f"{max(r['rss'], default=0) / 1e6:.2f} GB):\n{r['error']}")
+            continue
+        ev = "/".join(str(v) for v in r["evals"])
+        nw = "/".join(str(v) for v in r["newton"])
+        cg = "/".join(str(v) for v in r["krylov"])
+        per = r["krylov"].sum() / max(r["newton"].sum(), 1)
+        rss = "/".join(f"{v / 1e6:.2f}" for v in sorted(r["rss"], reverse=True))
+        print(f"{r['N']:>4}^3 {r['atoms']:>7} {r['ranks']:>5} {100 * r['dtexp']:>10.4g} {ev:>16} "
+              f"{nw:>12} {cg:>14} {per:>9.1f} {r['unconverged']:>4}/{r['cutback']:<5} "
+              f"{r['loop']:>9.2f} {r['evals'].sum() * r['t_nve']:>13.2f} {rss:>18}")
+    print()
+    for N in sizes:
+        by = {r["ranks"]: r for r in results if r["N"] == N and r["ok"]}
+        if 1 in by and 2 in by:
+            a, b = by[1], by[2]
+            eff = a["loop"] / (2 * b["loop"])
+            pe_a = a["loop"] / (a["evals"].sum() + len(a["evals"]))
+            pe_b = b["loop"] / (b["evals"].sum() + len(b["evals"]))
+            nve = a["t_nve"] / (2 * b["t_nve"])
+            dsag = np.max(np.abs(a["sag"] - b["sag"]))
+            print(f"{N}^3: parallel efficiency t1/(2 t2) {eff:.2f} (loop time), "
+                  f"{pe_a / (2 * pe_b):.2f} per force evaluation of fix sissm, {nve:.2f} for "
+                  f"fix nve; mean sag of the free particles after each step (1 rank) "
+                  + ", ".join(f"{s:.6e}" for s in a["sag"])
+                  + f" m, largest difference 1 vs 2 ranks {dsag:.2e} m")
+    for r in results:
+        if r["ok"]:
+            print(f"{r['N']}^3 on {r['ranks']}: explicit estimate {r['dtexp']:.4g} s, t_nve "
+                  f"{r['t_nve'] * 1e3:.1f} ms, step times "
+                  + ", ".join(f"{s:.1f}" for s in r["step_times"]) + " s, measures "
+                  + ", ".join(f"{m:.2g}" for m in r["measure"])
+                  + (f"; {r['amg'][0]}" if r["amg"] else ""))
+            for w in r["warnings"] + r["petsc"]:
+                print(f"    {w[:200]}")
+
+
+if __name__ == "__main__":
+    main()
