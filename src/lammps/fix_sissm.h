@@ -88,6 +88,7 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   int solver;           // JACOBI sweeps or KRYLOV (Newton-CG)
   int precond_type;     // PRECOND_BLOCK (the SISSM blocks) or PRECOND_AMG (PETSc)
   std::string petsc_options;    // keyword petsc: options for PETSc's preconditioner
+  int precond_given;    // the keyword precond was given
   int unconverged;      // UNCONVERGED_*: what a step that misses the tolerance does
   int max_cutback;      // cutback: at most 2^max_cutback sub-steps
   int maxiter;          // force evaluations per step at most

@@ -130,6 +130,7 @@ void SissmAmg::build_pattern()
     }
   }
   nodes_ = count;
+  if (getenv("SISSM_DEBUG")) { int ng = 0; for (int i = nlocal; i < nall; i++) if (gnode[i] >= 0) ng++; fprintf(stderr, "rank %d: nodes %d offset %d blocks %zu springs %zu ghosts %d numbered %d\n", fix_->comm->me, count, offset, rows.size(), springs_.partner.size(), nall - nlocal, ng); }
   values_.assign(9 * rows.size(), 0.0);
   coords_.assign(3 * count, 0.0);
   b_.assign(3 * count, 0.0);

@@ -40,7 +40,7 @@ void start_petsc()
   check(PetscInitialize(&argc, &argv, nullptr, nullptr), "PetscInitialize");
   // PETSc's error handler prints a traceback and returns the code; the caller turns it into
   // a LAMMPS error
-  check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+  if (!getenv("SISSM_DEBUG")) check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
 }
 
 // The defaults, before the user's options: no squared graph on the first level

@@ -31,7 +31,9 @@ steps (enough for both explicit methods to rest), no block/100 row.
 from __future__ import annotations
 
 import argparse
+import datetime
 import re
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -44,6 +46,19 @@ sys.path.insert(0, str(REPO / "unittest" / "python"))
 sys.path.insert(0, str(REPO / "tools"))
 from lammps_run import parse_thermo, run_deck  # noqa: E402
 from progress import Progress  # noqa: E402
+
+
+def build_info() -> str:
+    """Which build ran: the commit, whether src/ differs from it, and the plugin's time stamp
+    (the numbers belong to that build)."""
+    def git(*a):
+        return subprocess.run(["git", "-C", str(REPO), *a], capture_output=True,
+                              text=True).stdout.strip()
+    so = REPO / "build" / "perisissmplugin.so"
+    stamp = (datetime.datetime.fromtimestamp(so.stat().st_mtime).strftime("%Y-%m-%d %H:%M")
+             if so.exists() else "?")
+    dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
+    return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
 
 CANTILEVER = REPO / "examples" / "cantilever"
 EXPLICIT_LOG = CANTILEVER / "log.21Nov26.cantilever.nosb.g++.1"
@@ -58,7 +73,7 @@ def sissm_deck() -> str:
     text = text.replace(old, old + " precond ${precond} unconverged ${unconv}")
     cols = "f_integrate[3] f_integrate[4]"
     assert text.count(cols) == 1, "the thermo_style line of in.cantilever.sissm changed"
-    return text.replace(cols, cols + " f_integrate[5] f_integrate[6] f_integrate[7] f_integrate[8]")
+    return text.replace(cols, cols + " f_integrate[5] f_integrate[6] f_integrate[7] f_integrate[8] f_integrate[9]")
 
 
 def run(name: str, deck: str, workdir: Path, ranks: int, variables: dict):
@@ -83,6 +98,7 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--ranks", type=int, default=1)
     args = ap.parse_args()
+    build_start = build_info()
     nexplicit = 3000 if args.quick else 6000
 
     sissm = sissm_deck()
@@ -121,6 +137,10 @@ def main():
     reft = ref_run.thermo[-1]
     ref = float(reft["v_defl"][-1])
     explicit_log = float(parse_thermo(EXPLICIT_LOG.read_text())[-1]["v_defl"][-1])
+    build_end = build_info()
+    print(build_start)
+    if build_end != build_start:
+        print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
     print(f"examples/cantilever (40 x 8 x 8 free particles, 2752 atoms), {args.ranks} rank(s)")
     print(f"reference static deflection: {ref:.10g} m (fix sissm precond amg, tolerance 1e-8, "
           f"dt 1000 s, 2 steps; step deflections "
@@ -146,7 +166,7 @@ def main():
         row = dict(name=name, kind=kind, ok=res.ok, note="")
         if not res.ok:
             err = (res.errors or ["(no ERROR line)"])[0]
-            row["note"] = err[:160]
+            row["note"] = err
             rows.append(row)
             continue
         t = res.thermo[-1]
@@ -166,6 +186,7 @@ def main():
             row["krylov"] = [int(e) for e in t["f_integrate[7]"][1:]]
             row["unconverged"] = int(t["f_integrate[4]"][-1])
             row["cutback"] = int(t["f_integrate[6]"][-1])
+            row["fallback"] = int(t["f_integrate[9]"][-1])
             row["warnings"] = len(res.warnings)
         else:
             evals = t["Step"].copy()
@@ -191,7 +212,7 @@ def main():
     for r in rows:
         dt = out[r["name"]][2].get("dt", {"nosb": 6e-5, "lps": 1e-4}.get(r["kind"]))
         if not r["ok"]:
-            print(f"{r['name']:<11} {dt:>8.3g}  FAILED: {r['note']}")
+            print(f"{r['name']:<11} {dt:>8.3g}  FAILED (see below)")
             continue
         ev_ratio = r["evals"] / base["evals"]
         wall_ratio = r["wall"] / base["wall"]
@@ -204,12 +225,13 @@ def main():
         if r["ok"] and r["kind"] == "sissm":
             print(f"{r['name']}: steps 1..{len(r['steps'])}: force evaluations {r['steps']}, "
                   f"Newton steps {r['newton']}, CG iterations {r['krylov']}; unconverged steps "
-                  f"{r['unconverged']}, steps cut back {r['cutback']}")
+                  f"{r['unconverged']}, steps cut back {r['cutback']}, steps redone with the "
+                  f"other preconditioner {r['fallback']}")
         if r["ok"] and r["kind"] == "lps":
             print(f"{r['name']}: rest measured against its own final deflection "
                   f"{r['final']:.8g} m ({r['final_vs_ref']:+.1%} from the peri/nosb reference: "
                   "another discretization)")
-        if r["note"] and r["ok"]:
+        if r["note"]:
             print(f"{r['name']}: {r['note']}")
     print("evaluations: fix sissm sum of (f_integrate[1] + 1) per step up to the rest row; "
           "fix nve one per step (rows every 10 steps)")

@@ -3,31 +3,34 @@
 MPI ranks: evaluations per step and parallel efficiency (issue 11).
 
     /usr/bin/python3 examples/benchmarks/solver/cube.py [--quick] [--sizes 30 46] [--steps 3]
+                                                        [--precond amg block] [--ranks 1 2]
 
 Scene: N^3 particles on a simple cubic lattice (a = 10 mm), pair_style peri/nosb linear with the
 soft solid of examples/cantilever (K = 10 MPa, G = 6 MPa, rho = 1000 kg/m^3; bonds unbreakable),
 horizon 3.0015 a; the bottom three layers (one horizon) are clamped (outside the integrated
 group), gravity acts on the rest. (A steel-like cube would sag under gravity by ~1e-6 particle
 sizes, the solver's tolerance: its steps would converge at the first residual and measure
-nothing. The soft solid sags by ~1e-2 a, and the step of 100 x the explicit limit is about two
+nothing. The soft solid sags by ~1e-3 a, and the step of 100 x the explicit limit is about two
 wave crossings of the cube.) The explicit step is the estimate of compute nosb/atom column 11
-(smallest over the atoms, `run 0`); dt = 100 x that. Then STEPS steps of `fix sissm` with its
-defaults (precond amg, iterations 100, tolerance 1e-6, unconverged cutback), thermo every step,
-and 5 steps of fix nve at the explicit step on the same cube (the time of one force
-evaluation, t_nve).
+(smallest over the atoms, `run 0`); dt = 100 x that. Then STEPS steps of `fix sissm precond
+amg|block`, otherwise with the fix's defaults (iterations 100, tolerance 1e-6, unconverged
+cutback), thermo every step, and 5 steps of fix nve at the explicit step on the same cube
+(t_nve: the time of one plain force evaluation). Each size runs with each preconditioner on 1
+and 2 ranks (a build that refuses precond amg on 2 ranks gets its error printed in the table).
 
-Printed per size and rank count: the explicit estimate and dt, force evaluations per step
-(f_ID[1]; + 1 for the regular evaluation ending each step is not included), Newton steps and CG
-iterations per step (f_ID[8], f_ID[7]), CG per Newton step, unconverged steps / steps cut back
-(f_ID[4], f_ID[6]), fix sissm's loop time, the time those evaluations alone would take
-(evaluations x t_nve: the rest is assembly, AMG set-up and applications), and the peak resident
-memory per rank (/usr/bin/time). Parallel efficiency t1 / (2 t2) of the loop time and, since the
-AMG hierarchy and with it the CG counts depend on the partition, also per force evaluation.
-Wall times are information only (shared machine). --quick: N = 20.
+Printed per run: the explicit estimate and dt, force evaluations per step (f_ID[1]; the regular
+evaluation that ends each step is not included), Newton steps and CG iterations per step
+(f_ID[8], f_ID[7]), CG per Newton step, unconverged steps / steps cut back / steps redone with
+the other preconditioner (f_ID[4], [6], [9]), fix sissm's loop time, the time its evaluations
+alone would take (evaluations x t_nve: the rest is the preconditioner's assembly, set-up and
+applications), and the peak resident memory per rank (/usr/bin/time). Parallel efficiency
+t1 / (2 t2) of the loop time, and of fix nve for comparison. Wall times are information only
+(shared machine). --quick: N = 20.
 """
 from __future__ import annotations
 
 import argparse
+import datetime
 import re
 import subprocess
 import sys
@@ -42,6 +45,19 @@ sys.path.insert(0, str(REPO / "unittest" / "python"))
 sys.path.insert(0, str(REPO / "tools"))
 from lammps_run import LMP, mpirun_prefix, parse_thermo  # noqa: E402
 from progress import Progress  # noqa: E402
+
+
+def build_info() -> str:
+    """Which build ran: the commit, whether src/ differs from it, and the plugin's time stamp
+    (the numbers belong to that build)."""
+    def git(*a):
+        return subprocess.run(["git", "-C", str(REPO), *a], capture_output=True,
+                              text=True).stdout.strip()
+    so = REPO / "build" / "perisissmplugin.so"
+    stamp = (datetime.datetime.fromtimestamp(so.stat().st_mtime).strftime("%Y-%m-%d %H:%M")
+             if so.exists() else "?")
+    dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
+    return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
 
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 RSS = re.compile(r"PEAKRSS (\d+)")
@@ -83,10 +99,10 @@ print           "EXPLICIT_STEP ${{dtexp}}"
 uncompute       dtmin
 uncompute       nosb
 
-fix             integrate free sissm
+fix             integrate free sissm {opts}
 timestep        $(100*v_dtexp)
 thermo_style    custom step time v_sag cpu f_integrate[1] f_integrate[2] f_integrate[4] &
-                f_integrate[5] f_integrate[6] f_integrate[7] f_integrate[8]
+                f_integrate[5] f_integrate[6] f_integrate[7] f_integrate[8] f_integrate[9]
 thermo          1
 run             {steps}
 
@@ -99,20 +115,27 @@ run             5
 """
 
 
-def run(N: int, ranks: int, steps: int, workdir: Path) -> dict:
+VARIANTS = {"amg": "precond amg", "block": "precond block"}
+
+
+def run(N: int, ranks: int, variant: str, steps: int, workdir: Path) -> dict:
     workdir.mkdir(parents=True, exist_ok=True)
     deck = workdir / "in.cube"
-    deck.write_text(DECK.format(N=N, hi=N - 0.75, zmid=(N + 2) / 2, steps=steps))
+    deck.write_text(DECK.format(N=N, hi=N - 0.75, zmid=(N + 2) / 2, steps=steps,
+                                opts=VARIANTS[variant]))
     log = workdir / "log.lammps"
     cmd = mpirun_prefix(ranks) + ["/usr/bin/time", "-f", "PEAKRSS %M", str(LMP), "-in",
                                   str(deck), "-log", str(log), "-echo", "log", "-nocite"]
     proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True,
                           stdin=subprocess.DEVNULL)
     text = log.read_text(errors="replace") if log.exists() else ""
-    out = dict(N=N, ranks=ranks, ok=proc.returncode == 0 and "ERROR" not in text,
+    out = dict(N=N, ranks=ranks, variant=variant,
+               ok=proc.returncode == 0 and "ERROR" not in text,
                rss=[int(v) for v in RSS.findall(proc.stderr)])
     if not out["ok"]:
-        out["error"] = "\n".join((proc.stdout + proc.stderr).splitlines()[-15:])
+        errors = [ln for ln in (text + proc.stdout).splitlines() if ln.startswith("ERROR")]
+        out["error"] = errors[0] if errors else "\n".join(
+            (proc.stdout + proc.stderr).splitlines()[-15:])
         return out
     tables = parse_thermo(text)          # run 0, fix sissm, fix nve
     loops = LOOP.findall(text)
@@ -123,10 +146,12 @@ def run(N: int, ranks: int, steps: int, workdir: Path) -> dict:
         evals=t["f_integrate[1]"][1:].astype(int), measure=t["f_integrate[2]"][1:],
         krylov=t["f_integrate[7]"][1:].astype(int), newton=t["f_integrate[8]"][1:].astype(int),
         unconverged=int(t["f_integrate[4]"][-1]), cutback=int(t["f_integrate[6]"][-1]),
+        fallback=int(t["f_integrate[9]"][-1]),
         substeps=t["f_integrate[5]"][1:].astype(int), sag=t["v_sag"][1:],
         step_times=np.diff(t["CPU"]),
         amg=[ln.split(": ", 1)[1] for ln in text.splitlines() if "precond amg:" in ln][:1],
-        warnings=[ln for ln in text.splitlines() if ln.startswith("WARNING")],
+        warnings=[ln for ln in text.splitlines() if ln.startswith("WARNING") and
+                  ("sissm" in ln or "PETSc" in ln)],
         petsc=[ln for ln in (proc.stdout + proc.stderr).splitlines()
                if "PETSC" in ln.upper() and "precond amg:" not in ln])
     return out
@@ -137,63 +162,70 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--sizes", type=int, nargs="+")
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--precond", nargs="+", default=list(VARIANTS), choices=list(VARIANTS))
     ap.add_argument("--steps", type=int, default=3)
     args = ap.parse_args()
+    build_start = build_info()
     sizes = args.sizes or ([20] if args.quick else [30, 46])
-    cases = [(N, r) for N in sizes for r in args.ranks]
-    progress = Progress(sum(N ** 3 / r for N, r in cases), "cube")
+    cases = [(N, v, r) for N in sizes for v in args.precond for r in args.ranks]
+    progress = Progress(sum(N ** 3 / r for N, v, r in cases), "cube")
     results = []
     with tempfile.TemporaryDirectory() as tmp:
-        for N, r in cases:
-            results.append(run(N, r, args.steps, Path(tmp) / f"cube{N}-{r}"))
-            progress.step(f"{N}^3 on {r} rank(s)", weight=N ** 3 / r)
+        for N, v, r in cases:
+            results.append(run(N, r, v, args.steps, Path(tmp) / f"cube{N}-{v}-{r}"))
+            progress.step(f"{N}^3 {v} on {r} rank(s)", weight=N ** 3 / r)
     progress.done()
 
-    print(f"clamped soft cube under gravity, fix sissm defaults (precond amg, iterations 100, "
-          f"tolerance 1e-6, unconverged cutback), dt = 100 x the explicit estimate, "
-          f"{args.steps} steps")
-    hdr = (f"{'N^3':>6} {'atoms':>7} {'ranks':>5} {'dt (s)':>10} {'evals/step':>16} "
-           f"{'Newton/step':>12} {'CG/step':>14} {'CG/Newton':>9} {'unconv/cut':>10} "
-           f"{'loop (s)':>9} {'evals x t_nve':>13} {'peak RSS/rank (GB)':>18}")
+    build_end = build_info()
+    print(build_start)
+    if build_end != build_start:
+        print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
+    print(f"clamped soft cube under gravity, fix sissm precond amg|block, otherwise its defaults "
+          f"(iterations 100, tolerance 1e-6, unconverged cutback), dt = 100 x the explicit "
+          f"estimate, {args.steps} steps")
+    hdr = (f"{'N^3':>6} {'atoms':>7} {'precond':>7} {'ranks':>5} {'dt (s)':>10} "
+           f"{'evals/step':>16} {'Newton/step':>12} {'CG/step':>14} {'CG/Newton':>9} "
+           f"{'unc/cut/fb':>10} {'loop (s)':>9} {'evals x t_nve':>13} {'peak RSS/rank (GB)':>18}")
     print(hdr)
     print("-" * len(hdr))
     for r in results:
         if not r["ok"]:
-            print(f"{r['N']:>4}^3 {'':>7} {r['ranks']:>5}  FAILED (peak RSS "
-                  f"{max(r['rss'], default=0) / 1e6:.2f} GB):\n{r['error']}")
+            print(f"{r['N']:>4}^3 {'':>7} {r['variant']:>7} {r['ranks']:>5}  FAILED (peak RSS "
+                  f"{max(r['rss'], default=0) / 1e6:.2f} GB): {r['error']}")
             continue
         ev = "/".join(str(v) for v in r["evals"])
         nw = "/".join(str(v) for v in r["newton"])
         cg = "/".join(str(v) for v in r["krylov"])
         per = r["krylov"].sum() / max(r["newton"].sum(), 1)
         rss = "/".join(f"{v / 1e6:.2f}" for v in sorted(r["rss"], reverse=True))
-        print(f"{r['N']:>4}^3 {r['atoms']:>7} {r['ranks']:>5} {100 * r['dtexp']:>10.4g} {ev:>16} "
-              f"{nw:>12} {cg:>14} {per:>9.1f} {r['unconverged']:>4}/{r['cutback']:<5} "
+        unc = f"{r['unconverged']}/{r['cutback']}/{r['fallback']}"
+        print(f"{r['N']:>4}^3 {r['atoms']:>7} {r['variant']:>7} {r['ranks']:>5} "
+              f"{100 * r['dtexp']:>10.4g} {ev:>16} {nw:>12} {cg:>14} {per:>9.1f} {unc:>10} "
               f"{r['loop']:>9.2f} {r['evals'].sum() * r['t_nve']:>13.2f} {rss:>18}")
+    print("unc/cut/fb: steps that missed the tolerance / steps cut back / steps redone with the "
+          "other preconditioner (f_ID[4], [6], [9]); evals x t_nve: the loop time the force "
+          "evaluations alone would take")
     print()
     for N in sizes:
-        by = {r["ranks"]: r for r in results if r["N"] == N and r["ok"]}
-        if 1 in by and 2 in by:
-            a, b = by[1], by[2]
-            eff = a["loop"] / (2 * b["loop"])
-            pe_a = a["loop"] / (a["evals"].sum() + len(a["evals"]))
-            pe_b = b["loop"] / (b["evals"].sum() + len(b["evals"]))
-            nve = a["t_nve"] / (2 * b["t_nve"])
-            dsag = np.max(np.abs(a["sag"] - b["sag"]))
-            print(f"{N}^3: parallel efficiency t1/(2 t2) {eff:.2f} (loop time), "
-                  f"{pe_a / (2 * pe_b):.2f} per force evaluation of fix sissm, {nve:.2f} for "
-                  f"fix nve; mean sag of the free particles after each step (1 rank) "
-                  + ", ".join(f"{s:.6e}" for s in a["sag"])
-                  + f" m, largest difference 1 vs 2 ranks {dsag:.2e} m")
+        for v in args.precond:
+            by = {r["ranks"]: r for r in results if r["N"] == N and r["variant"] == v and r["ok"]}
+            if 1 in by and 2 in by:
+                a, b = by[1], by[2]
+                dsag = np.max(np.abs(a["sag"] - b["sag"]))
+                print(f"{N}^3 {v}: parallel efficiency t1/(2 t2) {a['loop'] / (2 * b['loop']):.2f} "
+                      f"(fix sissm loop time; fix nve {a['t_nve'] / (2 * b['t_nve']):.2f}); "
+                      f"evaluations 1 rank {a['evals'].sum()}, 2 ranks {b['evals'].sum()}; "
+                      f"largest difference of the mean sag, 1 vs 2 ranks {dsag:.2e} m")
     for r in results:
         if r["ok"]:
-            print(f"{r['N']}^3 on {r['ranks']}: explicit estimate {r['dtexp']:.4g} s, t_nve "
-                  f"{r['t_nve'] * 1e3:.1f} ms, step times "
+            print(f"{r['N']}^3 {r['variant']} on {r['ranks']}: explicit estimate {r['dtexp']:.4g} s, "
+                  f"t_nve {r['t_nve'] * 1e3:.1f} ms, step times "
                   + ", ".join(f"{s:.1f}" for s in r["step_times"]) + " s, measures "
-                  + ", ".join(f"{m:.2g}" for m in r["measure"])
+                  + ", ".join(f"{m:.2g}" for m in r["measure"]) + ", mean sag "
+                  + ", ".join(f"{m:.4e}" for m in r["sag"]) + " m"
                   + (f"; {r['amg'][0]}" if r["amg"] else ""))
             for w in r["warnings"] + r["petsc"]:
-                print(f"    {w[:200]}")
+                print(f"    {w[:240]}")
 
 
 if __name__ == "__main__":

@@ -24,7 +24,9 @@ of force evaluations. --quick: n = 8, L = 20 and 40.
 from __future__ import annotations
 
 import argparse
+import datetime
 import re
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -35,6 +37,19 @@ sys.path.insert(0, str(REPO / "unittest" / "python"))
 sys.path.insert(0, str(REPO / "tools"))
 from lammps_run import run_deck  # noqa: E402
 from progress import Progress  # noqa: E402
+
+
+def build_info() -> str:
+    """Which build ran: the commit, whether src/ differs from it, and the plugin's time stamp
+    (the numbers belong to that build)."""
+    def git(*a):
+        return subprocess.run(["git", "-C", str(REPO), *a], capture_output=True,
+                              text=True).stdout.strip()
+    so = REPO / "build" / "perisissmplugin.so"
+    stamp = (datetime.datetime.fromtimestamp(so.stat().st_mtime).strftime("%Y-%m-%d %H:%M")
+             if so.exists() else "?")
+    dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
+    return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
 
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 FLOOR = re.compile(r"limits the convergence measure to about ([0-9.eE+-]+)")
@@ -75,7 +90,7 @@ STEP = """\
 fix             integrate free sissm iterations {iters} tolerance 1e-6 unconverged warn precond {precond}
 timestep        {dt}
 thermo_style    custom step v_defl cpu f_integrate[1] f_integrate[2] f_integrate[4] &
-                f_integrate[7] f_integrate[8]
+                f_integrate[7] f_integrate[8] f_integrate[9]
 thermo_modify   format float %.10g
 thermo          1
 run             1
@@ -101,6 +116,7 @@ def main():
     ap.add_argument("--dt", type=float, default=100.0)
     ap.add_argument("--iterations", type=int, default=5000)
     args = ap.parse_args()
+    build_start = build_info()
     sections = [8] if args.quick else [8, 4]
     lengths = [20, 40] if args.quick else [20, 40, 80, 160]
     preconds = ["amg", "block"]
@@ -122,6 +138,7 @@ def main():
                 row.update(atoms=int(loop[3]), loop=float(loop[0]),
                            evals=int(t["f_integrate[1]"][-1]), measure=float(t["f_integrate[2]"][-1]),
                            unconverged=int(t["f_integrate[4]"][-1]),
+                           fallback=int(t["f_integrate[9]"][-1]),
                            krylov=int(t["f_integrate[7]"][-1]), newton=int(t["f_integrate[8]"][-1]),
                            defl=float(t["v_defl"][-1]),
                            floor=float(floor[0]) if floor else 1e-6)
@@ -132,10 +149,14 @@ def main():
             progress.step(f"{n}x{n} L={L} {p}", weight=weight[(n, L, p)])
     progress.done()
 
+    build_end = build_info()
+    print(build_start)
+    if build_end != build_start:
+        print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
     print(f"clamped beams, one static step dt = {args.dt:g} s, fix sissm iterations "
           f"{args.iterations} tolerance 1e-6 unconverged warn, {args.ranks} rank(s)")
     hdr = (f"{'section':>7} {'L':>4} {'atoms':>6} {'precond':>7} {'evals':>6} {'Newton':>6} "
-           f"{'CG':>6} {'CG/Newton':>9} {'unconv':>6} {'measure':>9} {'attainable':>10} "
+           f"{'CG':>6} {'CG/Newton':>9} {'unc/fb':>6} {'measure':>9} {'attainable':>10} "
            f"{'tip defl (m)':>13} {'loop (s)':>9}")
     print(hdr)
     print("-" * len(hdr))
@@ -144,8 +165,10 @@ def main():
         if not r["ok"]:
             print(f"{head} {'':>6} {r['p']:>7}  FAILED: {r['error'][:120]}")
             continue
+        unc = f"{r['unconverged']}/{r['fallback']}"
         print(f"{head} {r['atoms']:>6} {r['p']:>7} {r['evals']:>6} {r['newton']:>6} "
-              f"{r['krylov']:>6} {r['per']:>9.1f} {r['unconverged']:>6} {r['measure']:>9.3g} "
+              f"{r['krylov']:>6} {r['per']:>9.1f} {unc:>6} "
+              f"{r['measure']:>9.3g} "
               f"{r['floor']:>10.3g} {r['defl']:>13.6e} {r['loop']:>9.2f}")
     print()
     lo, hi = lengths[0], lengths[-1]

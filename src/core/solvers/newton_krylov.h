@@ -28,8 +28,10 @@ struct KrylovWork {
   double *term = nullptr;
 };
 
+// energy_search: accept Newton steps on the step's incremental potential (see
+// newton_krylov.cpp) instead of on the residual norm
 SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, int maxiter,
-                                const KrylovWork &work);
+                                const KrylovWork &work, bool energy_search = false);
 
 }  // namespace PeriSISSM
 
