@@ -4,6 +4,7 @@ MPI ranks: evaluations per step and parallel efficiency (issue 11).
 
     /usr/bin/python3 examples/benchmarks/solver/cube.py [--quick] [--sizes 30 46] [--steps 3]
                                                         [--precond amg block] [--ranks 1 2]
+                                                        [--petsc "OPTIONS"]
 
 Scene: N^3 particles on a simple cubic lattice (a = 10 mm), pair_style peri/nosb linear with the
 soft solid of examples/cantilever (K = 10 MPa, G = 6 MPa, rho = 1000 kg/m^3; bonds unbreakable),
@@ -13,10 +14,12 @@ sizes, the solver's tolerance: its steps would converge at the first residual an
 nothing. The soft solid sags by ~1e-3 a, and the step of 100 x the explicit limit is about two
 wave crossings of the cube.) The explicit step is the estimate of compute nosb/atom column 11
 (smallest over the atoms, `run 0`); dt = 100 x that. Then STEPS steps of `fix sissm precond
-amg|block`, otherwise with the fix's defaults (iterations 100, tolerance 1e-6, unconverged
-cutback), thermo every step, and 5 steps of fix nve at the explicit step on the same cube
-(t_nve: the time of one plain force evaluation). Each size runs with each preconditioner on 1
-and 2 ranks (a build that refuses precond amg on 2 ranks gets its error printed in the table).
+amg|block iterations 1000 tolerance 1e-6 unconverged cutback` (every option given, so that the
+numbers do not follow the fix's defaults; a budget large enough for both preconditioners to
+converge a step without cutting it back), thermo every step, and 5 steps of fix nve at the
+explicit step on the same cube (t_nve: the time of one plain force evaluation). Each size runs
+with each preconditioner on 1 and 2 ranks (a build that refuses precond amg on 2 ranks gets its
+error printed in the table).
 
 Printed per run: the explicit estimate and dt, force evaluations per step (f_ID[1]; the regular
 evaluation that ends each step is not included), Newton steps and CG iterations per step
@@ -59,6 +62,7 @@ def build_info() -> str:
     dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
     return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
 
+
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 RSS = re.compile(r"PEAKRSS (\d+)")
 
@@ -99,7 +103,7 @@ print           "EXPLICIT_STEP ${{dtexp}}"
 uncompute       dtmin
 uncompute       nosb
 
-fix             integrate free sissm {opts}
+fix             integrate free sissm {opts} {common}
 timestep        $(100*v_dtexp)
 thermo_style    custom step time v_sag cpu f_integrate[1] f_integrate[2] f_integrate[4] &
                 f_integrate[5] f_integrate[6] f_integrate[7] f_integrate[8] f_integrate[9]
@@ -118,20 +122,27 @@ run             5
 VARIANTS = {"amg": "precond amg", "block": "precond block"}
 
 
-def run(N: int, ranks: int, variant: str, steps: int, workdir: Path) -> dict:
+COMMON = "iterations 1000 tolerance 1e-6 unconverged cutback"
+
+
+def run(N: int, ranks: int, variant: str, steps: int, workdir: Path, petsc: str = "") -> dict:
     workdir.mkdir(parents=True, exist_ok=True)
     deck = workdir / "in.cube"
     deck.write_text(DECK.format(N=N, hi=N - 0.75, zmid=(N + 2) / 2, steps=steps,
-                                opts=VARIANTS[variant]))
+                                opts=VARIANTS[variant] + (f' petsc "{petsc}"' if petsc and
+                                                          variant == "amg" else ""),
+                                common=COMMON))
     log = workdir / "log.lammps"
-    cmd = mpirun_prefix(ranks) + ["/usr/bin/time", "-f", "PEAKRSS %M", str(LMP), "-in",
+    rssfile = workdir / "rss.txt"          # one line per rank, appended by /usr/bin/time
+    cmd = mpirun_prefix(ranks) + ["/usr/bin/time", "-a", "-o", str(rssfile), "-f", "PEAKRSS %M",
+                                  str(LMP), "-in",
                                   str(deck), "-log", str(log), "-echo", "log", "-nocite"]
     proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True,
                           stdin=subprocess.DEVNULL)
     text = log.read_text(errors="replace") if log.exists() else ""
     out = dict(N=N, ranks=ranks, variant=variant,
                ok=proc.returncode == 0 and "ERROR" not in text,
-               rss=[int(v) for v in RSS.findall(proc.stderr)])
+               rss=[int(v) for v in RSS.findall(rssfile.read_text() if rssfile.exists() else "")])
     if not out["ok"]:
         errors = [ln for ln in (text + proc.stdout).splitlines() if ln.startswith("ERROR")]
         out["error"] = errors[0] if errors else "\n".join(
@@ -164,6 +175,7 @@ def main():
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--precond", nargs="+", default=list(VARIANTS), choices=list(VARIANTS))
     ap.add_argument("--steps", type=int, default=3)
+    ap.add_argument("--petsc", default="", help="PETSc options for precond amg")
     args = ap.parse_args()
     build_start = build_info()
     sizes = args.sizes or ([20] if args.quick else [30, 46])
@@ -172,7 +184,7 @@ def main():
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         for N, v, r in cases:
-            results.append(run(N, r, v, args.steps, Path(tmp) / f"cube{N}-{v}-{r}"))
+            results.append(run(N, r, v, args.steps, Path(tmp) / f"cube{N}-{v}-{r}", args.petsc))
             progress.step(f"{N}^3 {v} on {r} rank(s)", weight=N ** 3 / r)
     progress.done()
 
@@ -180,9 +192,9 @@ def main():
     print(build_start)
     if build_end != build_start:
         print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
-    print(f"clamped soft cube under gravity, fix sissm precond amg|block, otherwise its defaults "
-          f"(iterations 100, tolerance 1e-6, unconverged cutback), dt = 100 x the explicit "
-          f"estimate, {args.steps} steps")
+    print(f"clamped soft cube under gravity, fix sissm precond amg|block {COMMON}, "
+          f"dt = 100 x the explicit estimate, {args.steps} steps"
+          + (f', amg with petsc "{args.petsc}"' if args.petsc else ""))
     hdr = (f"{'N^3':>6} {'atoms':>7} {'precond':>7} {'ranks':>5} {'dt (s)':>10} "
            f"{'evals/step':>16} {'Newton/step':>12} {'CG/step':>14} {'CG/Newton':>9} "
            f"{'unc/cut/fb':>10} {'loop (s)':>9} {'evals x t_nve':>13} {'peak RSS/rank (GB)':>18}")
@@ -218,7 +230,8 @@ def main():
                       f"largest difference of the mean sag, 1 vs 2 ranks {dsag:.2e} m")
     for r in results:
         if r["ok"]:
-            print(f"{r['N']}^3 {r['variant']} on {r['ranks']}: explicit estimate {r['dtexp']:.4g} s, "
+            print(f"{r['N']}^3 {r['variant']} on {r['ranks']}: explicit estimate "
+                  f"{r['dtexp']:.4g} s, "
                   f"t_nve {r['t_nve'] * 1e3:.1f} ms, step times "
                   + ", ".join(f"{s:.1f}" for s in r["step_times"]) + " s, measures "
                   + ", ".join(f"{m:.2g}" for m in r["measure"]) + ", mean sag "

@@ -2,6 +2,7 @@
 """Krylov iterations per Newton step of fix sissm against the length of a clamped beam (issue 11).
 
     /usr/bin/python3 examples/benchmarks/solver/scaling.py [--quick] [--ranks N]
+        [--sections 8 4] [--lengths 20 40 80 160] [--precond amg block] [--petsc "OPTIONS"]
 
 Beams of square section n x n particles (n = 8, the section of examples/cantilever, and n = 4)
 and free length L = 20, 40, 80, 160 particles; the material, lattice (a = 10 mm), horizon
@@ -19,7 +20,9 @@ Printed per beam: force evaluations of the step (f_ID[1]), Newton steps (f_ID[8]
 the convergence measure (f_ID[2]) with the step's attainable tolerance (the round-off floor fix
 sissm warns about at this step size), the tip deflection and the loop time (information only);
 then the ratio L = 160 / L = 20 of CG iterations per Newton step (goal of the issue: < 1.5) and
-of force evaluations. --quick: n = 8, L = 20 and 40.
+of force evaluations. The unconverged counter is printed with the steps redone with the other
+preconditioner (f_ID[9], "unc/fb"). --petsc passes options to precond amg (to try PETSc
+settings on the same beams). --quick: n = 8, L = 20 and 40.
 """
 from __future__ import annotations
 
@@ -50,6 +53,7 @@ def build_info() -> str:
              if so.exists() else "?")
     dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
     return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
+
 
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 FLOOR = re.compile(r"limits the convergence measure to about ([0-9.eE+-]+)")
@@ -87,7 +91,8 @@ pair_coeff      * * linear ${{K}} ${{G}} ${{horizon}} 0.5 0.0 break no
 """
 
 STEP = """\
-fix             integrate free sissm iterations {iters} tolerance 1e-6 unconverged warn precond {precond}
+fix             integrate free sissm iterations {iters} tolerance 1e-6 unconverged warn &
+                precond {precond}{petsc}
 timestep        {dt}
 thermo_style    custom step v_defl cpu f_integrate[1] f_integrate[2] f_integrate[4] &
                 f_integrate[7] f_integrate[8] f_integrate[9]
@@ -105,8 +110,9 @@ def geometry(n: int, L: int) -> str:
                            zmid=(n - 1) / 2, g=g)
 
 
-def beam(n: int, L: int, precond: str, dt: float, iters: int) -> str:
-    return geometry(n, L) + STEP.format(precond=precond, dt=dt, iters=iters)
+def beam(n: int, L: int, precond: str, dt: float, iters: int, petsc: str = "") -> str:
+    extra = f' petsc "{petsc}"' if petsc and precond == "amg" else ""
+    return geometry(n, L) + STEP.format(precond=precond, dt=dt, iters=iters, petsc=extra)
 
 
 def main():
@@ -115,11 +121,16 @@ def main():
     ap.add_argument("--ranks", type=int, default=1)
     ap.add_argument("--dt", type=float, default=100.0)
     ap.add_argument("--iterations", type=int, default=5000)
+    ap.add_argument("--sections", type=int, nargs="+")
+    ap.add_argument("--lengths", type=int, nargs="+")
+    ap.add_argument("--precond", nargs="+", choices=["amg", "block"])
+    ap.add_argument("--petsc", default="", help="PETSc options for precond amg (fix sissm's "
+                    "petsc keyword), e.g. \"-pc_gamg_threshold 0.01\"")
     args = ap.parse_args()
     build_start = build_info()
-    sections = [8] if args.quick else [8, 4]
-    lengths = [20, 40] if args.quick else [20, 40, 80, 160]
-    preconds = ["amg", "block"]
+    sections = args.sections or ([8] if args.quick else [8, 4])
+    lengths = args.lengths or ([20, 40] if args.quick else [20, 40, 80, 160])
+    preconds = args.precond or ["amg", "block"]
     cases = [(n, L, p) for n in sections for p in preconds for L in lengths]
     # weights for the time estimate: atoms x (a guess of) evaluations
     weight = {c: c[1] * c[0] ** 2 * (1 if c[2] == "amg" else c[1] / 8) for c in cases}
@@ -128,7 +139,8 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for n, L, p in cases:
             work = Path(tmp) / f"beam{n}x{L}-{p}"
-            res = run_deck(beam(n, L, p, args.dt, args.iterations), work, nprocs=args.ranks,
+            res = run_deck(beam(n, L, p, args.dt, args.iterations, args.petsc), work,
+                           nprocs=args.ranks,
                            timeout=None, check=False)
             row = dict(n=n, L=L, p=p, ok=res.ok)
             if res.ok:
@@ -136,7 +148,8 @@ def main():
                 loop = LOOP.findall(res.log)[-1]
                 floor = FLOOR.findall(res.log)
                 row.update(atoms=int(loop[3]), loop=float(loop[0]),
-                           evals=int(t["f_integrate[1]"][-1]), measure=float(t["f_integrate[2]"][-1]),
+                           evals=int(t["f_integrate[1]"][-1]),
+                           measure=float(t["f_integrate[2]"][-1]),
                            unconverged=int(t["f_integrate[4]"][-1]),
                            fallback=int(t["f_integrate[9]"][-1]),
                            krylov=int(t["f_integrate[7]"][-1]), newton=int(t["f_integrate[8]"][-1]),
@@ -154,7 +167,8 @@ def main():
     if build_end != build_start:
         print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
     print(f"clamped beams, one static step dt = {args.dt:g} s, fix sissm iterations "
-          f"{args.iterations} tolerance 1e-6 unconverged warn, {args.ranks} rank(s)")
+          f"{args.iterations} tolerance 1e-6 unconverged warn, {args.ranks} rank(s)"
+          + (f', amg with petsc "{args.petsc}"' if args.petsc else ""))
     hdr = (f"{'section':>7} {'L':>4} {'atoms':>6} {'precond':>7} {'evals':>6} {'Newton':>6} "
            f"{'CG':>6} {'CG/Newton':>9} {'unc/fb':>6} {'measure':>9} {'attainable':>10} "
            f"{'tip defl (m)':>13} {'loop (s)':>9}")
@@ -184,8 +198,10 @@ def main():
                       f"{b['evals'] / a['evals']:.2f}{note}")
         a, b = by.get((hi, "amg")), by.get((hi, "block"))
         if a and b:
-            print(f"  {n}x{n} block/amg at L = {hi}: force evaluations {b['evals'] / a['evals']:.1f}, "
-                  f"loop time {b['loop'] / a['loop']:.1f}")
+            bound = " (block did not converge: lower bounds)" if b["unconverged"] else ""
+            print(f"  {n}x{n} block/amg at L = {hi}: force evaluations "
+                  f"{b['evals'] / a['evals']:.1f}, "
+                  f"loop time {b['loop'] / a['loop']:.1f}{bound}")
 
 
 if __name__ == "__main__":

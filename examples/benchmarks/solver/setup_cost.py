@@ -3,6 +3,7 @@
 force evaluations (issue 11).
 
     /usr/bin/python3 examples/benchmarks/solver/setup_cost.py [--quick] [--ranks N] [--k K1 K2]
+                                                              [--petsc "OPTIONS"]
 
 PETSc is never finalized (a plugin has no hook before MPI_Finalize), so -log_view prints
 nothing, and the fix's output vector counts evaluations, not seconds. The costs are therefore
@@ -30,7 +31,7 @@ per-particle block pass that fix sissm adds to a force evaluation):
 S_P is the per-step set-up (amg: assembly + PCSetUp of GAMG; none: the assembly), A_P the time
 of one application beyond a block application. Both are printed in seconds, in t_eval and in
 t_nve. Wall-time numbers on a shared machine: information, not a measure (the evaluation counts
-are). --quick: the cantilever only, 6 steps.
+are). 21 steps per configuration (20 timed); --quick: the cantilever only, 6 steps.
 """
 from __future__ import annotations
 
@@ -66,15 +67,19 @@ def build_info() -> str:
     dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
     return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
 
+
 DT = 7.3e-3
 VARIANTS = {"block": "precond block", "amg": "precond amg",
             "none": 'precond amg petsc "-pc_type none"'}
 
 
-def sissm_deck(n: int, L: int, k: int, variant: str, steps: int) -> str:
+def sissm_deck(n: int, L: int, k: int, variant: str, steps: int, petsc: str = "") -> str:
+    opts = VARIANTS[variant]
+    if petsc and variant == "amg":
+        opts += f' petsc "{petsc}"'
     return geometry(n, L) + f"""
 timestep        {DT}
-fix             integrate free sissm iterations {k} tolerance 0 unconverged warn {VARIANTS[variant]}
+fix             integrate free sissm iterations {k} tolerance 0 unconverged warn {opts}
 thermo_style    custom step cpu f_integrate[1] f_integrate[2] f_integrate[7] f_integrate[8]
 thermo_modify   format float %.10g
 thermo          1
@@ -97,10 +102,11 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--ranks", type=int, default=1)
     ap.add_argument("--k", type=int, nargs=2, default=[3, 43], metavar=("K1", "K2"))
+    ap.add_argument("--petsc", default="", help="PETSc options for precond amg")
     args = ap.parse_args()
     build_start = build_info()
     beams = [(8, 40)] if args.quick else [(8, 40), (8, 160)]
-    steps = 6 if args.quick else 11
+    steps = 6 if args.quick else 21
     steps_nve = 100
     k1, k2 = args.k
     configs = [(k, v) for v in VARIANTS for k in (k1, k2)]
@@ -115,25 +121,30 @@ def main():
             progress.step(f"{n}x{n}x{L} nve", weight=L)
             runs, matrix = {}, {}
             for k, v in configs:
-                res = run_deck(sissm_deck(n, L, k, v, steps), work / f"{v}-{k}",
+                res = run_deck(sissm_deck(n, L, k, v, steps, args.petsc), work / f"{v}-{k}",
                                nprocs=args.ranks, timeout=None)
                 t = res.thermo[-1]
                 times = np.diff(t["CPU"])
                 evals = t["f_integrate[1]"][1:]
-                assert np.all(evals == k), f"{v} k={k}: steps used {evals} evaluations"
+                # the budget may end a step one evaluation early (no room for a CG product
+                # and the check of its Newton iterate)
+                assert np.all((evals <= k) & (evals >= k - 1)), f"{v} k={k}: {evals}"
                 applies = (t["f_integrate[7]"] + t["f_integrate[8]"])[2:]
-                runs[k, v] = dict(first=times[0], t=float(np.median(times[1:])),
-                                  a=float(np.median(applies)),
+                runs[k, v] = dict(first=times[0], times=times[1:], evals=evals[1:],
+                                  t=float(np.median(times[1:])), e=float(np.median(evals[1:])),
+                                  a=float(np.median(applies)), applies=applies,
                                   newton=float(np.median(t["f_integrate[8]"][2:])))
                 matrix[v] = [ln.split(": ", 1)[1] for ln in res.log.splitlines()
                              if "precond amg:" in ln][:1]
                 progress.step(f"{n}x{n}x{L} {v} k={k}", weight=L)
-            t_eval = (runs[k2, "block"]["t"] - runs[k1, "block"]["t"]) / (k2 - k1)
+            b1, b2 = runs[k1, "block"], runs[k2, "block"]
+            t_eval = (b2["t"] - b1["t"]) / (b2["e"] - b1["e"])
             fits = {}
             for v in ("amg", "none"):
                 r1, r2 = runs[k1, v], runs[k2, v]
-                y1 = r1["t"] - (k1 + 1) * t_eval
-                y2 = r2["t"] - (k2 + 1) * t_eval
+                # per step: time beyond its evaluations, medians over the steps
+                y1 = float(np.median(r1["times"] - (r1["evals"] + 1) * t_eval))
+                y2 = float(np.median(r2["times"] - (r2["evals"] + 1) * t_eval))
                 A = (y2 - y1) / (r2["a"] - r1["a"])
                 S = y1 - A * r1["a"]
                 first = np.mean([runs[k, v]["first"] - runs[k, v]["t"] for k in (k1, k2)])
@@ -148,7 +159,8 @@ def main():
         print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
     print(f"cost of fix sissm precond amg in force evaluations: clamped beams at dt = {DT:g} s, "
           f"k = {k1} and {k2} evaluations per step, median of {steps - 1} steps, "
-          f"{args.ranks} rank(s); wall-time derived (information only)")
+          f"{args.ranks} rank(s); wall-time derived (information only)"
+          + (f'; amg with petsc "{args.petsc}"' if args.petsc else ""))
     for r in results:
         te, tn = r["t_eval"], r["t_nve"]
         print()
@@ -162,14 +174,14 @@ def main():
             f"{r['runs'][k, v]['t']:>14.4f}" for k in (k1, k2) for v in VARIANTS))
         print(f"  {'applications per step (a)':<34}" + "".join(
             f"{r['runs'][k, v]['a']:>14.0f}" for k in (k1, k2) for v in VARIANTS))
-        for v, what in (("amg", "assembly + GAMG set-up"), ("none", "assembly alone (pc none)")):
+        for v, what in (("amg", "amg (assembly + GAMG)"), ("none", "pc none (assembly only)")):
             f = r["fits"][v]
-            print(f"  {v:>5}: set-up per step S ({what}) {f['S']:8.3f} s = "
+            print(f"  {what:<24} set-up per step S        {f['S']:8.3f} s  = "
                   f"{f['S'] / te:7.1f} t_eval = {f['S'] / tn:7.1f} t_nve")
-            print(f"         one application beyond block, A      {f['A'] * 1e3:8.2f} ms = "
-                  f"{f['A'] / te:7.2f} t_eval = {f['A'] / tn:7.2f} t_nve")
-            print(f"         first step of a run, extra           {f['first']:8.3f} s = "
-                  f"{f['first'] / te:7.1f} t_eval")
+            print(f"  {'':<24} one application, A       {f['A'] * 1e3:8.2f} ms = "
+                  f"{f['A'] / te:7.2f} t_eval = {f['A'] / tn:7.2f} t_nve  (beyond a block one)")
+            print(f"  {'':<24} first step of a run      {f['first']:8.3f} s  = "
+                  f"{f['first'] / te:7.1f} t_eval  (extra)")
     if results:
         print()
         print("a fix sissm step of E evaluations and a applications with amg takes about "
