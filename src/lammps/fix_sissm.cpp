@@ -75,7 +75,8 @@ class ImplicitStep {
 FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV), precond_type(PRECOND_BLOCK),
     maxiter(100), tolerance(1.0e-6), relax(0), implicit_external(1), external_mode(EXT_NONE),
-    precond_given(0), unconverged(UNCONVERGED_WARN), max_cutback(4), dtv(0.0), hstep(0.0), tol_step(1.0e-6),
+    precond_given(0), unconverged(UNCONVERGED_WARN), max_cutback(4), dtv(0.0), hstep(0.0),
+    tol_step(1.0e-6),
     last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
     last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), fallback_run(0),
     warned_fallback(0), block_first(0), warned(0), warned_roundoff(0), nmax(0), evaluations_(0),
@@ -733,7 +734,8 @@ void FixSissm::post_integrate()
   if (mixed) lagged_external_force();
   if (lagged)
     for (int i = 0; i < nlocal; i++)
-      for (int k = 0; k < 3; k++) flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
+      for (int k = 0; k < 3; k++)
+        flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
   if (xstart)
     for (int i = 0; i < nlocal; i++)
       for (int k = 0; k < 3; k++) {
@@ -744,14 +746,15 @@ void FixSissm::post_integrate()
   PeriSISSM::SolveResult result;
   int evaluations = 0, substeps = 1;
   last_newton = last_krylov = 0;
+  // tolerance 0 asks for every step to use all its iterations: such a step is neither redone
+  // nor refused
+  const bool fixed_count = tolerance == 0.0;
   {
     ImplicitStep step(forces, groupbit);
     // precond amg: the preconditioner that converged the last step goes first
     precond = (amg_precond && !block_first) ? amg_precond.get() : block_precond.get();
     result = solve_step(dtv, lagged ? flagged : nullptr);
     evaluations = evaluations_;
-    // tolerance 0 asks for every step to use all its iterations: nothing is redone
-    const bool fixed_count = tolerance == 0.0;
     if (!result.converged() && amg_precond && !fixed_count) {
       // a step that one preconditioner could not converge is redone with the other (measured:
       // a free, rotating soft block at 100x the explicit limit, where the AMG-preconditioned
@@ -781,7 +784,6 @@ void FixSissm::post_integrate()
                          "sub-steps of {:.6g} (counted in f_{}[6])\n",
                          id, update->ntimestep, maxiter, substeps, dtv / substeps, id);
       } else {
-        precond = amg_precond ? amg_precond.get() : block_precond.get();
         error->all(FLERR,
                    "Fix sissm {}: step {} did not converge in {} iterations per step, not even "
                    "as {} sub-steps of {:.6g} (convergence measure {:.3g} > tolerance {:.3g}): "
@@ -792,7 +794,6 @@ void FixSissm::post_integrate()
       }
     }
   }
-  precond = amg_precond ? amg_precond.get() : block_precond.get();
   const double measure = result.measure;
 
   // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
@@ -816,7 +817,7 @@ void FixSissm::post_integrate()
   iterations_run += evaluations;
   if (measure > tol_step) {
     unconverged_run++;
-    if (unconverged == UNCONVERGED_ERROR && tolerance > 0.0)
+    if (unconverged == UNCONVERGED_ERROR && !fixed_count)
       error->all(FLERR,
                  "Fix sissm {}: step {} stopped at {} iterations with convergence measure {:.3g} "
                  "> tolerance {:.3g} (unconverged error)",
@@ -871,9 +872,12 @@ double FixSissm::compute_vector(int n)
 
 double FixSissm::memory_usage()
 {
-  int arrays = 3 * 3 + 6;    // yn, yhat, res, block
-  if (!implicit_external) arrays += 3;
+  // the per-atom arrays grow() allocates (PETSc's matrix and hierarchy are not counted)
+  int arrays = 4 * 3 + 6 + PeriSISSM::kMomentumColumns;    // yn, yhat, res, fext, block, moment
+  if (external_mode == EXT_LAGGED || external_mode == EXT_MIXED) arrays += 2 * 3;  // fint, flagged
+  if (xstart) arrays += 2 * 3;                                                     // cut back
+  if (gnode) arrays += 1;
   if (relax) arrays += 6;
-  if (solver == KRYLOV) arrays += 22;
+  if (solver == KRYLOV) arrays += 7 * 3 + 1;
   return (double) arrays * nmax * sizeof(double);
 }

@@ -109,7 +109,7 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   int last_substeps;    // sub-steps of the last step (1: not cut back)
   int last_newton, last_krylov;    // Newton steps and Krylov iterations of the last step
   bigint cutback_run;   // steps cut back since the run started
-  bigint fallback_run;  // steps that amg did not converge, redone with the blocks
+  bigint fallback_run;  // precond amg: steps redone with the other preconditioner
   int warned_fallback;
   int block_first;      // precond amg: the blocks converged the last step that amg did not
 
@@ -144,7 +144,6 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   bool cut_back(int &substeps, PeriSISSM::SolveResult &result, int &evaluations,
                 double **flag);
   std::unique_ptr<PeriSISSM::Preconditioner> make_amg();
-  static int default_precond();
 };
 
 }    // namespace LAMMPS_NS

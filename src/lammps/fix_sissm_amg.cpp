@@ -38,15 +38,6 @@
 
 using namespace LAMMPS_NS;
 
-int FixSissm::default_precond()
-{
-#ifdef PERISISSM_HAVE_PETSC
-  return PRECOND_AMG;
-#else
-  return PRECOND_BLOCK;
-#endif
-}
-
 #ifdef PERISISSM_HAVE_PETSC
 
 namespace LAMMPS_NS {
@@ -130,7 +121,6 @@ void SissmAmg::build_pattern()
     }
   }
   nodes_ = count;
-  if (getenv("SISSM_DEBUG")) { int ng = 0; for (int i = nlocal; i < nall; i++) if (gnode[i] >= 0) ng++; fprintf(stderr, "rank %d: nodes %d offset %d blocks %zu springs %zu ghosts %d numbered %d\n", fix_->comm->me, count, offset, rows.size(), springs_.partner.size(), nall - nlocal, ng); }
   values_.assign(9 * rows.size(), 0.0);
   coords_.assign(3 * count, 0.0);
   b_.assign(3 * count, 0.0);

@@ -40,7 +40,7 @@ void start_petsc()
   check(PetscInitialize(&argc, &argv, nullptr, nullptr), "PetscInitialize");
   // PETSc's error handler prints a traceback and returns the code; the caller turns it into
   // a LAMMPS error
-  if (!getenv("SISSM_DEBUG")) check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+  check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
 }
 
 // The defaults, before the user's options: no squared graph on the first level
@@ -72,13 +72,6 @@ struct PetscAmg::Impl {
   }
 };
 
-bool PetscAmg::petsc_started()
-{
-  PetscBool started = PETSC_FALSE;
-  PetscInitialized(&started);
-  return started == PETSC_TRUE;
-}
-
 PetscAmg::PetscAmg(MPI_Comm comm, const std::string &prefix, const std::string &options) :
     d_(std::make_unique<Impl>())
 {
@@ -104,7 +97,6 @@ void PetscAmg::set_pattern(int nodes, const std::vector<int> &rows, const std::v
 {
   Impl &d = *d_;
   d.destroy_matrix();
-  ready_ = false;
   d.nodes = nodes;
   const PetscInt n = 3 * nodes;
   check(MatCreate(d.comm, &d.A), "MatCreate");
@@ -146,7 +138,6 @@ void PetscAmg::set_values(const std::vector<double> &values, const double *xyz)
   check(MatSetNearNullSpace(d.A, d.nullsp), "MatSetNearNullSpace");
   check(PCSetOperators(d.pc, d.A, d.A), "PCSetOperators");
   check(PCSetUp(d.pc), "PCSetUp");
-  ready_ = true;
 }
 
 void PetscAmg::apply(const double *bin, double *zout)

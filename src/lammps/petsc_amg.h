@@ -45,15 +45,10 @@ class PetscAmg {
   // what PETSc built, one line (after set_values): preconditioner type, levels, operator
   // complexity
   std::string describe() const;
-  bool ready() const { return ready_; }
-
-  // true when PETSc has been started by this process (PetscInitialize called by anyone)
-  static bool petsc_started();
 
  private:
   struct Impl;
   std::unique_ptr<Impl> d_;
-  bool ready_ = false;
 };
 
 }    // namespace LAMMPS_NS

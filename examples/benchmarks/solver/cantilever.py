@@ -32,39 +32,20 @@ steps (enough for both explicit methods to rest), no block/100 row.
 from __future__ import annotations
 
 import argparse
-import datetime
 import re
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parent
-REPO = HERE.parents[2]
-sys.path.insert(0, str(REPO / "unittest" / "python"))
-sys.path.insert(0, str(REPO / "tools"))
+from bench_common import LOOP, REPO, build_info  # noqa: E402
 from lammps_run import parse_thermo, run_deck  # noqa: E402
 from progress import Progress  # noqa: E402
 
 
-def build_info() -> str:
-    """Which build ran: the commit, whether src/ differs from it, and the plugin's time stamp
-    (the numbers belong to that build)."""
-    def git(*a):
-        return subprocess.run(["git", "-C", str(REPO), *a], capture_output=True,
-                              text=True).stdout.strip()
-    so = REPO / "build" / "perisissmplugin.so"
-    stamp = (datetime.datetime.fromtimestamp(so.stat().st_mtime).strftime("%Y-%m-%d %H:%M")
-             if so.exists() else "?")
-    dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
-    return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
-
-
 CANTILEVER = REPO / "examples" / "cantilever"
 EXPLICIT_LOG = CANTILEVER / "log.21Nov26.cantilever.nosb.g++.1"
-LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps")
 REST = 1.0e-4
 
 

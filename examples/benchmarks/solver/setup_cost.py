@@ -36,36 +36,18 @@ are). 21 steps per configuration (20 timed); --quick: the cantilever only, 6 ste
 from __future__ import annotations
 
 import argparse
-import datetime
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parent
-REPO = HERE.parents[2]
-sys.path.insert(0, str(REPO / "unittest" / "python"))
-sys.path.insert(0, str(REPO / "tools"))
+from bench_common import HERE, build_info  # noqa: E402
 sys.path.insert(0, str(HERE))
 sys.dont_write_bytecode = True     # no __pycache__ next to the scripts
 from lammps_run import run_deck  # noqa: E402
 from progress import Progress  # noqa: E402
 from scaling import geometry  # noqa: E402
-
-
-def build_info() -> str:
-    """Which build ran: the commit, whether src/ differs from it, and the plugin's time stamp
-    (the numbers belong to that build)."""
-    def git(*a):
-        return subprocess.run(["git", "-C", str(REPO), *a], capture_output=True,
-                              text=True).stdout.strip()
-    so = REPO / "build" / "perisissmplugin.so"
-    stamp = (datetime.datetime.fromtimestamp(so.stat().st_mtime).strftime("%Y-%m-%d %H:%M")
-             if so.exists() else "?")
-    dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
-    return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
 
 
 DT = 7.3e-3
