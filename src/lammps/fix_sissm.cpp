@@ -219,15 +219,6 @@ void FixSissm::init()
   choose_external();
   forces->track_contact_motion(1);
   block_precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
-  // precond amg runs on one MPI rank only for now: on two ranks PETSc's set-up of the
-  // smoothers fails with MPI_ERR_TRUNCATE (a collective call mismatched between the ranks,
-  // not yet understood); the default then is block
-  if (precond_type == PRECOND_AMG && comm->nprocs > 1) {
-    if (precond_given)
-      error->all(FLERR, "Fix sissm precond amg runs on one MPI rank only in this version; "
-                 "use precond block on {} ranks", comm->nprocs);
-    precond_type = PRECOND_BLOCK;
-  }
   amg_precond.reset();
   if (precond_type == PRECOND_AMG) amg_precond = make_amg();
   precond = amg_precond ? amg_precond.get() : block_precond.get();

@@ -184,8 +184,10 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &)
   } catch (std::runtime_error &e) {
     fail(e);
   }
-  if (!logged_ && fix_->comm->me == 0) {
-    utils::logmesg(fix_->lmp, "Fix sissm {} precond amg: {}\n", fix_->id, amg_->describe());
+  if (!logged_) {
+    // describe() is collective (the matrix's global nonzero count): every rank calls it
+    const std::string what = amg_->describe();
+    if (fix_->comm->me == 0) utils::logmesg(fix_->lmp, "Fix sissm {} precond amg: {}\n", fix_->id, what);
     logged_ = true;
   }
 }

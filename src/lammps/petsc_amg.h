@@ -42,8 +42,8 @@ class PetscAmg {
   // z = M^-1 b, 3 * nodes values each
   void apply(const double *b, double *z);
 
-  // what PETSc built, one line (after set_values): preconditioner type, levels, operator
-  // complexity
+  // what PETSc built, one line (after set_values): preconditioner type, levels, the matrix's
+  // size and nonzeros. Collective: every process must call it.
   std::string describe() const;
 
  private:
