@@ -28,3 +28,12 @@ def build_info() -> str:
              if so.exists() else "?")
     dirty = " + uncommitted changes in src/" if git("status", "--porcelain", "src") else ""
     return f"build: commit {git('rev-parse', '--short', 'HEAD')}{dirty}, plugin built {stamp}"
+
+
+def print_build(start: str) -> None:
+    """Print the build an invocation started with (build_info() then), and a note when the
+    build changed before its end (the numbers then mix two builds)."""
+    end = build_info()
+    print(start)
+    if end != start:
+        print(f"NOTE: the build changed during this invocation; at its end: {end}")

@@ -39,7 +39,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bench_common import LOOP, REPO, build_info  # noqa: E402
+from bench_common import LOOP, REPO, build_info, print_build  # noqa: E402
 from lammps_run import parse_thermo, run_deck  # noqa: E402
 from progress import Progress  # noqa: E402
 
@@ -121,16 +121,13 @@ def main():
     reft = ref_run.thermo[-1]
     ref = float(reft["v_defl"][-1])
     explicit_log = float(parse_thermo(EXPLICIT_LOG.read_text())[-1]["v_defl"][-1])
-    build_end = build_info()
-    print(build_start)
-    if build_end != build_start:
-        print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
+    print_build(build_start)
     print(f"examples/cantilever (40 x 8 x 8 free particles, 2752 atoms), {args.ranks} rank(s)")
     print(f"reference static deflection: {ref:.10g} m (fix sissm precond amg, tolerance 1e-8, "
           f"dt 1000 s, 2 steps; step deflections "
           + ", ".join(f"{d:.10g}" for d in reft["v_defl"][1:])
-          + f"; evaluations " + ", ".join(f"{int(e)}" for e in reft["f_integrate[1]"][1:])
-          + f"; convergence measures " + ", ".join(f"{m:.3g}" for m in reft["f_integrate[2]"][1:])
+          + "; evaluations " + ", ".join(f"{int(e)}" for e in reft["f_integrate[1]"][1:])
+          + "; convergence measures " + ", ".join(f"{m:.3g}" for m in reft["f_integrate[2]"][1:])
           + f"; unconverged steps {int(reft['f_integrate[4]'][-1])})")
     roundoff = [w for w in ref_run.warnings if "round-off" in w]
     if roundoff:

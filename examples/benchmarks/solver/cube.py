@@ -40,7 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bench_common import LOOP, build_info  # noqa: E402
+from bench_common import LOOP, build_info, print_build  # noqa: E402
 from lammps_run import LMP, mpirun_prefix, parse_thermo  # noqa: E402
 from progress import Progress  # noqa: E402
 
@@ -169,10 +169,7 @@ def main():
             progress.step(f"{N}^3 {v} on {r} rank(s)", weight=N ** 3 / r)
     progress.done()
 
-    build_end = build_info()
-    print(build_start)
-    if build_end != build_start:
-        print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
+    print_build(build_start)
     print(f"clamped soft cube under gravity, fix sissm precond amg|block {COMMON}, "
           f"dt = 100 x the explicit estimate, {args.steps} steps"
           + (f', amg with petsc "{args.petsc}"' if args.petsc else ""))

@@ -31,7 +31,7 @@ import re
 import tempfile
 from pathlib import Path
 
-from bench_common import LOOP, build_info  # noqa: E402
+from bench_common import LOOP, build_info, print_build  # noqa: E402
 from lammps_run import run_deck  # noqa: E402
 from progress import Progress  # noqa: E402
 
@@ -142,10 +142,7 @@ def main():
             progress.step(f"{n}x{n} L={L} {p}", weight=weight[(n, L, p)])
     progress.done()
 
-    build_end = build_info()
-    print(build_start)
-    if build_end != build_start:
-        print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
+    print_build(build_start)
     print(f"clamped beams, one static step dt = {args.dt:g} s, fix sissm iterations "
           f"{args.iterations} tolerance 1e-6 unconverged warn, {args.ranks} rank(s)"
           + (f', amg with petsc "{args.petsc}"' if args.petsc else ""))

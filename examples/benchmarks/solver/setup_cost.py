@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bench_common import HERE, build_info  # noqa: E402
+from bench_common import HERE, build_info, print_build  # noqa: E402
 sys.path.insert(0, str(HERE))
 sys.dont_write_bytecode = True     # no __pycache__ next to the scripts
 from lammps_run import run_deck  # noqa: E402
@@ -135,10 +135,7 @@ def main():
                                 matrix=matrix))
     progress.done()
 
-    build_end = build_info()
-    print(build_start)
-    if build_end != build_start:
-        print(f"NOTE: the build changed during this invocation; at its end: {build_end}")
+    print_build(build_start)
     print(f"cost of fix sissm precond amg in force evaluations: clamped beams at dt = {DT:g} s, "
           f"k = {k1} and {k2} evaluations per step, median of {steps - 1} steps, "
           f"{args.ranks} rank(s); wall-time derived (information only)"
