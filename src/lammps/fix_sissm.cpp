@@ -68,14 +68,22 @@ class ImplicitStep {
   ImplicitForces *forces_;
 };
 
+// the default preconditioner: amg where the build has PETSc (doc/fix_sissm.rst)
+#ifdef PERISISSM_HAVE_PETSC
+constexpr bool kDefaultAmg = true;
+#else
+constexpr bool kDefaultAmg = false;
+#endif
+
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV), precond_type(PRECOND_BLOCK),
-    maxiter(100), tolerance(1.0e-6), relax(0), implicit_external(1), external_mode(EXT_NONE),
-    precond_given(0), unconverged(UNCONVERGED_WARN), max_cutback(4), dtv(0.0), hstep(0.0),
+    Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV),
+    precond_type(kDefaultAmg ? PRECOND_AMG : PRECOND_BLOCK), maxiter(100), tolerance(1.0e-6),
+    relax(0), implicit_external(1), external_mode(EXT_NONE),
+    precond_given(0), unconverged(UNCONVERGED_CUTBACK), max_cutback(4), dtv(0.0), hstep(0.0),
     tol_step(1.0e-6),
     last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
     last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), fallback_run(0),
@@ -178,7 +186,10 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
   }
   if (relax && solver != JACOBI)
     error->all(FLERR, "Illegal fix sissm command: relax yes requires solver jacobi");
-  if (solver == JACOBI) precond_type = PRECOND_BLOCK;    // sweeps use the blocks themselves
+  if (solver == JACOBI && precond_given && precond_type == PRECOND_AMG)
+    error->all(FLERR, "Illegal fix sissm command: precond amg needs solver krylov (the jacobi "
+                      "sweeps use the blocks themselves)");
+  if (solver == JACOBI) precond_type = PRECOND_BLOCK;
 #ifndef PERISISSM_HAVE_PETSC
   if (precond_type == PRECOND_AMG)
     error->all(FLERR,
@@ -369,6 +380,21 @@ void FixSissm::setup(int /*vflag*/)
   nsteps_run = iterations_run = unconverged_run = cutback_run = fallback_run = 0;
   warned = warned_roundoff = warned_fallback = 0;
   block_first = 0;
+}
+
+/* ----------------------------------------------------------------------
+   the run's solver statistics in the log (thermo shows them per step: outputs 1-9)
+------------------------------------------------------------------------- */
+
+void FixSissm::post_run()
+{
+  if (comm->me != 0 || nsteps_run == 0) return;
+  std::string text = fmt::format("Fix sissm {} run: {} steps, {:.6g} iterations per step, {} "
+                                 "unconverged, {} cut back, {} preconditioner switches",
+                                 id, nsteps_run, (double) iterations_run / nsteps_run,
+                                 unconverged_run, cutback_run, fallback_run);
+  if (amg_precond && !amg_precond->summary().empty()) text += "; " + amg_precond->summary();
+  utils::logmesg(lmp, text + "\n");
 }
 
 /* ----------------------------------------------------------------------
@@ -624,16 +650,17 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double **flag)
     work.pdir = pdir;
     work.sdir = sdir;
     work.term = term;
-    // the energy line search goes with precond amg for now (with the blocks it changes what
-    // the existing decks and tests measured; to be made the default with them)
-    result = PeriSISSM::solve_newton_krylov(*this, *precond, maxiter, work,
-                                            precond_type == PRECOND_AMG);
+    result = PeriSISSM::solve_newton_krylov(*this, *precond, maxiter, work);
   } else {
     PeriSISSM::SweepMemory memory_rows;
     memory_rows.rprev = rprev;
     memory_rows.dprev = dprev;
     result = PeriSISSM::solve_jacobi(*this, maxiter, memory_rows);
   }
+  // (tolerance 0: every step runs to the limit by request, which says nothing of the
+  // preconditioner)
+  if (solver == KRYLOV)
+    precond->finished(result.newton, result.krylov, result.converged() || tolerance == 0.0);
   last_newton += result.newton;
   last_krylov += result.krylov;
   if (!forces->group_coupled(groupbit))
@@ -746,6 +773,12 @@ void FixSissm::post_integrate()
     precond = (amg_precond && !block_first) ? amg_precond.get() : block_precond.get();
     result = solve_step(dtv, lagged ? flagged : nullptr);
     evaluations = evaluations_;
+    if (!result.converged() && !fixed_count && precond->refresh()) {
+      // the preconditioner was built in an earlier step: once more with one built now
+      restore_start();
+      result = solve_step(dtv, lagged ? flagged : nullptr);
+      evaluations += evaluations_;
+    }
     if (!result.converged() && amg_precond && !fixed_count) {
       // a step that one preconditioner could not converge is redone with the other (measured:
       // a free, rotating soft block at 100x the explicit limit, where the AMG-preconditioned

@@ -43,6 +43,7 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   void setup_pre_reverse(int, int) override;
   void pre_reverse(int, int) override;
   void post_integrate() override;
+  void post_run() override;
   void reset_dt() override;
   double compute_vector(int) override;
   double memory_usage() override;

@@ -12,8 +12,13 @@
    The owned unknowns are numbered contiguously in rank order and the numbers reach the ghosts
    by a forward communication. The sparsity pattern is built again only when it can have
    changed (a neighbor list build: atoms migrated or were sorted; the owned atoms or their
-   unbroken bonds changed); otherwise the values are replaced and the hierarchy is set up again
-   reusing its interpolation.
+   unbroken bonds changed).
+   A set-up costs tens of force evaluations and one application one or two, so the hierarchy is
+   kept across Newton steps and time steps while it works: it is set up again (reusing its
+   interpolation when the pattern is unchanged) when the pattern or the time step changed, when
+   a step did not converge, or when a step needed more than 1.5x (+2) the Krylov iterations per
+   Newton step of the first step that used it. Which M is used changes the iterations, not the
+   converged answer.
 ------------------------------------------------------------------------- */
 
 #include "fix_sissm.h"
@@ -47,6 +52,9 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   SissmAmg(FixSissm *fix) : fix_(fix) {}
   void prepare(PeriSISSM::NonlinearSystem &sys) override;
   void apply(PeriSISSM::NonlinearSystem &sys, double **r, double **z) override;
+  void finished(int newton, int krylov, bool converged) override;
+  bool refresh() override;
+  std::string summary() const override;
 
  private:
   FixSissm *fix_;
@@ -57,8 +65,14 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   int nlocal_ = -1;
   int nodes_ = 0;
   bool logged_ = false;
-  bigint set_at_ = -1;         // time step of the last set-up
-  double set_factor_ = 0.0;    // and the time scheme's force factor then
+  bool stale_ = true;          // set up again at the next prepare()
+  int solves_ = 0;             // solves that used the current set-up
+  bool used_ = false;          // the solve under way applied the hierarchy
+  bool fresh_ = false;         // and set it up
+  bool lagged_ = false;        // the last solve used a hierarchy set up in an earlier one
+  bigint setups_ = 0, patterns_ = 0;    // set-ups and pattern builds so far
+  double set_factor_ = 0.0;    // the time scheme's force factor at the last set-up
+  double baseline_ = 0.0;      // Krylov iterations per Newton step of its first solve
   std::vector<double> values_, coords_, b_, z_;
   bool pattern_current();
   void build_pattern();
@@ -133,6 +147,7 @@ void SissmAmg::build_pattern()
   } catch (std::runtime_error &e) {
     fail(e);
   }
+  patterns_++;
   first_ = springs_.first;
   partner_ = springs_.partner;
   built_at_ = fix_->neighbor->lastcall;
@@ -150,11 +165,13 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &)
   const double c = fix_->scheme->force_factor();
   fix_->forces->bond_springs(springs_);
   const bool same_pattern = pattern_current();
-  // the hierarchy of the step's first Newton step serves its later ones (the configuration
-  // changes little within a step; a set-up costs tens of force evaluations)
-  if (same_pattern && set_at_ == fix_->update->ntimestep && set_factor_ == c) return;
+  used_ = true;
+  if (same_pattern && !stale_ && set_factor_ == c) return;
+  fresh_ = true;
   if (!same_pattern) build_pattern();
-  set_at_ = fix_->update->ntimestep;
+  stale_ = false;
+  solves_ = 0;
+  setups_++;
   set_factor_ = c;
 
   const double *gnode = fix_->gnode;
@@ -187,9 +204,36 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &)
   if (!logged_) {
     // describe() is collective (the matrix's global nonzero count): every rank calls it
     const std::string what = amg_->describe();
-    if (fix_->comm->me == 0) utils::logmesg(fix_->lmp, "Fix sissm {} precond amg: {}\n", fix_->id, what);
+    if (fix_->comm->me == 0)
+      utils::logmesg(fix_->lmp, "Fix sissm {} precond amg: {}\n", fix_->id, what);
     logged_ = true;
   }
+}
+
+// the counts are global (every rank decides the same)
+void SissmAmg::finished(int newton, int krylov, bool converged)
+{
+  lagged_ = used_ && !fresh_;
+  if (used_) {
+    const double rate = (double) krylov / (newton > 0 ? newton : 1);
+    if (solves_++ == 0) baseline_ = rate;
+    else if (rate > 1.5 * baseline_ + 2.0) stale_ = true;
+    if (!converged) stale_ = true;
+  }
+  used_ = fresh_ = false;
+}
+
+std::string SissmAmg::summary() const
+{
+  return fmt::format("{} set-up{} of the AMG hierarchy ({} with a new sparsity pattern)",
+                     setups_, setups_ == 1 ? "" : "s", patterns_);
+}
+
+// (a solve that never reached a Newton step did not use the hierarchy: nothing to refresh)
+bool SissmAmg::refresh()
+{
+  stale_ = true;
+  return lagged_;
 }
 
 void SissmAmg::apply(PeriSISSM::NonlinearSystem &sys, double **r, double **z)

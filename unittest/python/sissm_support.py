@@ -18,6 +18,14 @@ PRESCRIBED = DECKS / "sissm_prescribed.lmp"
 
 A = 1.0e-3  # lattice spacing of every deck (m)
 
+# The decks name fix sissm's keywords (iterations ${iters} tolerance ${tol} solver ${solver},
+# and relax/external where they have them); these values are the fix's defaults
+# (doc/fix_sissm.rst), so a test that passes them runs the defaults. precond (amg with PETSc)
+# and unconverged (cutback 4) are left out: the decks only name them through opts.
+# test_fix_sissm_amg.py checks that a bare `fix sissm` gives the same trajectory.
+FIX_DEFAULTS = {"iters": 100, "tol": 1e-6, "solver": "krylov", "relax": "no",
+                "external": "implicit"}
+
 STEEL = {"K": 160e9, "Gr": 0.5, "rho": 7800}  # G = 80 GPa
 
 # Explicit (fix nve, velocity Verlet) stability limits of the decks, measured by bisection:

@@ -2,6 +2,7 @@
 the step for any iteration count, converged steps far beyond the explicit limit bring the beam
 to the rest deflection of the explicit damped run, and a beam that is not at rest is not
 reported as converged."""
+import re
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +21,15 @@ GAMMA = 4.0e7
 def cantilever(name):
     nx, ny, nz = (int(d) for d in name.split()[1].split("x"))
     return {"nx": nx, "ny": ny, "nz": nz, "held": 3, "grav": GRAV}
+
+
+def cut_back(run):
+    """The steps fix sissm logged as cut back into sub-steps (doc/fix_sissm.rst, "Unconverged
+    steps"): with the default `unconverged cutback` a step that misses the tolerance is redone
+    as sub-steps (or stops the run), never counted in f_ID[4], so a test that asks for every
+    step to converge at its full length checks both."""
+    return re.findall(r"Fix sissm \S+: step \d+ did not converge in \d+ iterations; redone as",
+                      run.log)
 
 
 def explicit_limit_brackets(name, workdir):
@@ -60,7 +70,7 @@ def test_static_equilibrium_is_a_fixed_point(tmp_path, solver):
     # less (measured 2e-10 relative over the 20 steps).
     drift = max(np.abs(positions(f) - positions(relaxed)).max() for f in frames)
     assert drift < 1e-3 * deflection, drift / deflection
-    assert np.all(sissm["f_integrate[4]"] == 0)
+    assert np.all(sissm["f_integrate[4]"] == 0) and not cut_back(run)
 
 
 @pytest.mark.parametrize("solver", ["jacobi", "krylov"])
@@ -81,23 +91,26 @@ def test_converged_steps_reach_the_explicit_rest_deflection(tmp_path, solver):
         **cantilever(name), "nsissm": 4, "dt_sissm": 100.0 * EXPLICIT_LIMIT[name],
         "iters": 1000000, "tol": 1e-10, "solver": solver, "thermo_every": 1})
     t = sissm.thermo[0]
-    assert np.all(t["f_integrate[4]"] == 0)
+    assert np.all(t["f_integrate[4]"] == 0) and not cut_back(sissm)
     assert t["c_tipdz"][-1] == pytest.approx(tip[-1], rel=0.01)
 
 
 def test_a_beam_that_is_not_at_rest_is_not_reported_converged(tmp_path):
-    # BUG (reported): with `iterations 5` (default tolerance 1e-6) at 100x the explicit limit,
+    # BUG (reported): with solver jacobi, `iterations 5` and tolerance 1e-6 at 100x the limit,
     # every step stops after ONE sweep as "converged" (measure ~2e-9: the first correction of
     # the slow bending mode is tiny, though the iterate is far from the step's solution), and
     # the beam swings with a period ~2000 steps (about 25 times the physical one) between
     # 0.2 and 1.6 times its rest deflection, still swinging after 3000 steps, with
     # f_ID[4] = 0 and no warning. Contract: either the beam settles (within 1 % of the
     # explicit rest deflection over the last 500 steps) or the steps are counted as
-    # unconverged.
+    # unconverged. The steps kept at the iteration limit are the subject, so they are kept
+    # (unconverged warn; with the default cutback, 16 sub-steps of 5 sweeps do not converge
+    # step 1 either and the run stops with an error). Measured now: 2672 of 3000 steps
+    # counted, with the warning, and the tip within 0.2 % of the rest deflection at the end.
     name = "cantilever 10x3x3"
     run = run_deck(CANTILEVER, tmp_path, variables={
         **cantilever(name), "nsissm": 3000, "dt_sissm": 100.0 * EXPLICIT_LIMIT[name],
-        "iters": 5, "thermo_every": 50})
+        "iters": 5, "solver": "jacobi", "opts": "unconverged warn", "thermo_every": 50})
     t = run.thermo[0]
     rest = -1.344e-8  # explicit rest deflection of this beam (previous test: -1.34397e-8 m)
     settled = np.all(np.abs(t["c_tipdz"][-11:] - rest) < 0.01 * abs(rest))

@@ -7,7 +7,11 @@ scrambled (every particle displaced by up to 15 % of the spacing) or inverted (m
 the centre: F = -I, det F = -1), released at rest, and given far too few iterations per step
 (5 force evaluations where a converged step takes ~100): before the fix they picked up rigid
 velocities (1.2e-2 m/s of centre-of-mass drift after 40 steps of the scrambled neo-Hookean
-block; up to 8 m/s and 500 rad/s in the stability report's extreme cases).
+block; up to 8 m/s and 500 rad/s in the stability report's extreme cases). Truncated steps
+are the subject, so the runs keep them (`unconverged warn`): with the default `unconverged
+cutback` these steps are not kept (5 iterations do not converge step 1 even as 16 sub-steps,
+and the run stops with an error). With the default precond amg, a step that multigrid does not
+converge is solved once more with the blocks (5 more evaluations) and then balanced.
 
 Measured from dumps of every step (positions and velocities with 17 digits): P = sum m v,
 L = sum m (x - c) x v with m = rho V. Tolerance: fix sissm forms its balance from sums that are
@@ -17,7 +21,6 @@ to 125 terms. So round-off is ~1e-14 of the scale sum m (|v| + |y|/h) (resp. sum
 (|v| + |y|/h)); 1e-12 of it leaves a factor 100. The drift before the fix was ~1e-6 of it
 (~1e-2 of sum |m v|).
 """
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -37,8 +40,8 @@ INVERTED = {"nx": 4, "ny": 4, "nz": 4, "squeeze": 2.0, "drand": 2.0e-5, "model":
 
 
 def trajectory(tmp_path, state, nsteps=40, nprocs=1, **options):
-    variables = {**state, "solver": "krylov", "iters": 5, "dt": H, "nsteps": nsteps,
-                 "dump_every": 1, "thermo_every": 1, **options}
+    variables = {**state, "solver": "krylov", "iters": 5, "opts": "unconverged warn", "dt": H,
+                 "nsteps": nsteps, "dump_every": 1, "thermo_every": 1, **options}
     run = run_deck(BLOCK, tmp_path, nprocs=nprocs, variables=variables)
     return run, read_dump(tmp_path / "dump.atoms")
 
@@ -58,7 +61,11 @@ def momenta(frame):
 def test_free_body_released_at_rest_stays_at_rest_as_a_whole(tmp_path, state, solver):
     run, frames = trajectory(tmp_path, state, solver=solver)
     t = run.thermo[-1]
-    assert t["f_integrate[4]"][-1] >= 20  # most steps stop at the iteration limit
+    # the steps stop at the iteration limit while the body moves violently (measured: krylov
+    # the first 20 of 40, the convergence measure falling from 8 (scrambled) or 400 (inverted)
+    # to ~1e-6 at step 20, the later steps converging; jacobi all 40): the first 10 (measures
+    # still above 1e-2) must all be truncated
+    assert list(t["f_integrate[4]"][:11]) == list(range(11))
     for frame in frames[1:]:
         P, L, sp, sl = momenta(frame)
         assert np.abs(P).max() <= 1e-12 * sp, (frame["step"], P, sp)
@@ -99,9 +106,13 @@ def test_held_group_is_not_corrected(tmp_path):
 
 @pytest.mark.mpi
 def test_balance_is_the_same_on_two_ranks(tmp_path):
-    # the correction uses order-independent sums: 1 and 2 ranks end bit-identical
-    _, one = trajectory(tmp_path / "np1", SCRAMBLED, nsteps=10)
-    _, two = trajectory(tmp_path / "np2", SCRAMBLED, nsteps=10, nprocs=2)
+    # the correction uses order-independent sums: 1 and 2 ranks end bit-identical. precond
+    # block, whose iterates are the same on any number of ranks; those of the default precond
+    # amg (PETSc) differ by round-off with the ranks (doc/fix_sissm.rst), so the steps handed
+    # to the correction would already differ.
+    opts = "unconverged warn precond block"
+    _, one = trajectory(tmp_path / "np1", SCRAMBLED, nsteps=10, opts=opts)
+    _, two = trajectory(tmp_path / "np2", SCRAMBLED, nsteps=10, nprocs=2, opts=opts)
     for f1, f2 in zip(one, two):
         assert np.array_equal(positions(f1), positions(f2)), f1["step"]
         assert np.array_equal(velocities(f1), velocities(f2)), f1["step"]

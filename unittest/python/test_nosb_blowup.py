@@ -57,14 +57,35 @@ def test_the_reported_atom_does_not_depend_on_the_number_of_ranks(tmp_path):
     assert one[:2] == two[:2]
 
 
-def test_absurd_velocities_under_fix_sissm_end_in_an_error(tmp_path):
+@pytest.mark.parametrize("fix,solve", [
+    ("sissm", "converged in this step"),
+    ("sissm iterations 5 unconverged warn", "stopped at its iteration limit"),
+], ids=["defaults", "iterations-5-warn"])
+def test_absurd_velocities_under_fix_sissm_end_in_an_error(tmp_path, fix, solve):
     # the SISSM step starts at y^n + h v^n: the same explosion (signal 11 before; T = 1e50,
-    # where the wrapped bin count of the unguarded run is negative, as for T = 1e52 above)
+    # where the wrapped bin count of the unguarded run is negative, as for T = 1e52 above).
+    # The blow-up guard runs on the step fix sissm keeps, and its likely cause says how that
+    # step was solved: with the defaults (iterations 100) it converges, so the cause is put in
+    # from outside (the velocities); a step kept at the iteration limit (unconverged warn, as
+    # in earlier versions) points at the iterations and the time step.
+    run = run_deck(DECK, tmp_path, variables={"n": 8, "T": 1e50, "fix": fix, "estimate": 0},
+                   check=False)
+    step, _, cause = unstable_error(run)
+    assert step == 1 and f"fix sissm {solve}" in cause
+
+
+def test_absurd_velocities_with_too_few_iterations_end_in_the_cutback_error(tmp_path):
+    # With too few iterations and the default unconverged cutback, the step is refused before
+    # it is kept: 16 sub-steps of 5 iterations do not converge either, and the run stops with
+    # fix sissm's error (step 1, its measure, what to do) before the blow-up guard sees the
+    # step. That is a clean error exit too (not a signal), and its advice (raise iterations)
+    # leads to the guard's diagnosis above.
     run = run_deck(DECK, tmp_path, variables={"n": 8, "T": 1e50, "fix": "sissm iterations 5",
                                                 "estimate": 0},
                    check=False)
-    step, _, cause = unstable_error(run)
-    assert step == 1 and "fix sissm" in cause
+    assert run.returncode > 0, f"not an error exit (a signal gives < 0): {run.describe()}"
+    assert any(re.search(r"Fix sissm \S+: step 1 did not converge in 5 iterations per step, "
+                         r"not even as 16 sub-steps", line) for line in run.errors), run.errors
 
 
 def test_an_injected_nan_is_caught(tmp_path):

@@ -1,6 +1,7 @@
 """The README's first deck is examples/first-deck/in.first, line for line, and running it prints
 what the README says it prints: every step converged (f_step[4] = 0, the measure below the
-default tolerance 1e-6) and the same potential energy at the rows the README shows."""
+default tolerance 1e-6, none cut back) and the same potential energy at the rows the README
+shows."""
 import re
 
 import numpy as np
@@ -42,7 +43,7 @@ def test_the_deck_prints_what_the_readme_says(tmp_path):
         words = line.split()
         if words and re.fullmatch(r"\d+", words[0]) and len(words) == 6:
             shown[int(words[0])] = [float(w) for w in words[1:]]
-    assert {0, 20, 40, 200} <= set(shown)
+    assert {0, 2, 4, 20} <= set(shown)
     run = run_deck(DECK, tmp_path)
     table = run.thermo[-1]
     steps = list(table["Step"].astype(int))
@@ -54,3 +55,5 @@ def test_the_deck_prints_what_the_readme_says(tmp_path):
         assert table["f_step[4]"][row] == unconverged == 0
     assert np.all(table["f_step[2]"][1:] < 1e-6)     # converged: below the default tolerance
     assert np.all(table["f_step[4]"] == 0)
+    # and none was cut back into sub-steps (the default unconverged cutback would log it)
+    assert "redone as" not in run.log and " 0 cut back" in run.log

@@ -7,7 +7,7 @@
 namespace PeriSISSM {
 
 SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, int maxiter,
-                                const KrylovWork &w, bool energy_search)
+                                const KrylovWork &w)
 {
   const Rows &rows = sys.rows();
   double **x = sys.unknowns();
@@ -47,7 +47,7 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
     int worse = 0;
     double slope = 0.0;
     if (have_base) {
-      if (energy_search && slope0 > 0.0) {
+      if (slope0 > 0.0) {
         slope = dot(sys, w.sdir, res, w.term);
         worse = slope < -(1.0 - 2.0e-4) * slope0;
       } else {
@@ -58,7 +58,7 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
       // the minimum of the quadratic model of Pi on [0, t] (Pi' linear from -g0 to -g(t)),
       // kept within [t/10, t/2]
       halvings++;
-      const double cut = (energy_search && slope0 > 0.0) ? slope0 / (slope0 - slope) : 0.5;
+      const double cut = (slope0 > 0.0) ? slope0 / (slope0 - slope) : 0.5;
       tstep *= fmin(0.5, fmax(0.1, cut));
       axpy_positions(w.xbase, tstep, w.sdir);
       continue;

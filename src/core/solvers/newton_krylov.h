@@ -6,8 +6,10 @@
 // estimate meets max(tolerance/4, eta * measure) (eta: Eisenstat-Walker), at non-positive
 // curvature (then the preconditioned residual is used if CG has no step yet) or at the
 // evaluation budget.
-// Safeguard: a Newton step that increases phi = sum_i V_i |r_i|^2 / rho_i is halved (at most
-// 4 times). Budget (maxiter evaluations, never more): CG keeps one evaluation to check its
+// Safeguard: a Newton step s that fails the Armijo condition on the step's incremental
+// potential (judged from <s, r> at both ends, trapezoid rule; where s is not a descent
+// direction: one that increases phi = sum_i V_i |r_i|^2 / rho_i) is shortened (at most 4
+// times). Budget (maxiter evaluations, never more): CG keeps one evaluation to check its
 // Newton iterate; when that check finds it worse than its base and no budget is left, the step
 // ends at the base plus its SISSM correction D^-1 r; when the budget ends at an accepted
 // evaluation, one SISSM sweep uses it, so krylov with iterations 1 equals jacobi with
@@ -28,10 +30,10 @@ struct KrylovWork {
   double *term = nullptr;
 };
 
-// energy_search: accept Newton steps on the step's incremental potential (see
-// newton_krylov.cpp) instead of on the residual norm
+// Newton steps are accepted on the step's incremental potential (Armijo, see
+// newton_krylov.cpp), on the residual norm where the step is not a descent direction
 SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, int maxiter,
-                                const KrylovWork &work, bool energy_search = false);
+                                const KrylovWork &work);
 
 }  // namespace PeriSISSM
 

@@ -5,6 +5,8 @@
 
 #include "solvers/system.h"
 
+#include <string>
+
 namespace PeriSISSM {
 
 class Preconditioner {
@@ -13,6 +15,15 @@ class Preconditioner {
   // a Newton step begins at the last evaluation (with blocks): a preconditioner that is built
   // from the current configuration is (re)built here
   virtual void prepare(NonlinearSystem &) {}
+  // a time step's solve with this preconditioner ended (its Newton and Krylov counts, and
+  // whether it converged): a preconditioner kept across time steps decides here whether it is
+  // still good enough
+  virtual void finished(int /*newton*/, int /*krylov*/, bool /*converged*/) {}
+  // build again from the current configuration at the next prepare(); true when the one in
+  // use was built from an earlier configuration (so a retry with a fresh one can help)
+  virtual bool refresh() { return false; }
+  // what it did over the run so far, for the log (empty: nothing to say)
+  virtual std::string summary() const { return ""; }
   virtual void apply(NonlinearSystem &sys, double **r, double **z) = 0;
 };
 
