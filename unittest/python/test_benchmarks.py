@@ -45,9 +45,10 @@ def test_stability_driver(tmp_path):
     by = {}
     for r in rows:
         by.setdefault(r["method"], []).append(r)
-    # fix sissm with its defaults is stable in every cell (--quick: up to 100x the limit)
-    assert by["sissm_krylov"] and all(r["status"] == "stable" for r in by["sissm_krylov"])
-    assert max(float(r["factor"]) for r in by["sissm_krylov"]) >= 100
+    # fix sissm with its defaults (no keywords: krylov, precond amg, unconverged cutback) is
+    # stable in every cell (--quick: up to 100x the limit)
+    assert by["sissm_defaults"] and all(r["status"] == "stable" for r in by["sissm_defaults"])
+    assert max(float(r["factor"]) for r in by["sissm_defaults"]) >= 100
     # explicit integration is not, beyond twice its limit
     for method in ("nosb_nve", "lps_nve"):
         beyond = [r for r in by[method] if float(r["factor"]) >= 2]
@@ -56,7 +57,7 @@ def test_stability_driver(tmp_path):
     assert not [r for r in rows if r["method"] != "lps_nve" and r["status"].startswith("crash")]
     # the corotated linear model comes back from every extreme case under fix sissm
     extreme = read_csv(tmp_path / "stability" / "extreme.csv")
-    linear = [r for r in extreme if r["method"] == "sissm_krylov" and r["model"] == "linear"]
+    linear = [r for r in extreme if r["method"] == "sissm_defaults" and r["model"] == "linear"]
     assert linear and all(r["verdict"] == "recovered" for r in linear)
     # the final total momentum of every run that ended with a dump is in the table
     assert all(r["final_p_kg_m_s"] != "-" and r["final_L_kg_m2_s"] != "-" for r in linear)
@@ -70,7 +71,8 @@ def test_error_vs_time_driver(tmp_path):
     for scene in ("static", "dynamic", "stiff"):
         rows = read_csv(tmp_path / "data" / f"{scene}.csv")
         assert rows and (tmp_path / "data" / f"{scene}.png").exists(), scene
-        assert {r["method"] for r in rows} >= {"lps", "nosb", "jacobi", "krylov"}, scene
+        assert {r["method"] for r in rows} >= {"lps", "nosb", "jacobi", "block", "defaults"}, \
+            scene
         for r in rows:  # an explicit point costs one evaluation per step, SISSM at least that
             assert int(r["evaluations"]) >= int(r["steps"]), r
     # the static references are converged and every explicit checkpoint is measured against
@@ -79,21 +81,28 @@ def test_error_vs_time_driver(tmp_path):
     assert min(float(r["error"]) for r in static if r["method"] == "nosb") < 1e-6
     # which fix sissm runs give a point is decided by budgets in force evaluations (--quick:
     # 8000 per dynamic run, 4000 per static one), not by the machine's speed: every quick
-    # variant completes the dynamic scene at 1x and 8x the limit (largest: 6897 evaluations)
-    # but jacobi iterations 200 at 8x, which needs ~16000 (a 4 s wall-time cap used to drop
-    # all six on a slow or busy machine)
+    # variant completes the dynamic scene at 1x and 8x the limit (largest: 6897 evaluations,
+    # block at 1x) but jacobi iterations 200 at 8x, which needs ~16000, and precond block
+    # iterations 50 tolerance 1e-8 at 8x, whose steps are cut back to sub-steps (unconverged
+    # cutback, the default) and need more than 8000 (a 4 s wall-time cap used to drop all
+    # quick runs on a slow or busy machine)
+    sissm = ("jacobi", "block", "amg", "defaults")
     dynamic = read_csv(tmp_path / "data" / "dynamic.csv")
     runs = {}
     for r in dynamic:
-        if r["method"] in ("jacobi", "krylov"):
+        if r["method"] in sissm:
             runs[r["variant"]] = runs.get(r["variant"], 0) + 1
             assert int(r["evaluations"]) < 8000, r
     assert runs == {"solver jacobi iterations 5 tolerance 0": 2,
-                    "solver jacobi iterations 200 tolerance 1e-6": 1,
-                    "solver krylov iterations 50 tolerance 1e-8": 2}, runs
-    assert "8000-evaluation cap" in report.read_text()
+                    "solver jacobi iterations 200 tolerance 1e-6 unconverged warn": 1,
+                    "solver krylov precond block iterations 50 tolerance 1e-8": 1,
+                    "defaults": 2}, runs
+    text = report.read_text()
+    assert "8000-evaluation cap" in text
+    # the report says which unconverged mode each variant runs with
+    assert "unconverged cutback 4 (the default)" in text and "unconverged warn:" in text
     for scene in ("static", "stiff"):  # every static run ends at its budget
         rows = read_csv(tmp_path / "data" / f"{scene}.csv")
-        for variant in {r["variant"] for r in rows if r["method"] in ("jacobi", "krylov")}:
+        for variant in {r["variant"] for r in rows if r["method"] in sissm}:
             last = max(int(r["evaluations"]) for r in rows if r["variant"] == variant)
             assert last >= 4000, (scene, variant, last)

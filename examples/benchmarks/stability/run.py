@@ -27,6 +27,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import shlex
 import shutil
 import subprocess
@@ -51,18 +52,53 @@ EXTREME_DECK = HERE / "in.stability.extreme"
 GEOMETRY = HERE / "stability.geometry"
 
 # ---------------------------------------------------------------------------------------------
-# The one place for the integrators.  Each SISSM variant: fix sissm keywords ("args"), and a
-# "fallback" used when build/lmp rejects them (None: drop the variant).  Every variant is
-# probed with a 2-step run before use.  (The "solver" keyword is new: a build without it runs
-# the Jacobi sweep, so the jacobi variant falls back to the same options without "solver".)
+# The one place for the integrators.  Each SISSM variant: fix sissm keywords ("args"; empty:
+# none at all), its label, and a "fallback" used when build/lmp rejects them (None: drop the
+# variant).  Every variant is probed with a 2-step run before use.  (The "solver" keyword is
+# new: a build without it runs the Jacobi sweep, so the jacobi variant falls back to the same
+# options without "solver" and "unconverged", which such a build predates.)
 SISSM_OPTIONS = {
-    "jacobi": {"args": "solver jacobi iterations 20 tolerance 1e-6",
+    # SISSM as its authors use it: at most 20 Jacobi sweeps per step (fewer when a step meets
+    # 1e-6); a step that stops at the 20th is kept truncated (unconverged warn; the default
+    # cutback would redo it as sub-steps, or stop the run)
+    "jacobi": {"args": "solver jacobi iterations 20 tolerance 1e-6 unconverged warn",
+               "label": "peri/nosb + fix sissm jacobi",
                "fallback": "iterations 20 tolerance 1e-6"},
-    # krylov with the fix's defaults (iterations 100, tolerance 1e-6): what a user gets
-    "krylov": {"args": "solver krylov iterations 100 tolerance 1e-6", "fallback": None},
+    # Newton-Krylov with the block preconditioner; otherwise as the defaults (unconverged
+    # cutback 4)
+    "block": {"args": "solver krylov precond block iterations 100 tolerance 1e-6",
+              "label": "peri/nosb + fix sissm krylov, precond block", "fallback": None},
+    # no keywords: what a user gets (solver krylov, precond amg, iterations 100, tolerance 1e-6,
+    # unconverged cutback 4)
+    "defaults": {"args": "", "label": "peri/nosb + fix sissm, defaults (krylov, precond amg)",
+                 "fallback": None},
 }
+DEFAULT_ITERATIONS = 100   # fix sissm's default "iterations" (doc/fix_sissm.rst)
+CUTBACK_LEVELS = 4         # ... and of "unconverged cutback": up to 2^4 = 16 sub-steps
 SISSM_ITERATIONS = 20   # jacobi's "iterations" above; the explicit extreme-case runs get the same
                         # budget of force evaluations per fix sissm step (iterations + 1)
+
+
+def option_value(fix: str, key: str, default=None):
+    words = fix.split()
+    return words[words.index(key) + 1] if key in words[:-1] else default
+
+
+def unconverged_mode(fix: str) -> str:
+    """What a step of this fix sissm that misses its tolerance does (doc/fix_sissm.rst)."""
+    if float(option_value(fix, "tolerance", 1e-6)) == 0:
+        return "tolerance 0: every step runs all its iterations and is kept"
+    mode = option_value(fix, "unconverged")
+    if mode == "warn":
+        return ("unconverged warn: a step that misses the tolerance is kept truncated "
+                "(counted in f_ID[4])")
+    if mode == "error":
+        return "unconverged error: the run stops at the first such step"
+    if "solver" not in fix.split() and fix.split() != ["sissm"]:
+        return "this build's default"
+    return (f"unconverged cutback {CUTBACK_LEVELS} (the default): redone as 2, 4, ..., "
+            f"{2 ** CUTBACK_LEVELS} sub-steps; the run stops with an ERROR when even "
+            f"{2 ** CUTBACK_LEVELS} do not converge")
 
 
 @dataclass
@@ -83,8 +119,9 @@ def methods_list() -> list:
     ]
     for name, opt in SISSM_OPTIONS.items():
         fb = ("sissm " + opt["fallback"]) if opt["fallback"] else None
-        methods.append(Method(f"sissm_{name}", f"peri/nosb + fix sissm {name}", "nosb",
-                              "sissm " + opt["args"], "nosb", sissm=True, fallback=fb))
+        methods.append(Method(f"sissm_{name}", opt["label"], "nosb",
+                              ("sissm " + opt["args"]).strip(), "nosb", sissm=True,
+                              fallback=fb))
     return methods
 
 
@@ -163,6 +200,9 @@ class Outcome:
     final_ratio: float = float("nan")
     iterations: float = float("nan")  # fix sissm mean iterations per step
     unconverged: float = float("nan")
+    cut_back: float = float("nan")    # fix sissm steps redone as sub-steps (log summary line)
+    switches: float = float("nan")    # ... redone with the other preconditioner
+    amg_setups: float = float("nan")  # ... set-ups of the AMG hierarchy (precond amg)
     wall: float = 0.0
     error: str = ""
     suspicious: str = ""        # crash without ERROR, NaN without error under fix sissm, hang
@@ -194,10 +234,16 @@ def run(deck: Path, workdir: Path, variables: dict, timeout: float = HANG_GUARD_
     return r, time.time() - t0
 
 
+SUMMARY = re.compile(r"Fix sissm \S+ run: (\d+) steps, ([0-9.eE+-]+) iterations per step, "
+                     r"(\d+) unconverged, (\d+) cut back, (\d+) preconditioner switches"
+                     r"(?:; (\d+) set-ups? of the AMG hierarchy)?")
+
+
 def classify(r, wall: float, nsteps: int, sissm: bool) -> Outcome:
     """stable, or the first way the run failed: an ERROR line of LAMMPS (non-finite positions,
-    lost atoms, lost partners, ...), non-finite thermo values, or etotal growing beyond
-    ENERGY_FACTOR times its initial value."""
+    lost atoms, lost partners, ...) or fix sissm's stop (unconverged cutback: not even 16
+    sub-steps converged), non-finite thermo values, or etotal growing beyond ENERGY_FACTOR
+    times its initial value."""
     if r is None:
         return Outcome("hang", f"no end after {HANG_GUARD_S:.0f} s", wall=wall,
                        suspicious=f"lmp did not end within {HANG_GUARD_S:.0f} s (hang?)")
@@ -215,6 +261,13 @@ def classify(r, wall: float, nsteps: int, sissm: bool) -> Outcome:
     if sissm and "f_integrate[3]" in table and len(steps):
         out.iterations = float(table["f_integrate[3]"][-1])
         out.unconverged = float(table["f_integrate[4]"][-1])
+    if sissm:
+        # the summary line of the last run (not written when the run stopped with an ERROR)
+        found = SUMMARY.findall(r.log)
+        if found:
+            s = found[-1]
+            out.cut_back, out.switches = float(s[3]), float(s[4])
+            out.amg_setups = float(s[5]) if s[5] else float("nan")
     growth = None
     if len(etot) and e0 > 0:
         big = np.nonzero(finite & (etot > ENERGY_FACTOR * e0))[0]
@@ -231,7 +284,12 @@ def classify(r, wall: float, nsteps: int, sissm: bool) -> Outcome:
         msg = errors[0]
         out.error = msg
         low = msg.lower()
-        if "the run is unstable" in low:   # the blow-up guard of peri/nosb
+        if "fix sissm" in low and (("not even as" in low and "sub-steps" in low)
+                                   or "(unconverged error)" in low):
+            # the documented stop of unconverged cutback (a step that did not converge even
+            # as 2^levels sub-steps) or unconverged error: a clean error stop
+            out.status = "stopped"
+        elif "the run is unstable" in low:   # the blow-up guard of peri/nosb
             out.status = "NaN" if "non-finite" in low else "blow-up"
         elif "halt" in low or "too many neighbor bins" in low:
             out.status = "blow-up"
@@ -269,7 +327,6 @@ def classify(r, wall: float, nsteps: int, sissm: bool) -> Outcome:
 
 def crash_site(text: str) -> str:
     """First frame of a backtrace printed by a crashed lmp, demangled when c++filt exists."""
-    import re
     frames = re.findall(r"\((_Z\w+)\+0x", text)
     if not frames:
         return ""
@@ -439,7 +496,7 @@ def extreme_methods(methods: list, cfg: Config) -> list:
     for m in methods:
         if m.sissm:
             out.append(XMethod(m.key, m.label, "nosb", m.fix, True,
-                               cfg.extreme_factor, "nosb", images=(m.key == "sissm_krylov")))
+                               cfg.extreme_factor, "nosb", images=(m.key == "sissm_defaults")))
         else:
             out.append(XMethod(m.key, m.label + " + viscous", m.pair, m.fix, False, 0.5,
                                m.limit_of, images=False))
@@ -526,10 +583,23 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
         if m.key in probes:
             ok, msg = probes[m.key]
             state = (f"used, `fix integrate all {m.fix}`" + (f" ({msg})" if msg else "")
+                     + f"; a step that misses its tolerance: {unconverged_mode(m.fix)}"
                      if ok else f"**not used**: build/lmp rejected it (`{msg}`)")
             add(f"- {m.label}: probed with a 2-step run: {state}")
         else:
             add(f"- {m.label}: `fix integrate all {m.fix}`")
+    add("")
+    add("The jacobi variant is SISSM as its authors use it, a small fixed budget of sweeps per "
+        "step whose truncated steps are kept (`unconverged warn`); the krylov variants are "
+        "about the converged implicit step: with the default `unconverged cutback "
+        f"{CUTBACK_LEVELS}` a step that misses the tolerance is redone as 2, 4, ..., "
+        f"{2 ** CUTBACK_LEVELS} sub-steps (with `precond amg` first with a fresh AMG hierarchy "
+        "and then with the block preconditioner, a \"preconditioner switch\"), and a run in "
+        f"which even {2 ** CUTBACK_LEVELS} sub-steps do not converge stops with fix sissm's "
+        f"ERROR (outcome `stopped`: did not converge even as {2 ** CUTBACK_LEVELS} sub-steps).  "
+        "`fix integrate all sissm` with nothing after it is what a user gets: solver krylov, "
+        f"precond amg, iterations {DEFAULT_ITERATIONS}, tolerance 1e-6, unconverged cutback "
+        f"{CUTBACK_LEVELS}.")
     add("")
     add("## Explicit limits")
     add("")
@@ -574,7 +644,10 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
         "peri/nosb, \"the run is unstable\", or LAMMPS's \"Too "
         f"many neighbor bins\" for a box that exploded within one step), `E>{ENERGY_FACTOR:g}x` "
         "(energy growth, the run otherwise completed), `crash (core)` (lmp died with a signal "
-        "inside LAMMPS itself, not the plugin: first backtrace frame in the CSV), `error` "
+        "inside LAMMPS itself, not the plugin: first backtrace frame in the CSV), `stopped` "
+        "(fix sissm's documented error stop, a clean end, not a crash: with `unconverged "
+        f"cutback` a step did not converge even as {2 ** CUTBACK_LEVELS} sub-steps, or with "
+        "`unconverged error` a step missed the tolerance), `error` "
         f"(another ERROR line, in the CSV); `(E>{ENERGY_FACTOR:g}x at N)` = first step with "
         "energy growth.  Strain ~ v0/c is the scale of the "
         "excitation.")
@@ -593,14 +666,37 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
         add("")
         if m.sissm:
             its = [matrix[m.key][(E, f)]["outcome"] for E in cfg.stiffness for f in fac]
-            its = [o for o in its if math.isfinite(o.iterations)]
+            # cells that ran at least one step (a run stopped in its first step has only the
+            # step-0 row, whose f_ID[3] is 0)
+            its = [o for o in its if math.isfinite(o.iterations) and o.steps_done > 0]
             if its:
-                add(f"Mean fix sissm iterations per step over the cells: "
+                summ = [o for o in its if math.isfinite(o.cut_back)]
+                cut = [o for o in summ if o.cut_back > 0]
+                sw = [o for o in summ if o.switches > 0]
+                amg = [o for o in summ if math.isfinite(o.amg_setups)]
+                fin = [o for o in its if math.isfinite(o.final_ratio)]
+                add(f"Over the {len(its)} cells with fix sissm output: mean iterations per step "
+                    f"(every attempt and sub-step of a step counted) "
                     f"{min(o.iterations for o in its):.3g} to {max(o.iterations for o in its):.3g}; "
-                    f"steps stopped at the iteration limit: {min(o.unconverged for o in its):.0f} to "
-                    f"{max(o.unconverged for o in its):.0f} of {cfg.matrix_steps}; "
-                    f"final etotal / initial: {min(o.final_ratio for o in its):.3g} to "
-                    f"{max(o.final_ratio for o in its):.3g}.")
+                    f"steps kept above the tolerance (f_ID[4]): {min(o.unconverged for o in its):.0f} to "
+                    f"{max(o.unconverged for o in its):.0f} of {cfg.matrix_steps}"
+                    + (f"; steps cut back to sub-steps: {len(cut)} cells, "
+                       f"{max(o.cut_back for o in cut):.0f} steps at most"
+                       + (" (" + ", ".join(f"E = {E:g} Pa {f:g}x: {matrix[m.key][(E, f)]['outcome'].cut_back:.0f}"
+                                           for E in cfg.stiffness for f in fac
+                                           if matrix[m.key][(E, f)]['outcome'].cut_back > 0) + ")"
+                          if len(cut) <= 12 else "")
+                       if cut else "; no step cut back")
+                    + (f"; steps redone with the other preconditioner: {len(sw)} cells"
+                       + (" (" + ", ".join(f"E = {E:g} Pa {f:g}x: {matrix[m.key][(E, f)]['outcome'].switches:.0f}"
+                                           for E in cfg.stiffness for f in fac
+                                           if matrix[m.key][(E, f)]['outcome'].switches > 0) + ")"
+                          if len(sw) <= 12 else "")
+                       if sw else ("; no preconditioner switch" if amg else ""))
+                    + (f"; AMG hierarchy set-ups per run: {min(o.amg_setups for o in amg):.0f} to "
+                       f"{max(o.amg_setups for o in amg):.0f}" if amg else "")
+                    + (f"; final etotal / initial: {min(o.final_ratio for o in fin):.3g} to "
+                       f"{max(o.final_ratio for o in fin):.3g}" if fin else "") + ".")
                 add("")
     # summary sentences from the data
     add("### Where each method fails")
@@ -636,7 +732,8 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
                 f"{100 * max(unconv):.0f}% of their steps stopped at the iteration limit.  A "
                 "converged backward-Euler step cannot raise the energy; the step starts from "
                 "y^n + h v^n (doc/fix_sissm.rst), whose strain grows with h, and "
-                f"{SISSM_ITERATIONS} iterations leave it far from the implicit solution.")
+                f"{option_value(m.fix, 'iterations', DEFAULT_ITERATIONS)} iterations leave it "
+                "far from the implicit solution.")
     add("")
     # extreme
     add("## Extreme deformations")
@@ -663,8 +760,13 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
                "the lowest mode's frequency)" if r0["gamma"] > 0 else "")
             + ".")
     add("")
-    add("fix sissm runs at most 21 force evaluations per step, so the explicit runs get the same "
-        "budget of force evaluations (21 x the SISSM step count).  Recovery: `rms` = RMS distance "
+    add(f"fix sissm jacobi runs at most {SISSM_ITERATIONS + 1} force evaluations per step "
+        f"({SISSM_ITERATIONS} sweeps and the evaluation that ends the step), so the explicit "
+        f"runs get that budget ({SISSM_ITERATIONS + 1} x the SISSM step count); the krylov "
+        f"variants may use up to {DEFAULT_ITERATIONS} per step, and a cut-back step up to "
+        f"{2 ** (CUTBACK_LEVELS + 1) - 1} times that (their mean iterations per step, cut-back "
+        "steps and preconditioner switches are in the CSV and summed up below the table).  "
+        "Recovery: `rms` = RMS distance "
         "to the rest shape after the best rigid rotation + translation, in spacings; "
         f"`recovered` when rms < {RECOVERED} a, `mirror image` when only a reflection brings it "
         "back below that, `still a point` / `still flat` / `expanded` (longest principal extent > 1.5 x the rest edge) from the principal "
@@ -705,6 +807,33 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
             add(f"- `{key}` {model}: recovered {len(good)}/{len(rows)}"
                 + (f"; not: {', '.join(bad)}" if bad else "") + ".")
     add("")
+    # what fix sissm did in these runs (mean iterations, cut-backs, switches: the CSV)
+    for key, label in xkeys:
+        rr = [r for r in xs if r["method"] == key and r["method"].startswith("sissm")]
+        its = [r["outcome"] for r in rr if math.isfinite(r["outcome"].iterations)
+               and r["outcome"].steps_done > 0]
+        if not its:
+            continue
+        summ = [o for o in its if math.isfinite(o.cut_back)]
+        cut = [r for r in rr if math.isfinite(r["outcome"].cut_back) and r["outcome"].cut_back > 0]
+        sw = [r for r in rr if math.isfinite(r["outcome"].switches) and r["outcome"].switches > 0]
+        amg = [o for o in summ if math.isfinite(o.amg_setups)]
+        add(f"- `{key}` over its {len(its)} runs that completed a thermo interval: mean "
+            "iterations per step "
+            f"{min(o.iterations for o in its):.3g} to {max(o.iterations for o in its):.3g}; "
+            f"steps kept above the tolerance (f_ID[4]) {min(o.unconverged for o in its):.0f} to "
+            f"{max(o.unconverged for o in its):.0f} of {cfg.extreme_steps}"
+            + (("; steps cut back to sub-steps in " + ", ".join(
+                f"{r['model']} {r['case']} ({r['outcome'].cut_back:.0f})" for r in cut))
+               if cut else "; no step cut back")
+            + (("; steps redone with the other preconditioner in " + ", ".join(
+                f"{r['model']} {r['case']} ({r['outcome'].switches:.0f})" for r in sw))
+               if sw else ("; no preconditioner switch" if amg else ""))
+            + (f"; AMG hierarchy set-ups per run {min(o.amg_setups for o in amg):.0f} to "
+               f"{max(o.amg_setups for o in amg):.0f}" if amg else "")
+            + (f"; {len(rr) - len(summ)} runs ended with an ERROR (no summary line)"
+               if len(summ) < len(rr) else "") + ".")
+    add("")
     spin = [r for r in xs if r["verdict"] == "recovered" and math.isfinite(r["metrics"].get("omega", float("nan")))]
     if spin:
         add("Momentum created (blocks start at rest, no external force), over the recovered runs:")
@@ -728,7 +857,7 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
     # images
     imgs = [r for r in xs if r["images"]]
     if imgs:
-        add("### Pictures (fix sissm krylov, the defaults, before / after; colour = J = det F: "
+        add("### Pictures (fix sissm with its defaults, before / after; colour = J = det F: "
             "blue -1, yellow 0, green 1, red >= 2)")
         add("")
         add("The after picture is taken once the block has been moved back to the centre (a "
@@ -753,16 +882,24 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
         for (E, f), cell in cells.items():
             if cell["outcome"].suspicious:
                 sus.append((cell["outcome"].suspicious, cell["command"]))
+    stopped = []   # fix sissm's documented stop (unconverged cutback / error): listed apart
     for key, cells in matrix.items():
         if key.startswith("sissm"):
             for (E, f), cell in cells.items():
                 o = cell["outcome"]
-                if o.status != "stable" and not o.suspicious:
+                if o.status == "stopped":
+                    stopped.append((f"{key}, matrix cell E = {E:g} Pa, {f:g}x, after step "
+                                    f"{o.steps_done}: `{o.error[:200]}`", cell["command"]))
+                elif o.status != "stable" and not o.suspicious:
                     sus.append((f"fix sissm ({key}) failed a matrix cell, E = {E:g} Pa, {f:g}x: "
                                 f"{o.status} {o.detail}", cell["command"]))
     for r in xs:
         if r["outcome"].suspicious:
             sus.append((r["outcome"].suspicious, r["command"]))
+        elif r["outcome"].status == "stopped":
+            stopped.append((f"{r['method']}, extreme case {r['model']} {r['case']}, after step "
+                            f"{r['outcome'].steps_done}: `{r['outcome'].error[:200]}`",
+                            r["command"]))
         elif r["method"].startswith("sissm") and r["outcome"].status not in ("stable",):
             sus.append((f"fix sissm ({r['method']}) {r['model']} {r['case']}: "
                         f"{r['outcome'].status} ({r['outcome'].error or r['outcome'].detail})",
@@ -783,6 +920,22 @@ def write_report(path: Path, imgrel: str, cfg: Config, quick: bool, methods: lis
         add("None: every run that blew up ended with an ERROR line (peri/nosb: \"the run is "
             "unstable\", its blow-up guard, which names the step, an atom and the likely "
             "cause).")
+    add("")
+    add("## fix sissm runs stopped by their tolerance")
+    add("")
+    if stopped:
+        add(f"{len(stopped)} fix sissm runs ended with fix sissm's documented error stop (outcome "
+            f"`stopped`): with `unconverged cutback` a step did not converge even as "
+            f"{2 ** CUTBACK_LEVELS} sub-steps.  A clean stop that names the step and says what "
+            "to do (raise iterations, lower the time step, or accept unconverged steps with "
+            "`unconverged warn`), not a crash and not a success; each with the command that "
+            "reproduces it:")
+        add("")
+        for what, cmd in stopped:
+            add(f"- {what}: `{cmd}`")
+    else:
+        add("None: no fix sissm run stopped because a step did not converge (with `unconverged "
+            f"cutback`: not even as {2 ** CUTBACK_LEVELS} sub-steps).")
     add("")
     add("## Plugin problems found")
     add("")
@@ -830,6 +983,23 @@ def mechanism_notes(xs: list) -> list:
                      "vectors are zero, so stabilization and contact have no direction either; "
                      "the corotated linear model is not smooth at F = 0 (its P(0) is -(2mu+3lambda) "
                      "times the rotation the SVD returns), which is why it can push back.")
+    stopped = [r for r in xs if r["method"].startswith("sissm") and r["verdict"] == "stopped"]
+    if stopped:
+        def measure(r):
+            found = re.search(r"convergence measure ([0-9.eE+-]+)", r["outcome"].error)
+            return found.group(1) if found else "?"
+        def step(r):
+            found = re.search(r"step (\d+) did not converge", r["outcome"].error)
+            return found.group(1) if found else "?"
+        notes.append("fix sissm stopped (`unconverged cutback`, the default) in "
+                     + ", ".join(f"{r['model']} {r['case']} ({r['method']}, step {step(r)}, "
+                                 f"measure {measure(r)})" for r in stopped)
+                     + f": the block is released at rest far from its rest shape, with forces "
+                     "far larger than near it, and the step's Newton-Krylov solve does not "
+                     "reach the tolerance within its iterations even as "
+                     f"{2 ** CUTBACK_LEVELS} sub-steps; the run stops with the ERROR, "
+                     "which says what to do (raise iterations, lower the time step, or accept "
+                     "truncated steps with `unconverged warn`).")
     lps_mirror = [r for r in xs if r["method"] == "lps_nve" and r["verdict"] == "mirror image"]
     if lps_mirror:
         notes.append("peri/lps stays mirrored (" + ", ".join(r["case"] for r in lps_mirror) + "): "
@@ -938,6 +1108,9 @@ def main():
                              "final_etotal_ratio": fmt(o.final_ratio, ".4g"),
                              "sissm_mean_iterations": fmt(o.iterations, ".4g"),
                              "sissm_unconverged_steps": fmt(o.unconverged, ".0f"),
+                             "sissm_cut_back_steps": fmt(o.cut_back, ".0f"),
+                             "sissm_precond_switches": fmt(o.switches, ".0f"),
+                             "sissm_amg_setups": fmt(o.amg_setups, ".0f"),
                              "error": o.error, "suspicious": o.suspicious,
                              "wall_s": f"{wall:.2f}", "command": cmd})
     with open(imgdir / "matrix.csv", "w", newline="") as fh:
@@ -976,6 +1149,9 @@ def main():
                       "final_L_kg_m2_s": fmt(m.get("L"), ".4g"),
                       "sissm_mean_iterations": fmt(o.iterations, ".4g"),
                       "sissm_unconverged_steps": fmt(o.unconverged, ".0f"),
+                      "sissm_cut_back_steps": fmt(o.cut_back, ".0f"),
+                      "sissm_precond_switches": fmt(o.switches, ".0f"),
+                      "sissm_amg_setups": fmt(o.amg_setups, ".0f"),
                       "error": o.error, "suspicious": o.suspicious,
                       "images": " ".join(res["images"].values()),
                       "wall_s": f"{o.wall:.2f}", "command": res["command"]})
