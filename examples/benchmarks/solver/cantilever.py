@@ -4,16 +4,23 @@
     /usr/bin/python3 examples/benchmarks/solver/cantilever.py [--quick] [--ranks N]
 
 Runs, in one invocation and one temporary folder (the decks are those of examples/cantilever,
-copied with cantilever.geometry; the fix sissm line gets `precond ${precond}`):
+copied with cantilever.geometry; except in the rows "defaults" and "deck" the fix sissm line gets
+`precond ${precond} unconverged ${unconv}`):
 
   reference   fix sissm precond amg, tolerance 1e-8, 5000 iterations, dt = 1000 s, 2 steps: the
               static deflection of the peri/nosb beam (cross-checked against the last row of
               examples/cantilever/log.21Nov26.cantilever.nosb.g++.1, damped fix nve, 4000 steps)
-  amg         fix sissm precond amg, tolerance 1e-6, 5000 iterations (the deck's), unconverged
-              cutback (every option given: the numbers do not follow the fix's defaults),
-              dt = 100 s, 3 steps (the first brings the beam to rest; the others show it stays)
+  defaults    fix sissm iterations 100 tolerance 1e-6 and no other keyword: what a user gets
+              (the fix's defaults: precond amg, unconverged cutback 4), dt = 100 s, 3 steps (the
+              first brings the beam to rest; the others show it stays)
+  amg         fix sissm precond amg, tolerance 1e-6, 5000 iterations (a budget large enough for
+              block too; the deck's default is 100), unconverged cutback (every option given: the
+              numbers do not follow the fix's defaults), dt = 100 s, 3 steps
   block       the same with precond block
   block/100   precond block with the fix's default budget, iterations 100, unconverged cutback
+  deck        examples/cantilever/in.cantilever.sissm as it is (fix sissm defaults, tolerance
+              1e-4, dt = 0.73 s = 10^4 x the explicit limit, 10 steps): the example's own step,
+              where backward Euler takes several steps to remove the motion
   nosb 0.9c   peri/nosb + fix nve + fix viscous 1.02e5 (0.9 x critical, the deck's tuned value),
               dt 6e-5 s, 6000 steps, thermo every 10
   nosb 1.0c   the same at critical damping, fix viscous 1.13e5 (2 rho omega1)
@@ -27,7 +34,9 @@ step); for fix sissm the sum of f_integrate[1] + 1 (the regular evaluation that 
 over the steps up to that row. The evaluation of the run's set-up is counted for nobody. Wall
 time to rest: LAMMPS's CPU thermo column (elapsed wall time of the run) at that row; on a
 shared machine it is information only, the evaluations are the measure. --quick: 4000 explicit
-steps (enough for both explicit methods to rest), no block/100 row.
+steps (enough for both explicit methods to rest), no block/100 and deck rows. For every fix
+sissm run the fix's end-of-run line is printed (unconverged steps, cut-backs, preconditioner
+switches, set-ups of the AMG hierarchy).
 """
 from __future__ import annotations
 
@@ -49,11 +58,14 @@ EXPLICIT_LOG = CANTILEVER / "log.21Nov26.cantilever.nosb.g++.1"
 REST = 1.0e-4
 
 
-def sissm_deck() -> str:
+def sissm_deck(options: bool = True) -> str:
+    """in.cantilever.sissm with all nine fix outputs in thermo; options: the fix sissm line also
+    gets `precond ${precond} unconverged ${unconv}` (without: the fix's defaults)."""
     text = (CANTILEVER / "in.cantilever.sissm").read_text()
     old = "fix             integrate free sissm iterations ${iters} tolerance ${tol}"
     assert text.count(old) == 1, "the fix sissm line of in.cantilever.sissm changed"
-    text = text.replace(old, old + " precond ${precond} unconverged ${unconv}")
+    if options:
+        text = text.replace(old, old + " precond ${precond} unconverged ${unconv}")
     cols = "f_integrate[3] f_integrate[4]"
     assert text.count(cols) == 1, "the thermo_style line of in.cantilever.sissm changed"
     return text.replace(cols, cols + " f_integrate[5] f_integrate[6] f_integrate[7] "
@@ -86,12 +98,14 @@ def main():
     nexplicit = 4000 if args.quick else 6000
 
     sissm = sissm_deck()
+    plain = sissm_deck(options=False)
     nosb = (CANTILEVER / "in.cantilever.nosb").read_text()
     lps = (CANTILEVER / "in.cantilever.lps").read_text()
     # name, deck, variables, kind
     cases = [
         ("reference", sissm, dict(dt=1000, nsteps=2, tol=1e-8, iters=5000, precond="amg",
                                   unconv="cutback"), "sissm"),
+        ("defaults", plain, dict(dt=100, nsteps=3, tol=1e-6, iters=100), "sissm"),
         ("amg", sissm, dict(dt=100, nsteps=3, tol=1e-6, iters=5000, precond="amg",
                             unconv="cutback"), "sissm"),
         ("block", sissm, dict(dt=100, nsteps=3, tol=1e-6, iters=5000, precond="block",
@@ -100,6 +114,7 @@ def main():
     if not args.quick:
         cases.append(("block/100", sissm, dict(dt=100, nsteps=3, tol=1e-6, iters=100,
                                                precond="block", unconv="cutback"), "sissm"))
+        cases.append(("deck", plain, dict(dt=0.73, nsteps=10, tol=1e-4, iters=100), "sissm"))
     cases += [
         ("nosb 0.9c", nosb, dict(nsteps=nexplicit, thermo_every=10, gamma=1.02e5), "nosb"),
         ("nosb 1.0c", nosb, dict(nsteps=nexplicit, thermo_every=10, gamma=1.13e5), "nosb"),
@@ -169,6 +184,8 @@ def main():
             row["cutback"] = int(t["f_integrate[6]"][-1])
             row["fallback"] = int(t["f_integrate[9]"][-1])
             row["warnings"] = len(res.warnings)
+            row["summary"] = [ln.split(" run: ", 1)[1] for ln in res.log.splitlines()
+                              if ln.startswith("Fix sissm ") and " run: " in ln]
         else:
             evals = t["Step"].copy()
         if k is None:
@@ -208,6 +225,8 @@ def main():
                   f"Newton steps {r['newton']}, CG iterations {r['krylov']}; unconverged steps "
                   f"{r['unconverged']}, steps cut back {r['cutback']}, steps redone with the "
                   f"other preconditioner {r['fallback']}")
+            for line in r["summary"]:
+                print(f"  {r['name']}: fix sissm at the end of the run: {line}")
         if r["ok"] and r["kind"] == "lps":
             print(f"{r['name']}: rest measured against its own final deflection "
                   f"{r['final']:.8g} m ({r['final_vs_ref']:+.1%} from the peri/nosb reference: "

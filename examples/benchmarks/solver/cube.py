@@ -24,11 +24,14 @@ error printed in the table).
 Printed per run: the explicit estimate and dt, force evaluations per step (f_ID[1]; the regular
 evaluation that ends each step is not included), Newton steps and CG iterations per step
 (f_ID[8], f_ID[7]), CG per Newton step, unconverged steps / steps cut back / steps redone with
-the other preconditioner (f_ID[4], [6], [9]), fix sissm's loop time, the time its evaluations
-alone would take (evaluations x t_nve: the rest is the preconditioner's assembly, set-up and
-applications), and the peak resident memory per rank (/usr/bin/time). Parallel efficiency
-t1 / (2 t2) of the loop time, and of fix nve for comparison. Wall times are information only
-(shared machine). --quick: N = 20.
+the other preconditioner (f_ID[4], [6], [9]), the set-ups of the AMG hierarchy in the run (all,
+and those with a new sparsity pattern: fix sissm's end-of-run line), fix sissm's loop time, the
+time its evaluations alone would take (evaluations x t_nve: the rest is the preconditioner's
+assembly, set-up and applications), and the peak resident memory per rank (/usr/bin/time). Parallel efficiency
+t1 / (2 t2) of the loop time, and of fix nve for comparison, with LAMMPS's "CPU use" of each
+loop (CPU time / wall time, mean over the ranks): below 100% the machine's other jobs took the
+cores, and the efficiency says more about them than about the code. Wall times are information
+only (shared machine). --quick: N = 20.
 """
 from __future__ import annotations
 
@@ -46,6 +49,12 @@ from progress import Progress  # noqa: E402
 
 
 RSS = re.compile(r"PEAKRSS (\d+)")
+# LAMMPS after each run: "99.1% CPU use with 2 MPI tasks x 1 OpenMP threads" (CPU time over wall
+# time of the loop, averaged over the ranks)
+CPU = re.compile(r"([0-9.]+)% CPU use with")
+# fix sissm at the end of a run: "... ; K set-up(s) of the AMG hierarchy (P with a new sparsity
+# pattern)"
+SETUPS = re.compile(r"(\d+) set-ups? of the AMG hierarchy \((\d+) with a new sparsity pattern\)")
 
 DECK = """\
 # clamped cube of {N}^3 particles under gravity (examples/benchmarks/solver/cube.py)
@@ -131,10 +140,15 @@ def run(N: int, ranks: int, variant: str, steps: int, workdir: Path, petsc: str 
         return out
     tables = parse_thermo(text)          # run 0, fix sissm, fix nve
     loops = LOOP.findall(text)
+    cpu = [float(m[1]) / 100 if (m := CPU.search(chunk)) else float("nan")
+           for chunk in text.split("Loop time of ")[1:]]
     t = tables[1]
     out.update(
         atoms=int(loops[1][3]), dtexp=float(re.search(r"EXPLICIT_STEP ([0-9.eE+-]+)", text)[1]),
         loop=float(loops[1][0]), t_nve=float(loops[2][0]) / int(loops[2][2]),
+        cpu=cpu[1], cpu_nve=cpu[2],
+        summary=[ln.split(" run: ", 1)[1] for ln in text.splitlines()
+                 if ln.startswith("Fix sissm integrate run: ")][:1],
         evals=t["f_integrate[1]"][1:].astype(int), measure=t["f_integrate[2]"][1:],
         krylov=t["f_integrate[7]"][1:].astype(int), newton=t["f_integrate[8]"][1:].astype(int),
         unconverged=int(t["f_integrate[4]"][-1]), cutback=int(t["f_integrate[6]"][-1]),
@@ -175,7 +189,8 @@ def main():
           + (f', amg with petsc "{args.petsc}"' if args.petsc else ""))
     hdr = (f"{'N^3':>6} {'atoms':>7} {'precond':>7} {'ranks':>5} {'dt (s)':>10} "
            f"{'evals/step':>16} {'Newton/step':>12} {'CG/step':>14} {'CG/Newton':>9} "
-           f"{'unc/cut/fb':>10} {'loop (s)':>9} {'evals x t_nve':>13} {'peak RSS/rank (GB)':>18}")
+           f"{'unc/cut/fb':>10} {'set-ups':>7} {'loop (s)':>9} {'evals x t_nve':>13} "
+           f"{'peak RSS/rank (GB)':>18}")
     print(hdr)
     print("-" * len(hdr))
     for r in results:
@@ -189,12 +204,15 @@ def main():
         per = r["krylov"].sum() / max(r["newton"].sum(), 1)
         rss = "/".join(f"{v / 1e6:.2f}" for v in sorted(r["rss"], reverse=True))
         unc = f"{r['unconverged']}/{r['cutback']}/{r['fallback']}"
+        m = SETUPS.search(r["summary"][0]) if r["summary"] else None
+        setups = f"{m[1]}/{m[2]}" if m else "-"
         print(f"{r['N']:>4}^3 {r['atoms']:>7} {r['variant']:>7} {r['ranks']:>5} "
               f"{100 * r['dtexp']:>10.4g} {ev:>16} {nw:>12} {cg:>14} {per:>9.1f} {unc:>10} "
-              f"{r['loop']:>9.2f} {r['evals'].sum() * r['t_nve']:>13.2f} {rss:>18}")
+              f"{setups:>7} {r['loop']:>9.2f} {r['evals'].sum() * r['t_nve']:>13.2f} {rss:>18}")
     print("unc/cut/fb: steps that missed the tolerance / steps cut back / steps redone with the "
-          "other preconditioner (f_ID[4], [6], [9]); evals x t_nve: the loop time the force "
-          "evaluations alone would take")
+          "other preconditioner (f_ID[4], [6], [9]); set-ups: of the AMG hierarchy in the run / "
+          "of them with a new sparsity pattern (fix sissm's end-of-run line); evals x t_nve: the "
+          "loop time the force evaluations alone would take")
     print()
     for N in sizes:
         for v in args.precond:
@@ -204,13 +222,15 @@ def main():
                 dsag = np.max(np.abs(a["sag"] - b["sag"]))
                 print(f"{N}^3 {v}: parallel efficiency t1/(2 t2) {a['loop'] / (2 * b['loop']):.2f} "
                       f"(fix sissm loop time; fix nve {a['t_nve'] / (2 * b['t_nve']):.2f}); "
+                      f"CPU use 1 rank {a['cpu']:.0%}, 2 ranks {b['cpu']:.0%}; "
                       f"evaluations 1 rank {a['evals'].sum()}, 2 ranks {b['evals'].sum()}; "
                       f"largest difference of the mean sag, 1 vs 2 ranks {dsag:.2e} m")
     for r in results:
         if r["ok"]:
             print(f"{r['N']}^3 {r['variant']} on {r['ranks']}: explicit estimate "
                   f"{r['dtexp']:.4g} s, "
-                  f"t_nve {r['t_nve'] * 1e3:.1f} ms, step times "
+                  f"t_nve {r['t_nve'] * 1e3:.1f} ms, CPU use {r['cpu']:.0%} (fix nve "
+                  f"{r['cpu_nve']:.0%}), step times "
                   + ", ".join(f"{s:.1f}" for s in r["step_times"]) + " s, measures "
                   + ", ".join(f"{m:.2g}" for m in r["measure"]) + ", mean sag "
                   + ", ".join(f"{m:.4e}" for m in r["sag"]) + " m"

@@ -13,7 +13,9 @@ the same small-deflection regime (at g = 9.81 the 160-particle beam would sag by
 its one-step solve would move atoms farther than short-range contact can follow). One static
 backward-Euler step of dt = 100 s with `fix sissm iterations 5000 tolerance 1e-6 unconverged warn
 precond amg|block`, the same options for both preconditioners (warn: a step that misses the
-tolerance is reported, not redone; block is expected to hit the limit on long beams).
+tolerance is reported, not cut back; the budget is large enough for block on the longest
+beams). The PETSc options are the fix's defaults
+unless --petsc adds some.
 
 Printed per beam: force evaluations of the step (f_ID[1]), Newton steps (f_ID[8]), CG iterations
 (f_ID[7]), CG iterations per Newton step, steps that missed the tolerance (f_ID[4], must be 0),
