@@ -26,7 +26,6 @@
 #include "implicit_forces.h"
 
 #include "linalg/exact_sum.h"
-#include "solvers/backward_euler.h"
 #include "solvers/jacobi.h"
 #include "solvers/momentum.h"
 #include "solvers/newton_krylov.h"
@@ -93,8 +92,13 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     yn(nullptr), yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr),
     xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
     sdir(nullptr), term(nullptr), moment(nullptr), xstart(nullptr), vstart(nullptr),
-    gnode(nullptr)
+    hstart(nullptr), vn(nullptr), fstart(nullptr), gnode(nullptr)
 {
+  ncols = 0;
+  hist = nullptr;
+  hist_from_restart = 1;
+  std::string scheme_name = "euler";
+  double rho_inf = 0.8;
   time_integrate = 1;
   force_reneighbor = 1;    // after steps that moved atoms far (short-range contact)
   next_reneighbor = -1;
@@ -177,10 +181,27 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
                      arg[iarg]);
         iarg++;
       }
+    } else if (strcmp(arg[iarg], "scheme") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm scheme", error);
+      scheme_name = arg[iarg + 1];
+      if (scheme_name != "euler" && scheme_name != "bdf2" && scheme_name != "genalpha")
+        error->all(FLERR,
+                   "Illegal fix sissm command: scheme must be euler, bdf2 or genalpha, got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+      if (scheme_name == "genalpha" && iarg < narg &&
+          (isdigit(arg[iarg][0]) || arg[iarg][0] == '.' || arg[iarg][0] == '-')) {
+        rho_inf = utils::numeric(FLERR, arg[iarg], false, lmp);
+        if (!(rho_inf >= 0.0 && rho_inf <= 1.0))
+          error->all(FLERR,
+                     "Illegal fix sissm command: scheme genalpha rho_inf must be 0 to 1, got {}",
+                     arg[iarg]);
+        iarg++;
+      }
     } else {
       error->all(FLERR,
                  "Illegal fix sissm command: unknown keyword '{}' (allowed: iterations, "
-                 "tolerance, solver, precond, unconverged, relax, external)",
+                 "tolerance, solver, precond, unconverged, scheme, relax, external)",
                  arg[iarg]);
     }
   }
@@ -190,6 +211,19 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Illegal fix sissm command: precond amg needs solver krylov (the jacobi "
                       "sweeps use the blocks themselves)");
   if (solver == JACOBI) precond_type = PRECOND_BLOCK;
+
+  scheme = PeriSISSM::make_time_scheme(scheme_name, rho_inf);
+  ncols = scheme->history_columns();
+  if (ncols > 0) {
+    // the history travels with the atoms and is kept in restart files
+    restart_global = 1;
+    restart_peratom = 1;
+    maxexchange = ncols;
+    grow_arrays(atom->nmax);
+    atom->add_callback(Atom::GROW);
+    atom->add_callback(Atom::RESTART);
+    for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  }
 #ifndef PERISISSM_HAVE_PETSC
   if (precond_type == PRECOND_AMG)
     error->all(FLERR,
@@ -203,6 +237,11 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
 
 FixSissm::~FixSissm()
 {
+  if (ncols > 0) {
+    atom->delete_callback(id, Atom::GROW);
+    atom->delete_callback(id, Atom::RESTART);
+  }
+  memory->destroy(hist);
   destroy_arrays();
 }
 
@@ -233,7 +272,6 @@ void FixSissm::init()
   amg_precond.reset();
   if (precond_type == PRECOND_AMG) amg_precond = make_amg();
   precond = amg_precond ? amg_precond.get() : block_precond.get();
-  scheme = std::make_unique<PeriSISSM::BackwardEuler>();
   // the options of this run decide which work arrays exist: allocate them anew
   destroy_arrays();
   nmax = 0;
@@ -332,7 +370,8 @@ void FixSissm::reset_dt()
 void FixSissm::destroy_arrays()
 {
   for (double ***a : {&fint, &fext, &flagged, &yn, &yhat, &res, &kblock, &rprev, &dprev, &xbase,
-                      &rbase, &jbase, &cres, &zdir, &pdir, &sdir, &moment, &xstart, &vstart})
+                      &rbase, &jbase, &cres, &zdir, &pdir, &sdir, &moment, &xstart, &vstart,
+                      &hstart, &vn, &fstart})
     memory->destroy(*a);
   memory->destroy(term);
   memory->destroy(gnode);
@@ -353,9 +392,15 @@ void FixSissm::grow()
     memory->create(fint, nmax, 3, "sissm:fint");
   if (external_mode == EXT_MIXED || external_mode == EXT_LAGGED)
     memory->create(flagged, nmax, 3, "sissm:flagged");
-  if (unconverged == UNCONVERGED_CUTBACK || precond_type == PRECOND_AMG) {
+  if (unconverged == UNCONVERGED_CUTBACK || precond_type == PRECOND_AMG ||
+      scheme->force_time() < 1.0) {
     memory->create(xstart, nmax, 3, "sissm:xstart");
     memory->create(vstart, nmax, 3, "sissm:vstart");
+    if (ncols > 0) memory->create(hstart, nmax, ncols, "sissm:hstart");
+  }
+  if (ncols > 0) {
+    memory->create(vn, nmax, 3, "sissm:vn");
+    memory->create(fstart, nmax, 3, "sissm:fstart");
   }
   if (precond_type == PRECOND_AMG) memory->create(gnode, nmax, "sissm:gnode");
   if (relax) {
@@ -471,8 +516,8 @@ void FixSissm::unpack_forward_comm(int n, int first, double *buf)
    (without energy/virial; the implicit stiffness for the blocks only when asked), ghost forces
    folded back, with external implicit the post_force of the other fixes (with
    v = (y - y^n)/h, so velocity dependent forces such as fix viscous are implicit too), then
-   the backward-Euler residual r_i = rho_i (yhat_i - y_i) + h^2 f_i of the owned atoms of the
-   group into res
+   the time scheme's residual r_i = rho_i (yhat_i - y_i) + c f_i of the owned atoms of the group
+   into res
 ------------------------------------------------------------------------- */
 
 void FixSissm::evaluate(bool blocks)
@@ -493,13 +538,11 @@ void FixSissm::evaluate(bool blocks)
   if (force->newton_pair) comm->reverse_comm();
   if (external_mode == EXT_IMPLICIT || external_mode == EXT_MIXED) {
     // the other fixes' force at this iterate, kept in fext (f after minus f before)
-    const double hinv = 1.0 / hstep;
     for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit)
-        for (int k = 0; k < 3; k++) {
-          v[i][k] = (x[i][k] - yn[i][k]) * hinv;
-          fext[i][k] = f[i][k];
-        }
+      if (mask[i] & groupbit) {
+        scheme->iterate_velocity(i, arrays, v[i]);
+        for (int k = 0; k < 3; k++) fext[i][k] = f[i][k];
+      }
     for (Fix *fix : implicit_fixes) fix->post_force(0);
     for (int i = 0; i < nlocal; i++)
       if (mask[i] & groupbit)
@@ -626,7 +669,7 @@ double FixSissm::step_tolerance()
    momentum balance of a free group, end velocities. The evaluations are counted from zero.
 ------------------------------------------------------------------------- */
 
-PeriSISSM::SolveResult FixSissm::solve_step(double h, double **flag)
+PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **flag)
 {
   double **x = atom->x;
   double **v = atom->v;
@@ -634,7 +677,20 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double **flag)
   const int nlocal = atom->nlocal;
   hstep = h;
   scheme->set_step(h);
-  scheme->begin(rows_, x, v, flag, yn, yhat);
+  // the others where the scheme evaluates the forces (generalized-alpha: t^{n+1-alpha_f}; a
+  // sub-step: its end), back at the end of the (sub-)step afterwards
+  const double tforce = t_end - (1.0 - scheme->force_time()) * h / dtv;
+  const bool move_others = xstart && (tforce < 1.0);
+  if (move_others) place_others(tforce);
+  arrays.y = x;
+  arrays.v = v;
+  arrays.yn = yn;
+  arrays.vn = vn;
+  arrays.yhat = yhat;
+  arrays.hist = hist;
+  arrays.flag = flag;
+  arrays.fstart = fstart;
+  scheme->begin(rows_, arrays);
   for (int i = 0; i < nlocal; i++)
     if (mask[i] & groupbit) fext[i][0] = fext[i][1] = fext[i][2] = 0.0;
 
@@ -663,9 +719,14 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double **flag)
     precond->finished(result.newton, result.krylov, result.converged() || tolerance == 0.0);
   last_newton += result.newton;
   last_krylov += result.krylov;
-  if (!forces->group_coupled(groupbit))
-    PeriSISSM::balance_momentum(rows_, *this, h, x, yn, yhat, flag ? nullptr : fext, moment);
-  scheme->finish(rows_, x, yn, v);
+  if (!forces->group_coupled(groupbit)) {
+    const PeriSISSM::MomentumBalance balance{h, scheme->force_factor(),
+                                             scheme->name() == "euler"};
+    PeriSISSM::balance_momentum(rows_, *this, balance, x, yn, yhat, flag ? nullptr : fext,
+                                moment);
+  }
+  scheme->finish(rows_, arrays);
+  if (move_others) place_others(t_end);
   return result;
 }
 
@@ -681,23 +742,13 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double **flag)
 bool FixSissm::cut_back(int &substeps, PeriSISSM::SolveResult &result, int &evaluations,
                         double **flag)
 {
-  double **x = atom->x;
-  double **v = atom->v;
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  auto place_others = [&](double t) {
-    for (int i = 0; i < nlocal; i++)
-      if (!(mask[i] & groupbit))
-        for (int k = 0; k < 3; k++) x[i][k] = xstart[i][k] - (1.0 - t) * dtv * v[i][k];
-  };
   bool done = false;
   for (int level = 1; level <= max_cutback && !done; level++) {
     const int n = 1 << level;
     restore_start();
     done = true;
     for (int s = 0; s < n; s++) {
-      place_others((double) (s + 1) / n);
-      result = solve_step(dtv / n, flag);
+      result = solve_step(dtv / n, (double) (s + 1) / n, flag);
       evaluations += evaluations_;
       if (!result.converged()) {
         done = false;
@@ -713,7 +764,24 @@ bool FixSissm::cut_back(int &substeps, PeriSISSM::SolveResult &result, int &eval
 }
 
 /* ----------------------------------------------------------------------
-   the group back at y^n, v^n (the start of the step, kept in xstart, vstart)
+   the atoms outside the group (held, or moved by fix move or another integrator, already at
+   t^{n+1}) at the fraction t of the step: x^{n+1} - (1 - t) h v
+------------------------------------------------------------------------- */
+
+void FixSissm::place_others(double t)
+{
+  double **x = atom->x;
+  double **v = atom->v;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if (!(mask[i] & groupbit))
+      for (int k = 0; k < 3; k++) x[i][k] = xstart[i][k] - (1.0 - t) * dtv * v[i][k];
+}
+
+/* ----------------------------------------------------------------------
+   the group back at y^n, v^n and the scheme's history of the start of the step (kept in
+   xstart, vstart, hstart, state_start)
 ------------------------------------------------------------------------- */
 
 void FixSissm::restore_start()
@@ -723,11 +791,14 @@ void FixSissm::restore_start()
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit)
+    if (mask[i] & groupbit) {
       for (int k = 0; k < 3; k++) {
         x[i][k] = xstart[i][k];
         v[i][k] = vstart[i][k];
       }
+      for (int k = 0; k < ncols; k++) hist[i][k] = hstart[i][k];
+    }
+  if (!state_start.empty()) scheme->set_state(state_start.data());
 }
 
 /* ---------------------------------------------------------------------- */
@@ -755,11 +826,24 @@ void FixSissm::post_integrate()
       for (int k = 0; k < 3; k++)
         flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
   if (xstart)
-    for (int i = 0; i < nlocal; i++)
+    for (int i = 0; i < nlocal; i++) {
       for (int k = 0; k < 3; k++) {
         xstart[i][k] = x[i][k];
         vstart[i][k] = v[i][k];
       }
+      for (int k = 0; k < ncols; k++) hstart[i][k] = hist[i][k];
+    }
+  if (ncols > 0) {
+    // the force density at y^n starts the history of atoms that have none; an atom outside
+    // the group has none when it joins
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) fstart[i][k] = f[i][k];
+      else
+        hist[i][ncols - 1] = 0.0;
+    state_start.resize(scheme->state_size());
+    if (!state_start.empty()) scheme->get_state(state_start.data());
+  }
 
   PeriSISSM::SolveResult result;
   int evaluations = 0, substeps = 1;
@@ -771,12 +855,12 @@ void FixSissm::post_integrate()
     ImplicitStep step(forces, groupbit);
     // precond amg: the preconditioner that converged the last step goes first
     precond = (amg_precond && !block_first) ? amg_precond.get() : block_precond.get();
-    result = solve_step(dtv, lagged ? flagged : nullptr);
+    result = solve_step(dtv, 1.0, lagged ? flagged : nullptr);
     evaluations = evaluations_;
     if (!result.converged() && !fixed_count && precond->refresh()) {
       // the preconditioner was built in an earlier step: once more with one built now
       restore_start();
-      result = solve_step(dtv, lagged ? flagged : nullptr);
+      result = solve_step(dtv, 1.0, lagged ? flagged : nullptr);
       evaluations += evaluations_;
     }
     if (!result.converged() && amg_precond && !fixed_count) {
@@ -785,7 +869,7 @@ void FixSissm::post_integrate()
       // Newton steps diverge after some steps and the blocks converge)
       restore_start();
       precond = (precond == block_precond.get()) ? amg_precond.get() : block_precond.get();
-      result = solve_step(dtv, lagged ? flagged : nullptr);
+      result = solve_step(dtv, 1.0, lagged ? flagged : nullptr);
       evaluations += evaluations_;
       if (result.converged()) block_first = precond == block_precond.get();
       fallback_run++;
@@ -899,7 +983,8 @@ double FixSissm::memory_usage()
   // the per-atom arrays grow() allocates (PETSc's matrix and hierarchy are not counted)
   int arrays = 4 * 3 + 6 + PeriSISSM::kMomentumColumns;    // yn, yhat, res, fext, block, moment
   if (external_mode == EXT_LAGGED || external_mode == EXT_MIXED) arrays += 2 * 3;  // fint, flagged
-  if (xstart) arrays += 2 * 3;                                                     // cut back
+  if (xstart) arrays += 2 * 3 + (hstart ? ncols : 0);                             // cut back
+  arrays += ncols + (vn ? 2 * 3 : 0);    // the scheme's history, v^n and f at y^n
   if (gnode) arrays += 1;
   if (relax) arrays += 6;
   if (solver == KRYLOV) arrays += 7 * 3 + 1;

@@ -21,6 +21,7 @@ FixStyle(sissm,FixSissm);
 #include "fix.h"
 
 #include "solvers/jacobi.h"
+#include "solvers/time_scheme.h"
 
 #include <memory>
 #include <string>
@@ -28,7 +29,6 @@ FixStyle(sissm,FixSissm);
 
 namespace PeriSISSM {
 class Preconditioner;
-class TimeScheme;
 }
 
 namespace LAMMPS_NS {
@@ -51,6 +51,19 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   void unpack_reverse_comm(int, int *, double *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
+  // the time scheme's per-atom history (fix_sissm_history.cpp): it travels with the atoms and
+  // is kept in restart files
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
 
   // ---- PeriSISSM::NonlinearSystem: the backward-Euler step of the group's atoms ----
   const PeriSISSM::Rows &rows() const override { return rows_; }
@@ -86,6 +99,10 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   PeriSISSM::Preconditioner *precond = nullptr;
   std::unique_ptr<PeriSISSM::Preconditioner> amg_precond, block_precond;
   std::unique_ptr<PeriSISSM::TimeScheme> scheme;         // which implicit step
+  PeriSISSM::StepArrays arrays;    // the per-atom arrays of the step being solved
+  int ncols;            // the scheme's per-atom history columns (0: none)
+  double **hist;        // the scheme's history per atom (grown with atom->nmax)
+  int hist_from_restart;    // 0: a restart file's history is of another scheme: not taken
   int solver;           // JACOBI sweeps or KRYLOV (Newton-CG)
   int precond_type;     // PRECOND_BLOCK (the SISSM blocks) or PRECOND_AMG (PETSc)
   std::string petsc_options;    // keyword petsc: options for PETSc's preconditioner
@@ -132,6 +149,9 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   double *term;         // krylov: per-atom terms of a global sum
   double **moment;      // per-atom terms of the momentum balance
   double **xstart, **vstart;   // cutback: y^n, v^n of the group; end positions of the others
+  double **hstart;      // the history at the start of the step (redone steps)
+  std::vector<double> state_start;    // the scheme's global state at the start of the step
+  double **vn, **fstart;    // schemes with history: v^n, and the force density at y^n
   double *gnode;        // amg: global node number of each atom (-1: not an unknown)
   friend class SissmAmg;
 
@@ -140,7 +160,8 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   void choose_external();
   void capture_internal_force();
   void lagged_external_force();
-  PeriSISSM::SolveResult solve_step(double h, double **flag);
+  PeriSISSM::SolveResult solve_step(double h, double t_end, double **flag);
+  void place_others(double t);
   void restore_start();
   bool cut_back(int &substeps, PeriSISSM::SolveResult &result, int &evaluations,
                 double **flag);

@@ -4,26 +4,27 @@
 
 namespace PeriSISSM {
 
-void BackwardEuler::begin(const Rows &rows, double **y, double **v, double **flag,
-                          double **yn, double **yhat)
+void BackwardEuler::begin(const Rows &rows, const StepArrays &a)
 {
-  const double h = h_, h2 = h2_;
+  const double h = h_, h2 = c_;
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
+    double *y = a.y[i];
+    const double *v = a.v[i];
     for (int k = 0; k < 3; k++) {
-      yn[i][k] = y[i][k];
-      yhat[i][k] = y[i][k] + h * v[i][k];
-      if (flag) yhat[i][k] += h2 * flag[i][k] / rows.density[i];
-      y[i][k] += h * v[i][k];
+      a.yn[i][k] = y[k];
+      a.yhat[i][k] = y[k] + h * v[k];
+      if (a.flag) a.yhat[i][k] += h2 * a.flag[i][k] / rows.density[i];
+      y[k] += h * v[k];
     }
   }
 }
 
-void BackwardEuler::finish(const Rows &rows, double **y, double **yn, double **v) const
+void BackwardEuler::finish(const Rows &rows, const StepArrays &a)
 {
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
-    for (int d = 0; d < 3; d++) v[i][d] = (y[i][d] - yn[i][d]) / h_;
+    for (int d = 0; d < 3; d++) a.v[i][d] = (a.y[i][d] - a.yn[i][d]) / h_;
   }
 }
 

@@ -3,7 +3,7 @@
 //   D_i = rho_i I + h^2 K_i   (K_i the force model's diagonal stiffness block)
 //   v^{n+1} = (y^{n+1} - y^n) / h
 // The iteration starts at y^0 = y^n + h v^n (an equilibrium is a fixed point for any iteration
-// count). First order; it damps every mode with h omega >~ 1.
+// count). First order, no history; it damps every mode with h omega >~ 1.
 
 #ifndef PERISISSM_SOLVERS_BACKWARD_EULER_H
 #define PERISISSM_SOLVERS_BACKWARD_EULER_H
@@ -14,27 +14,19 @@ namespace PeriSISSM {
 
 class BackwardEuler : public TimeScheme {
  public:
+  std::string name() const override { return "euler"; }
   void set_step(double h) override
   {
     h_ = h;
-    h2_ = h * h;
+    c_ = h * h;
   }
-  void begin(const Rows &rows, double **y, double **v, double **flag, double **yn,
-             double **yhat) override;
-  double force_factor() const override { return h2_; }
-  void residual(double rho, const double *yhat, const double *y, const double *f,
-                double *r) const override
+  void begin(const Rows &rows, const StepArrays &a) override;
+  void iterate_velocity(int i, const StepArrays &a, double *vel) const override
   {
-    for (int k = 0; k < 3; k++) r[k] = rho * (yhat[k] - y[k]) + h2_ * f[k];
+    const double hinv = 1.0 / h_;
+    for (int k = 0; k < 3; k++) vel[k] = (a.y[i][k] - a.yn[i][k]) * hinv;
   }
-  void block(double rho, const double *K, double D[6]) const override
-  {
-    for (int k = 0; k < 6; k++) D[k] = (k < 3 ? rho : 0.0) + h2_ * K[k];
-  }
-  void finish(const Rows &rows, double **y, double **yn, double **v) const override;
-
- private:
-  double h_ = 0.0, h2_ = 0.0;
+  void finish(const Rows &rows, const StepArrays &a) override;
 };
 
 }  // namespace PeriSISSM

@@ -9,9 +9,11 @@
 
 namespace PeriSISSM {
 
-void balance_momentum(const Rows &rows, Reductions &red, double h, double **x, double **yn,
-                      double **yhat, double **fext, double **moment)
+void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &step,
+                      double **x, double **yn, double **yhat, double **fext, double **moment)
 {
+  const double h = step.h, cf = step.c;
+  const bool euler = step.euler;
   constexpr int NM = kMomentumColumns;
   const int nlocal = rows.n;
   const double *rho = rows.density;
@@ -52,8 +54,11 @@ void balance_momentum(const Rows &rows, Reductions &red, double h, double **x, d
   double dcen[3], d[3], Ln[3];
   for (int k = 0; k < 3; k++) {
     dcen[k] = s[k] / mass;                                   // c - c^n
-    d[k] = (h * (s[3 + k] + h * s[6 + k]) - s[k]) / mass;    // move of the centre
-    Ln[k] = s[9 + k];
+    // move of the centre: the target sum m (y - y^n) (euler: h P^{n+1}; else
+    // sum m (yhat - y^n) + c F) minus where the solve left it
+    const double target = euler ? h * (s[3 + k] + h * s[6 + k]) : h * s[3 + k] + cf * s[6 + k];
+    d[k] = (target - s[k]) / mass;
+    Ln[k] = euler ? s[9 + k] : 0.0;
   }
 
   // rotation about the centre c = c^n + dcen: r_i = y_i - c, kept in the last three columns
@@ -72,6 +77,16 @@ void balance_momentum(const Rows &rows, Reductions &red, double h, double **x, d
       double fe[3] = {0.0, 0.0, 0.0};
       if (!lagged)
         for (int k = 0; k < 3; k++) fe[k] = vfrac[i] * fext[i][k];
+      if (!euler) {
+        // G = sum r x b, b = m (yhat - c^n) + c V fext; J = sum (r b^T - (r . b) I)
+        double b[3];
+        for (int k = 0; k < 3; k++) b[k] = m * ((yhat[i][k] - yn[i][k]) + q[k]) + cf * fe[k];
+        cross3(r, b, row);
+        const double rb = r[0] * b[0] + r[1] * b[1] + r[2] * b[2];
+        for (int a = 0; a < 3; a++)
+          for (int c = 0; c < 3; c++) row[3 + 3 * a + c] = r[a] * b[c] - (a == c ? rb : 0.0);
+        continue;
+      }
       double w[3], u[3];
       cross3(q, r, w);
       cross3(r, fe, u);

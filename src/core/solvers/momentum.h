@@ -22,6 +22,15 @@
 // of ~1e-4 rad or less, reached to round-off in two iterations; at most 8 are made. All
 // terms are relative to the centres (coordinates far from the origin would cost digits), and
 // the sums are order-independent, so every process count corrects alike.
+//
+// Other time schemes (BDF2, generalized-alpha; time_scheme.h) solve rho (y - yhat) = c f(y)
+// with their own yhat and c, and their velocities are not (y^{n+1} - y^n)/h. For them the
+// balance asks of every step what a converged step of the scheme satisfies for a free group:
+//   sum_i m_i (y_i - yhat_i) = c F                                       (linear)
+//   G(R) = sum_i (R r_i) x b_i = 0,  b_i = m_i (yhat_i - c^n) + c V_i fext_i   (angular)
+// (the internal forces have zero sum and zero torque at y; r_i = y_i - c, c the centre of the
+// corrected y; sum_i m_i R r_i = 0, so the centre in b does not matter), with
+//   dG = J dtheta,  J = sum_i ((R r_i) b_i^T - ((R r_i) . b_i) I).
 
 #ifndef PERISISSM_SOLVERS_MOMENTUM_H
 #define PERISISSM_SOLVERS_MOMENTUM_H
@@ -33,11 +42,19 @@ namespace PeriSISSM {
 // columns of the work table of balance_momentum()
 constexpr int kMomentumColumns = 15;
 
-// Inputs: the unknown rows (a free group), reductions, time step h, y^{n+1} (corrected in
-// place), y^n, yhat, fext (null when the external force is lagged into yhat); moment: work
-// table of rows.n x kMomentumColumns doubles.
-void balance_momentum(const Rows &rows, Reductions &red, double h, double **y, double **yn,
-                      double **yhat, double **fext, double **moment);
+// which angular balance (see above): backward Euler's L^{n+1} = L^n + h T, or the converged
+// step's identity of a scheme with force factor c
+struct MomentumBalance {
+  double h = 0.0;          // the time step
+  double c = 0.0;          // the scheme's force factor (h^2 for backward Euler)
+  bool euler = true;       // true: backward Euler's balance; false: the general one
+};
+
+// Inputs: the unknown rows (a free group), reductions, the scheme's step (above), y^{n+1} (the
+// solved unknowns, corrected in place), y^n, yhat, fext (null when the external force is lagged
+// into yhat); moment: work table of rows.n x kMomentumColumns doubles.
+void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &step, double **y,
+                      double **yn, double **yhat, double **fext, double **moment);
 
 }  // namespace PeriSISSM
 

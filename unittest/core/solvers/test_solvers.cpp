@@ -2,8 +2,9 @@
 // nonlinear springs (a chain and a small lattice), solved by the SISSM Jacobi sweeps and by
 // Newton-Krylov with the block preconditioner; and the momentum balance of a truncated solve.
 
+#include "solvers/springs.h"
+
 #include "linalg/reductions.h"
-#include "solvers/backward_euler.h"
 #include "solvers/jacobi.h"
 #include "solvers/momentum.h"
 #include "solvers/newton_krylov.h"
@@ -22,149 +23,7 @@
 namespace {
 
 using namespace PeriSISSM;
-
-// Rows of 3 doubles with row pointers (the layout LAMMPS gives per-atom arrays).
-struct Table {
-  explicit Table(int n, int width = 3) : data(n * width, 0.0), rows(n)
-  {
-    for (int i = 0; i < n; i++) rows[i] = data.data() + width * i;
-  }
-  std::vector<double> data;
-  std::vector<double *> rows;
-  double **ptr() { return rows.data(); }
-};
-
-// Particles i, j joined by springs of energy 1/2 k (|y_j - y_i| - L)^2, a constant body force
-// density g, densities rho and volumes V. Backward Euler: r = rho (yhat - y) + h^2 f(y), with
-// f the force density; block = rho I + h^2 sum_j k I (the spring stiffness along any
-// direction at rest length, as the SISSM block takes it).
-class Springs : public NonlinearSystem {
- public:
-  Springs(int n, double h) : n_(n), h_(h), y(n), v(n), yn(n), yhat(n), res(n), red_(n)
-  {
-    mask_.assign(n, 1);
-    rho_.assign(n, 1.0);
-    vol_.assign(n, 1.0);
-    kdiag_.assign(n, 0.0);
-    rows_.n = n;
-    rows_.mask = mask_.data();
-    rows_.bit = 1;
-    rows_.volume = vol_.data();
-    rows_.density = rho_.data();
-  }
-  void spring(int i, int j, double k, double L)
-  {
-    springs_.push_back({i, j, k, L});
-    kdiag_[i] += k;
-    kdiag_[j] += k;
-  }
-  void pin(int i) { mask_[i] = 0; }
-  void set_density(int i, double rho) { rho_[i] = rho; }
-  void set_volume(int i, double vol) { vol_[i] = vol; }
-
-  // start a step from y, v
-  void begin()
-  {
-    scheme_.set_step(h_);
-    scheme_.begin(rows_, y.ptr(), v.ptr(), nullptr, yn.ptr(), yhat.ptr());
-    evals_ = 0;
-  }
-  void finish() { scheme_.finish(rows_, y.ptr(), yn.ptr(), v.ptr()); }
-
-  // NonlinearSystem
-  const Rows &rows() const override { return rows_; }
-  Reductions &reductions() override { return red_; }
-  double **unknowns() override { return y.ptr(); }
-  double **residual() override { return res.ptr(); }
-  int evaluations() const override { return evals_; }
-  bool evaluation_complete() const override { return true; }
-  double step_tolerance() override { return tol; }
-  void check_finite() override
-  {
-    for (double d : y.data)
-      if (!std::isfinite(d)) throw std::runtime_error("non-finite");
-  }
-  void evaluate(bool) override
-  {
-    evals_++;
-    std::vector<double> f(3 * n_, 0.0);
-    for (int i = 0; i < n_; i++)
-      for (int k = 0; k < 3; k++) f[3 * i + k] = g[k];
-    for (const auto &s : springs_) {
-      double d[3], r2 = 0.0;
-      for (int k = 0; k < 3; k++) {
-        d[k] = y.rows[s.j][k] - y.rows[s.i][k];
-        r2 += d[k] * d[k];
-      }
-      const double r = std::sqrt(r2), t = s.k * (r - s.L) / r;
-      for (int k = 0; k < 3; k++) {
-        f[3 * s.i + k] += t * d[k] / vol_[s.i];
-        f[3 * s.j + k] -= t * d[k] / vol_[s.j];
-      }
-    }
-    for (int i = 0; i < n_; i++)
-      if (mask_[i]) scheme_.residual(rho_[i], yhat.rows[i], y.rows[i], &f[3 * i], res.rows[i]);
-  }
-  void block(int i, double D[6]) const override
-  {
-    const double K[6] = {kdiag_[i] / vol_[i], kdiag_[i] / vol_[i], kdiag_[i] / vol_[i], 0, 0, 0};
-    scheme_.block(rho_[i], K, D);
-  }
-
-  double tol = 1e-10;
-  double g[3] = {0.0, 0.0, 0.0};
-
- private:
-  struct Spring {
-    int i, j;
-    double k, L;
-  };
-  int n_;
-  double h_;
-
- public:
-  Table y, v, yn, yhat, res;
-
- private:
-  SerialReductions red_;
-  BackwardEuler scheme_;
-  Rows rows_;
-  std::vector<int> mask_;
-  std::vector<double> rho_, vol_, kdiag_;
-  std::vector<Spring> springs_;
-  int evals_ = 0;
-};
-
-// a hanging chain of n particles, spacing 1, the first pinned, gravity along -z, stiff springs
-// (h^2 k / rho = 400: far beyond an explicit step)
-Springs chain(int n, double h)
-{
-  Springs s(n, h);
-  for (int i = 0; i < n; i++) s.y.rows[i][0] = i;
-  for (int i = 0; i + 1 < n; i++) s.spring(i, i + 1, 400.0 / (h * h), 1.0);
-  s.pin(0);
-  s.g[2] = -10.0;
-  return s;
-}
-
-struct KrylovTables {
-  explicit KrylovTables(int n) : xb(n), rb(n), jb(n), cr(n), zd(n), pd(n), sd(n), term(n) {}
-  KrylovWork work()
-  {
-    KrylovWork w;
-    w.xbase = xb.ptr();
-    w.rbase = rb.ptr();
-    w.jbase = jb.ptr();
-    w.cres = cr.ptr();
-    w.zdir = zd.ptr();
-    w.pdir = pd.ptr();
-    w.sdir = sd.ptr();
-    w.term = term.data();
-    return w;
-  }
-  Table xb, rb, jb, cr, zd, pd, sd;
-  std::vector<double> term;
-};
+using namespace PeriSISSMTest;
 
 // Both solvers reach the backward-Euler step of the chain: the residual measure below the
 // tolerance, the two solutions within the distance the tolerance allows (measure < tol bounds
@@ -329,7 +188,7 @@ TEST(Momentum, TruncatedSolveKeepsMomentumAfterTheBalance)
   }
   Table moment(n, kMomentumColumns);
   SerialReductions red(n);
-  balance_momentum(s.rows(), red, h, s.y.ptr(), s.yn.ptr(), s.yhat.ptr(), nullptr, moment.ptr());
+  balance_momentum(s.rows(), red, {h, h * h, true}, s.y.ptr(), s.yn.ptr(), s.yhat.ptr(), nullptr, moment.ptr());
   s.finish();
   // P^{n+1} = sum m v^{n+1}; L^{n+1} = (1/h) sum m q^n x r = sum m q^n x v^{n+1} (about the
   // centre of mass at the start: sum m q^n = 0)

@@ -1,0 +1,132 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix sissm: the per-atom history of multistep and generalized-alpha time schemes
+   (src/core/solvers/time_scheme.h): ncols doubles per atom whose last one says whether the atom
+   has a history (0: none; the scheme then starts it from the force density at y^n). It moves
+   with its atom between processes, and a restart file keeps it together with the scheme's
+   global state (the length of the last step), so that a run split by a restart continues as
+   if it had not been split. A restart file written with another scheme (or none) gives no
+   history: the atoms start again as at the first step, and the log says so.
+------------------------------------------------------------------------- */
+
+#include "fix_sissm.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "memory.h"
+
+#include <cstring>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+namespace {
+// restart layout version of fix sissm's global record
+constexpr double kRestartVersion = 1.0;
+
+// a code for the scheme that wrote a history (its name and its parameters' effect on the
+// columns: all generalized-alpha variants share the layout)
+double scheme_code(const std::string &name)
+{
+  if (name == "bdf2") return 2.0;
+  if (name == "genalpha") return 3.0;
+  return 1.0;
+}
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+void FixSissm::grow_arrays(int n)
+{
+  if (ncols > 0) memory->grow(hist, n, ncols, "sissm:hist");
+}
+
+void FixSissm::copy_arrays(int i, int j, int /*delflag*/)
+{
+  for (int k = 0; k < ncols; k++) hist[j][k] = hist[i][k];
+}
+
+// a new atom has no history
+void FixSissm::set_arrays(int i)
+{
+  for (int k = 0; k < ncols; k++) hist[i][k] = 0.0;
+}
+
+int FixSissm::pack_exchange(int i, double *buf)
+{
+  for (int k = 0; k < ncols; k++) buf[k] = hist[i][k];
+  return ncols;
+}
+
+int FixSissm::unpack_exchange(int nlocal, double *buf)
+{
+  for (int k = 0; k < ncols; k++) hist[nlocal][k] = buf[k];
+  return ncols;
+}
+
+/* ----------------------------------------------------------------------
+   global record: version, scheme code, state size, state
+------------------------------------------------------------------------- */
+
+void FixSissm::write_restart(FILE *fp)
+{
+  std::vector<double> list = {kRestartVersion, scheme_code(scheme->name()),
+                              (double) scheme->state_size()};
+  list.resize(3 + scheme->state_size());
+  scheme->get_state(list.data() + 3);
+  if (comm->me == 0) {
+    int size = (int) (list.size() * sizeof(double));
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list.data(), sizeof(double), list.size(), fp);
+  }
+}
+
+void FixSissm::restart(char *buf)
+{
+  auto list = (double *) buf;
+  hist_from_restart = list[0] == kRestartVersion && list[1] == scheme_code(scheme->name()) &&
+      (int) list[2] == scheme->state_size();
+  if (hist_from_restart) {
+    scheme->set_state(list + 3);
+  } else if (comm->me == 0) {
+    utils::logmesg(lmp,
+                   "Fix sissm {}: the restart file holds no history of scheme {} (written with "
+                   "another scheme): the atoms start it anew, as at a first step\n",
+                   id, scheme->name());
+  }
+}
+
+/* ----------------------------------------------------------------------
+   per-atom record: count, scheme code, the history columns
+------------------------------------------------------------------------- */
+
+int FixSissm::pack_restart(int i, double *buf)
+{
+  buf[0] = ncols + 2;
+  buf[1] = scheme_code(scheme->name());
+  for (int k = 0; k < ncols; k++) buf[2 + k] = hist[i][k];
+  return ncols + 2;
+}
+
+void FixSissm::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  const double *rec = &extra[nlocal][m];
+  const bool same = hist_from_restart && static_cast<int>(rec[0]) == ncols + 2 &&
+      rec[1] == scheme_code(scheme->name());
+  for (int k = 0; k < ncols; k++) hist[nlocal][k] = same ? rec[2 + k] : 0.0;
+}
+
+int FixSissm::size_restart(int /*i*/)
+{
+  return ncols + 2;
+}
+
+int FixSissm::maxsize_restart()
+{
+  return ncols + 2;
+}
