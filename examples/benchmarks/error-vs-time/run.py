@@ -77,6 +77,18 @@ SISSM_VARIANTS = [
     "solver krylov precond block iterations 50 tolerance 1e-8",
     "",
 ]
+# The second-order time schemes (doc/fix_sissm.rst, "Time schemes"): the dynamic scene only (for
+# bringing a body to rest backward Euler, the default, is the right scheme), at their own time
+# steps (sissm_scheme_dt), with a tolerance for dynamics (the vibration moves particles by a small
+# fraction of their size per step).
+SCHEME_VARIANTS = [
+    "scheme bdf2 tolerance 1e-8",
+    "scheme genalpha tolerance 1e-8",
+    "scheme genalpha 1.0 tolerance 1e-8",
+]
+QUICK_SCHEME_VARIANTS = [
+    "scheme genalpha tolerance 1e-8",
+]
 QUICK_VARIANTS = [
     "solver jacobi iterations 5 tolerance 0",
     "solver jacobi iterations 200 tolerance 1e-6 unconverged warn",
@@ -93,6 +105,7 @@ FULL = dict(
     explicit_dynamic_dt={"nosb": [0.25, 0.5, 0.9], "lps": [0.25, 0.5, 0.9]},
     sissm_static_dt=[10, 100, 1000, 10000],   # 1000 and 10000: not the jacobi variants
     sissm_dynamic_dt=[0.25, 1, 4, 16],
+    sissm_scheme_dt=[1, 4, 16, 64],
     sissm_stiff_dt=[10, 100, 1000, 10000],
     # budget of one fix sissm run in force evaluations (fix halt stops it at the first thermo
     # row with at least that many): a static run keeps its checkpoints up to there, a dynamic
@@ -116,6 +129,7 @@ QUICK = dict(
     explicit_dynamic_dt={"nosb": [0.5, 0.9], "lps": [0.5, 0.9]},
     sissm_static_dt=[30],
     sissm_dynamic_dt=[1, 8],
+    sissm_scheme_dt=[8],
     sissm_stiff_dt=[30],
     # every quick variant gives a dynamic point at 1x and 8x the limit but jacobi iterations
     # 200 at 8x (every step stops at 200 sweeps: ~16000 for its 81 steps)
@@ -144,15 +158,18 @@ MATERIALS = {"soft": dict(rho=1000.0, K=1.0e7, G=6.0e6), "steel": dict(rho=7800.
 LIMIT_GUESS = {"nosb": 7.3e-5, "lps": 1.2e-4}
 # methods in the tables and plots: the explicit styles, then fix sissm by solver and
 # preconditioner (method_of), the keyword-less variant on its own
-METHODS = ("lps", "nosb", "jacobi", "block", "amg", "defaults")
-SISSM_METHODS = ("jacobi", "block", "amg", "defaults")
+METHODS = ("lps", "nosb", "jacobi", "block", "amg", "defaults", "bdf2", "genalpha")
+SISSM_METHODS = ("jacobi", "block", "amg", "defaults", "bdf2", "genalpha")
 LABEL = {"lps": "peri/lps + fix nve", "nosb": "peri/nosb + fix nve",
          "jacobi": "peri/nosb + fix sissm (jacobi)",
          "block": "peri/nosb + fix sissm (krylov, precond block)",
          "amg": "peri/nosb + fix sissm (krylov, precond amg)",
-         "defaults": "peri/nosb + fix sissm (defaults)"}
+         "defaults": "peri/nosb + fix sissm (defaults)",
+         "bdf2": "peri/nosb + fix sissm (scheme bdf2)",
+         "genalpha": "peri/nosb + fix sissm (scheme genalpha)"}
 COLOR = {"lps": "tab:blue", "nosb": "tab:green", "jacobi": "tab:red", "block": "tab:orange",
-         "amg": "tab:purple", "defaults": "black"}
+         "amg": "tab:purple", "defaults": "black", "bdf2": "tab:brown",
+         "genalpha": "tab:cyan"}
 # the summary line fix sissm writes at the end of every run it completes (doc/fix_sissm.rst)
 SUMMARY = re.compile(r"Fix sissm \S+ run: (\d+) steps, ([0-9.eE+-]+) iterations per step, "
                      r"(\d+) unconverged, (\d+) cut back, (\d+) preconditioner switches"
@@ -261,11 +278,13 @@ def pareto(points):
 
 
 def method_of(opts):
-    """jacobi, block, amg (krylov with precond amg, the default preconditioner) or defaults
-    (no keywords at all)."""
+    """jacobi, block, amg (krylov with precond amg, the default preconditioner), defaults
+    (no keywords at all), or the second-order scheme (bdf2, genalpha) it names."""
     words = opts.split()
     if not words:
         return "defaults"
+    if "scheme" in words and words[words.index("scheme") + 1] != "euler":
+        return words[words.index("scheme") + 1]
     if "krylov" not in words:
         return "jacobi"
     return "block" if "block" in words else "amg"
@@ -350,7 +369,12 @@ class Benchmark:
             else:
                 skipped.append(o)
         self.variants, self.skipped = accepted, skipped
-        self.say("fix sissm variants:", accepted, "skipped:", skipped)
+        self.scheme_variants = []
+        for opts in (QUICK_SCHEME_VARIANTS if self.args.quick else SCHEME_VARIANTS):
+            r = self.runner.run("in.sissm", dict(tiny, opts=opts), check=False)
+            (self.scheme_variants if r["ok"] else self.skipped).append(opts)
+        self.say("fix sissm variants:", accepted, "scheme variants:", self.scheme_variants,
+                 "skipped:", self.skipped)
 
     # -- explicit limits -----------------------------------------------------------------------
     def stable(self, style, material, dt, ebw):
@@ -550,29 +574,30 @@ class Benchmark:
                     gamma=0.0, steps=n, evaluations=n, iterations=0, wall_s=run["loop"],
                     error=error(style, run), run_complete=run["done"], loop_time_s=run["loop"]))
         lim = self.limits[("nosb", material)][0]
-        for opts in self.variants:
-            for m in cfg["sissm_dynamic_dt"]:
-                n = max(2, int(round(T / (m * lim))))
-                dt = T / n
-                self.say(f"dynamic: sissm `{opts}` dt {dt / lim:.3g} x limit ({n} steps)")
-                run = self.sissm(opts, material, dt, 0.0, n, max(1, n // 200),
-                                 cfg["sissm_dynamic_evaluations"])
-                if run is None:
-                    continue
-                if not run["done"]:
-                    self.notes.append(f"dynamic: fix sissm `{variant_name(opts)}` at "
-                                      f"{dt / lim:.3g} x the limit "
-                                      f"stopped at the {cfg['sissm_dynamic_evaluations']}-"
-                                      f"evaluation cap after {int(run['step'][-1])} of {n} steps "
-                                      f"({int(run['evals'][-1])} evaluations): no point")
-                    continue
-                self.sissm_runs["dynamic"][-1]["final_error"] = error("nosb", run)
-                self.rows["dynamic"].append(dict(
-                    scene="dynamic", method=method_of(opts), variant=variant_name(opts), dt=dt,
-                    dt_over_limit=dt / lim, gamma=0.0, steps=n, evaluations=int(run["evals"][-1]),
-                    iterations=int(run["iters"][-1]), wall_s=run["loop"], error=error("nosb", run),
-                    run_complete=True, loop_time_s=run["loop"],
-                    ))
+        runs = [(opts, m) for opts in self.variants for m in cfg["sissm_dynamic_dt"]] + \
+            [(opts, m) for opts in self.scheme_variants for m in cfg["sissm_scheme_dt"]]
+        for opts, m in runs:
+            n = max(2, int(round(T / (m * lim))))
+            dt = T / n
+            self.say(f"dynamic: sissm `{opts}` dt {dt / lim:.3g} x limit ({n} steps)")
+            run = self.sissm(opts, material, dt, 0.0, n, max(1, n // 200),
+                             cfg["sissm_dynamic_evaluations"])
+            if run is None:
+                continue
+            if not run["done"]:
+                self.notes.append(f"dynamic: fix sissm `{variant_name(opts)}` at "
+                                  f"{dt / lim:.3g} x the limit "
+                                  f"stopped at the {cfg['sissm_dynamic_evaluations']}-"
+                                  f"evaluation cap after {int(run['step'][-1])} of {n} steps "
+                                  f"({int(run['evals'][-1])} evaluations): no point")
+                continue
+            self.sissm_runs["dynamic"][-1]["final_error"] = error("nosb", run)
+            self.rows["dynamic"].append(dict(
+                scene="dynamic", method=method_of(opts), variant=variant_name(opts), dt=dt,
+                dt_over_limit=dt / lim, gamma=0.0, steps=n, evaluations=int(run["evals"][-1]),
+                iterations=int(run["iters"][-1]), wall_s=run["loop"], error=error("nosb", run),
+                run_complete=True, loop_time_s=run["loop"],
+                ))
         return dict(refs=refs, T=T, T_eb=T_eb, w_eb=w_eb)
 
     def convergence_study(self):
@@ -750,6 +775,10 @@ def report(bm, out: Path, report_path: Path, command: str):
                   "| `defaults` (no keywords: solver krylov, precond amg, iterations 100, "
                   "tolerance 1e-6) | ")
                  + f"{LABEL[method_of(v)]} | {unconverged_mode(v)} |")
+    for v in bm.scheme_variants:
+        steps = ", ".join(f"{m:g}" for m in cfg["sissm_scheme_dt"])
+        L.append(f"| `{v}` (dynamic scene only, dt {steps} x the limit) | "
+                 f"{LABEL[method_of(v)]} | {unconverged_mode(v)} |")
     L.append("")
     L.append((f"Left out (rejected by this build's fix sissm): "
               f"{', '.join('`' + v + '`' for v in bm.skipped)}. " if bm.skipped else "")
