@@ -12,7 +12,9 @@
 #include "solvers/time_scheme.h"
 
 #include <cmath>
+#include <algorithm>
 #include <memory>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -172,6 +174,42 @@ class Springs : public NonlinearSystem {
   std::vector<Anchor> anchors_;
   int evals_ = 0;
 };
+
+// A free cluster of n particles with random positions, velocities, densities and volumes (from
+// seed), each joined to its next two by springs stretched from 0.8 of their length (stiff: h^2 k
+// / rho ~ 200), no pins and no body force.
+inline void random_cluster(Springs &s, int n, double h, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), w(0.5, 1.5);
+  for (int i = 0; i < n; i++) {
+    for (int k = 0; k < 3; k++) {
+      s.y.rows[i][k] = 2.0 * u(rng) + (k == 0 ? 1.3 * i : 0.0);
+      s.v.rows[i][k] = u(rng);
+    }
+    s.set_density(i, w(rng));
+    s.set_volume(i, w(rng));
+  }
+  for (int i = 0; i < n; i++)
+    for (int j = i + 1; j < std::min(n, i + 3); j++) {
+      double r2 = 0.0;
+      for (int k = 0; k < 3; k++) r2 += std::pow(s.y.rows[j][k] - s.y.rows[i][k], 2);
+      s.spring(i, j, 200.0 / (h * h), 0.8 * std::sqrt(r2));
+    }
+}
+
+// A chain of three particles on stiff nonlinear springs (k = 50, rest length 1), pinned at one
+// end, under a body force -2 along z, swinging from a sideways velocity (large rotations: the
+// problem is nonlinear).
+inline void swinging_chain(Springs &s)
+{
+  for (int i = 0; i < 3; i++) s.y.rows[i][0] = i;
+  for (int i = 0; i + 1 < 3; i++) s.spring(i, i + 1, 50.0, 1.0);
+  s.pin(0);
+  s.g[2] = -2.0;
+  s.v.rows[1][1] = 1.0;
+  s.v.rows[2][1] = 2.0;
+}
 
 // a hanging chain of n particles, spacing 1, the first pinned, gravity along -z, stiff springs
 // (h^2 k / rho = 400: far beyond an explicit step)

@@ -123,22 +123,7 @@ TEST(Momentum, TruncatedSolveKeepsMomentumAfterTheBalance)
   const int n = 10;
   const double h = 0.05;
   Springs s(n, h);
-  std::mt19937_64 rng(9u);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), w(0.5, 1.5);
-  for (int i = 0; i < n; i++) {
-    for (int k = 0; k < 3; k++) {
-      s.y.rows[i][k] = 2.0 * u(rng) + (k == 0 ? 1.3 * i : 0.0);
-      s.v.rows[i][k] = u(rng);
-    }
-    s.set_density(i, w(rng));
-    s.set_volume(i, w(rng));
-  }
-  for (int i = 0; i < n; i++)
-    for (int j = i + 1; j < std::min(n, i + 3); j++) {
-      double r2 = 0.0;
-      for (int k = 0; k < 3; k++) r2 += std::pow(s.y.rows[j][k] - s.y.rows[i][k], 2);
-      s.spring(i, j, 200.0 / (h * h), 0.8 * std::sqrt(r2));
-    }
+  random_cluster(s, n, h, 9u);
   auto momenta = [&](Table &vel, Table &pos, double P[3], double L[3]) {
     double m = 0.0, c[3] = {0, 0, 0};
     for (int i = 0; i < n; i++) {
