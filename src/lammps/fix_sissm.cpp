@@ -18,7 +18,9 @@
    both started at y^0 = y^n + h v^n (an equilibrium is a fixed point for any iteration
    count); an "iteration" is one force evaluation. End of step: v^{n+1} = (y^{n+1} - y^n) / h.
    The solve runs in post_integrate, after every initial_integrate, so particles prescribed by
-   fix move or other integrators already sit at t^{n+1}.
+   fix move or other integrators already sit at t^{n+1}. Keyword scheme replaces backward Euler
+   by BDF2 or generalized-alpha (src/core/solvers/time_scheme.h): the same problem with another
+   predictor yhat and factor c in place of h^2, and a per-atom history (fix_sissm_history.cpp).
 ------------------------------------------------------------------------- */
 
 #include "fix_sissm.h"

@@ -2,9 +2,10 @@
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
    fix sissm: the semi-implicit successive substitution method, a per-particle Jacobi
-   fixed-point iteration whose fixed point is the backward-Euler step of pair peri/nosb, and
-   its Krylov acceleration (Newton steps solved by conjugate gradients preconditioned with
-   the same per-particle blocks). The LAMMPS glue of the core's solvers (src/core/solvers):
+   fixed-point iteration whose fixed point is the implicit step of pair peri/nosb (backward
+   Euler, or the second-order BDF2 and generalized-alpha of keyword scheme), and its Krylov
+   acceleration (Newton steps solved by conjugate gradients preconditioned with the same
+   per-particle blocks or with PETSc's multigrid). The LAMMPS glue of the core's solvers (src/core/solvers):
    it is the nonlinear system they solve (PeriSISSM::NonlinearSystem) over the atoms of its
    group, with the force model behind the ImplicitForces interface of the pair style.
 ------------------------------------------------------------------------- */
