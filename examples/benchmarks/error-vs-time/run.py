@@ -35,7 +35,6 @@ import math
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
@@ -45,11 +44,8 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parents[2]
-sys.path.insert(0, str(REPO / "unittest" / "python"))
-import lammps_run  # noqa: E402  (parse_thermo; LMP default honours PERI_SISSM_LMP)
-
-sys.path.insert(0, str(REPO / "tools"))
-from progress import Progress  # noqa: E402
+sys.path.insert(0, str(HERE.parent))
+from deck_runs import DeckRunner, fmt, lammps_run, pareto  # noqa: E402
 
 # ----------------------------------------------------------------------------------------------
 # fix sissm variants: ONE place.  Each entry is the option string given to fix sissm.  Entries
@@ -149,7 +145,6 @@ QUICK = dict(
 # stretch breaking bonds at the first step; in.lps now sets it with two empty runs first)
 STATIC_REFERENCE_DT = {"nosb": 0.9, "lps": 0.9}
 
-LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 EB = re.compile(r"^Euler-Bernoulli tip deflection = ([0-9.eE+-]+) m", re.M)
 MATERIALS = {"soft": dict(rho=1000.0, K=1.0e7, G=6.0e6), "steel": dict(rho=7800.0, K=160.0e9,
                                                                        G=80.0e9)}
@@ -170,11 +165,6 @@ LABEL = {"lps": "peri/lps + fix nve", "nosb": "peri/nosb + fix nve",
 COLOR = {"lps": "tab:blue", "nosb": "tab:green", "jacobi": "tab:red", "block": "tab:orange",
          "amg": "tab:purple", "defaults": "black", "bdf2": "tab:brown",
          "genalpha": "tab:cyan"}
-# the summary line fix sissm writes at the end of every run it completes (doc/fix_sissm.rst)
-SUMMARY = re.compile(r"Fix sissm \S+ run: (\d+) steps, ([0-9.eE+-]+) iterations per step, "
-                     r"(\d+) unconverged, (\d+) cut back, (\d+) preconditioner switches"
-                     r"(?:; (\d+) set-ups? of the AMG hierarchy)?")
-
 
 def previous_run_count(quick: bool):
     """The number of LAMMPS runs the last full report says it took (None for --quick, whose
@@ -184,53 +174,6 @@ def previous_run_count(quick: bool):
         return None
     found = re.search(r"\((\d+) LAMMPS runs", report.read_text())
     return int(found.group(1)) if found else None
-
-
-class Runner:
-    def __init__(self, lmp: Path, work: Path, log=print, expected=None):
-        self.lmp, self.work, self.log = lmp, work, log
-        self.count, self.total_wall = 0, 0.0
-        # how many runs there will be depends on the bisections' outcomes: the estimate of the
-        # time left uses the count of the last report of the same kind, when there is one
-        self.progress = Progress(expected, "error-vs-time", approximate=True)
-
-    # a guard against a hung lmp only (the longest run of the full benchmark takes ~150 s);
-    # a hit stops the benchmark with an error that names the run
-    HANG_GUARD_S = 3600
-
-    def run(self, deck: str, variables: dict, check=True):
-        self.count += 1
-        wd = self.work / f"run{self.count:04d}"
-        wd.mkdir(parents=True)
-        shutil.copy(HERE / "cantilever.geometry", wd)
-        cmd = ["nice", str(self.lmp), "-in", str(HERE / deck), "-log", "log.lammps", "-nocite",
-               "-screen", "none"]
-        for k, v in variables.items():
-            cmd += ["-var", k, str(v)]
-        t0 = time.time()
-        try:
-            proc = subprocess.run(cmd, cwd=wd, capture_output=True, text=True,
-                                  timeout=self.HANG_GUARD_S, stdin=subprocess.DEVNULL)
-        except subprocess.TimeoutExpired:
-            raise RuntimeError(f"{deck} {variables} in {wd} did not finish within the "
-                               f"{self.HANG_GUARD_S} s hang guard") from None
-        self.total_wall += time.time() - t0
-        self.progress.step(f"{deck}, {time.time() - t0:.1f} s")
-        log = (wd / "log.lammps").read_text(errors="replace") if (wd / "log.lammps").exists() \
-            else ""
-        errors = [ln for ln in (proc.stdout + log).splitlines() if ln.startswith("ERROR")]
-        ok = proc.returncode == 0 and not errors
-        if check and not ok:
-            raise RuntimeError(f"{deck} {variables} failed in {wd}:\n" + "\n".join(
-                (proc.stdout + proc.stderr + log).splitlines()[-15:]))
-        tables = lammps_run.parse_thermo(log)
-        loop = LOOP.findall(log)
-        summary = SUMMARY.findall(log)
-        return dict(ok=ok, log=log, thermo=tables[-1] if tables else {}, errors=errors,
-                    summary=summary[-1] if summary else None,
-                    loop=float(loop[-1][0]) if loop else float("nan"),
-                    loop_steps=int(loop[-1][2]) if loop else 0,
-                    atoms=int(loop[-1][3]) if loop else 0, dir=wd)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -264,17 +207,6 @@ def euler_bernoulli(beam, material):
 def wave_speed(material):
     m = MATERIALS[material]
     return math.sqrt(m["K"] / m["rho"])
-
-
-def pareto(points):
-    """Indices of the non-dominated points (cost ascending, error strictly decreasing)."""
-    order = sorted(range(len(points)), key=lambda k: (points[k][0], points[k][1]))
-    front, best = [], math.inf
-    for k in order:
-        if points[k][1] < best:
-            front.append(k)
-            best = points[k][1]
-    return front
 
 
 def method_of(opts):
@@ -324,12 +256,6 @@ def stop_reason(errors):
     return "ERROR: " + msg[:160]
 
 
-def fmt(x, digits=3):
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return "-"
-    return f"{x:.{digits}g}"
-
-
 # ---------------------------------------------------------------------------------------------
 # the benchmark
 
@@ -340,8 +266,8 @@ class Benchmark:
         self.beam = self.cfg["beam"]
         self.work = Path(tempfile.mkdtemp(prefix="evt-")) if not args.keep else args.keep
         self.work.mkdir(parents=True, exist_ok=True)
-        self.runner = Runner(args.lmp, self.work, log=self.say,
-                             expected=previous_run_count(args.quick))
+        self.runner = DeckRunner(args.lmp, self.work, HERE, ["cantilever.geometry"],
+                                 "error-vs-time", expected=previous_run_count(args.quick))
         self.rows = {"static": [], "dynamic": [], "stiff": []}
         self.notes = []
         self.t0 = time.time()
