@@ -84,7 +84,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV),
     precond_type(kDefaultAmg ? PRECOND_AMG : PRECOND_BLOCK), maxiter(100), tolerance(1.0e-6),
     relax(0), implicit_external(1), external_mode(EXT_NONE),
-    precond_given(0), unconverged(UNCONVERGED_CUTBACK), max_cutback(4), dtv(0.0), hstep(0.0),
+    precond_given(0), unconverged(UNCONVERGED_CUTBACK), max_cutback(4), dtv(0.0),
     tol_step(1.0e-6),
     last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
     last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), fallback_run(0),
@@ -516,8 +516,9 @@ void FixSissm::unpack_forward_comm(int n, int first, double *buf)
 /* ----------------------------------------------------------------------
    one force evaluation at the current positions: ghost positions, the peri/nosb force density
    (without energy/virial; the implicit stiffness for the blocks only when asked), ghost forces
-   folded back, with external implicit the post_force of the other fixes (with
-   v = (y - y^n)/h, so velocity dependent forces such as fix viscous are implicit too), then
+   folded back, with external implicit the post_force of the other fixes (with v the time
+   scheme's velocity of the iterate, so velocity dependent forces such as fix viscous are
+   implicit too), then
    the time scheme's residual r_i = rho_i (yhat_i - y_i) + c f_i of the owned atoms of the group
    into res
 ------------------------------------------------------------------------- */
@@ -677,7 +678,6 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   double **v = atom->v;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  hstep = h;
   scheme->set_step(h);
   // the others where the scheme evaluates the forces (generalized-alpha: t^{n+1-alpha_f}; a
   // sub-step: its end), back at the end of the (sub-)step afterwards
@@ -760,7 +760,6 @@ bool FixSissm::cut_back(int &substeps, PeriSISSM::SolveResult &result, int &eval
     substeps = n;
   }
   place_others(1.0);
-  hstep = dtv;
   scheme->set_step(dtv);
   return done;
 }

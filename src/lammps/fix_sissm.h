@@ -118,7 +118,6 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   std::vector<class Fix *> implicit_fixes;    // re-evaluated at every iterate, in LAMMPS order
   std::string external_note;                  // what was last logged about them
   double dtv;
-  double hstep;         // the step being solved (dtv, or a sub-step of a cut-back step)
   double tol_step;      // the tolerance of the current step (attainable_tolerance())
 
   // statistics (global vector)
