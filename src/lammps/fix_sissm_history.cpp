@@ -14,10 +14,8 @@
 
 #include "atom.h"
 #include "comm.h"
-#include "error.h"
 #include "memory.h"
 
-#include <cstring>
 #include <vector>
 
 using namespace LAMMPS_NS;

@@ -4,7 +4,7 @@
 
 namespace PeriSISSM {
 
-GeneralizedAlpha::GeneralizedAlpha(double rho_inf) : rho_inf_(rho_inf)
+GeneralizedAlpha::GeneralizedAlpha(double rho_inf)
 {
   alpha_m_ = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
   alpha_f_ = rho_inf / (rho_inf + 1.0);

@@ -36,12 +36,11 @@ class GeneralizedAlpha : public TimeScheme {
   void begin(const Rows &rows, const StepArrays &a) override;
   void iterate_velocity(int i, const StepArrays &a, double *vel) const override;
   void finish(const Rows &rows, const StepArrays &a) override;
-  double rho_inf() const { return rho_inf_; }
 
  private:
   // a^{n+1} and v^{n+1} of one component from the unknown u (see above)
   void end_state(int i, int k, const StepArrays &a, double &acc, double &vel) const;
-  double rho_inf_, alpha_m_, alpha_f_, gamma_, beta_;
+  double alpha_m_, alpha_f_, gamma_, beta_;
 };
 
 }  // namespace PeriSISSM

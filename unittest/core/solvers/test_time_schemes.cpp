@@ -6,8 +6,6 @@
 
 #include "solvers/springs.h"
 
-#include "solvers/bdf2.h"
-#include "solvers/generalized_alpha.h"
 #include "solvers/momentum.h"
 #include "solvers/preconditioner.h"
 
@@ -17,7 +15,6 @@
 
 #include <cmath>
 #include <complex>
-#include <random>
 #include <vector>
 
 namespace {
