@@ -2,6 +2,7 @@
 
 #include "peri/particle.h"
 
+#include "linalg/fast_svd.h"
 #include "materials/material.h"
 
 #include <algorithm>
@@ -21,7 +22,7 @@ void particle_stress(const Material& material, const Eigen::Matrix3d& F, Particl
   // (P is formed in a local and then stored: Eigen's vectorized 3x3 products may sum in another
   // order when they write straight into a member, and every force must have the same bits
   // wherever the pipeline is called from)
-  const SignedSVD svd = signed_svd(F);
+  const SignedSVD svd = fast_signed_svd(F);
   const Eigen::Vector3d phat = material.principal_stress(svd.s);
   const Eigen::Matrix3d P = svd.U * phat.asDiagonal() * svd.V.transpose();
   out.svd = svd;

@@ -1,13 +1,19 @@
-// Tests of signed_svd(): reconstruction, orthonormality, proper rotations, ordering and the
-// sign convention, on random F of every family and on the special cases that break naive code.
+// Tests of the two signed SVDs, signed_svd() (the reference) and fast_signed_svd() (the one the
+// force evaluation uses): reconstruction, orthonormality, proper rotations, ordering and the
+// sign convention, on random F of every family and on the special cases that break naive code;
+// and the fast one against the reference.
 
+#include "linalg/fast_svd.h"
 #include "linalg/signed_svd.h"
+#include "materials/material.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <vector>
 #include <string>
 
 namespace {
@@ -15,15 +21,23 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using PeriSISSM::SignedSVD;
-using PeriSISSM::signed_svd;
 using PeriSISSMTest::max_abs;
 
 // Tolerances: Jacobi SVD reconstructs to a few eps relative to |F| and accumulates U, V from
 // O(10) plane rotations, so 1e-12 leaves two orders of magnitude of head room.
 constexpr double kTol = 1e-12;
 
+using Svd = SignedSVD (*)(const Matrix3d&);
+
+// Every test below runs for both implementations.
+class SignedSVDTest : public ::testing::TestWithParam<Svd> {
+ protected:
+  SignedSVD signed_svd(const Matrix3d& F) const { return GetParam()(F); }
+  void check_signed_svd(const Matrix3d& F, const std::string& label) const;
+};
+
 // Every property of the contract, for one F. label names the case in failure messages.
-void check_signed_svd(const Matrix3d& F, const std::string& label)
+void SignedSVDTest::check_signed_svd(const Matrix3d& F, const std::string& label) const
 {
   SCOPED_TRACE(label);
   const SignedSVD d = signed_svd(F);
@@ -55,7 +69,7 @@ void check_signed_svd(const Matrix3d& F, const std::string& label)
   EXPECT_FALSE(std::signbit(d.s(2)) && d.s(2) == 0.0) << "s_3 = -0";
 }
 
-TEST(SignedSVD, RandomFamilies)
+TEST_P(SignedSVDTest, RandomFamilies)
 {
   for (const auto& sample : PeriSISSMTest::random_samples(20240601u)) {
     check_signed_svd(sample.F, PeriSISSMTest::family_name(sample.family));
@@ -63,7 +77,7 @@ TEST(SignedSVD, RandomFamilies)
   }
 }
 
-TEST(SignedSVD, ExtremeScales)
+TEST_P(SignedSVDTest, ExtremeScales)
 {
   std::mt19937_64 rng(7u);
   for (double scale : {1e-8, 1e8, 1e-150, 1e150}) {
@@ -78,21 +92,21 @@ TEST(SignedSVD, ExtremeScales)
   }
 }
 
-TEST(SignedSVD, Identity)
+TEST_P(SignedSVDTest, Identity)
 {
   const SignedSVD d = signed_svd(Matrix3d::Identity());
   EXPECT_EQ(d.s, Vector3d::Ones());
   check_signed_svd(Matrix3d::Identity(), "I");
 }
 
-TEST(SignedSVD, Zero)
+TEST_P(SignedSVDTest, Zero)
 {
   const SignedSVD d = signed_svd(Matrix3d::Zero());
   EXPECT_EQ(d.s, Vector3d::Zero());
   check_signed_svd(Matrix3d::Zero(), "0");
 }
 
-TEST(SignedSVD, MinusIdentityAndReflections)
+TEST_P(SignedSVDTest, MinusIdentityAndReflections)
 {
   const SignedSVD d = signed_svd(-Matrix3d::Identity());
   EXPECT_LE((d.s - Vector3d(1, 1, -1)).cwiseAbs().maxCoeff(), kTol);
@@ -112,7 +126,7 @@ TEST(SignedSVD, MinusIdentityAndReflections)
   check_signed_svd(P, "even permutation");
 }
 
-TEST(SignedSVD, KnownSignedValues)
+TEST_P(SignedSVDTest, KnownSignedValues)
 {
   std::mt19937_64 rng(11u);
   const Vector3d cases[] = {{3, 2, 0.5}, {3, 2, -0.5}, {2, 2, 1}, {2, 1, 1}, {2, 2, -2},
@@ -129,7 +143,7 @@ TEST(SignedSVD, KnownSignedValues)
   }
 }
 
-TEST(SignedSVD, RepeatedSingularValues)
+TEST_P(SignedSVDTest, RepeatedSingularValues)
 {
   std::mt19937_64 rng(13u);
   for (int i = 0; i < 200; ++i) {
@@ -144,7 +158,7 @@ TEST(SignedSVD, RepeatedSingularValues)
   }
 }
 
-TEST(SignedSVD, RankDeficient)
+TEST_P(SignedSVDTest, RankDeficient)
 {
   std::mt19937_64 rng(17u);
   std::normal_distribution<double> n01(0.0, 1.0);
@@ -165,7 +179,7 @@ TEST(SignedSVD, RankDeficient)
   }
 }
 
-TEST(SignedSVD, NonFiniteInputIsFlagged)
+TEST_P(SignedSVDTest, NonFiniteInputIsFlagged)
 {
   Matrix3d F = Matrix3d::Identity();
   F(1, 2) = std::numeric_limits<double>::quiet_NaN();
@@ -176,5 +190,58 @@ TEST(SignedSVD, NonFiniteInputIsFlagged)
   F(1, 2) = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(signed_svd(F).s.array().isNaN().all());
 }
+
+// The fast SVD against the reference: the same signed singular values, and the same isotropic
+// functions U diag(g(s)) V^T (the first Piola-Kirchhoff stress of every model, the Kirchhoff-like
+// U diag(g(s)) U^T) where U and V themselves may differ (repeated singular values). Tolerance:
+// both reconstruct F to a few eps |F|, so s agree to ~1e-15 |s|max; the stresses inherit the
+// error of the vectors, times at most the largest |dW/ds| slope over the spread of s: 1e-11
+// relative to the largest stress entry (plus the forward error below) leaves 100x head room over
+// the worst case seen.
+TEST(FastSignedSVD, AgreesWithReference)
+{
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  std::vector<Matrix3d> cases;
+  for (const auto& sample : PeriSISSMTest::random_samples(20261126u)) cases.push_back(sample.F);
+  std::mt19937_64 rng(29u);
+  for (const Vector3d& s : {Vector3d(1, 1, 1), Vector3d(1, 1, 1 + 1e-9), Vector3d(1 + 1e-6, 1, 1),
+                            Vector3d(2, 2, 1), Vector3d(2, 1, -1 + 1e-12), Vector3d(1, 0, 0),
+                            Vector3d(1e8, 1, 1e-8), Vector3d(5, 1e-3, -1e-7)})
+    for (int i = 0; i < 50; ++i) cases.push_back(PeriSISSMTest::rotated_diag(rng, s));
+  for (int i = 0; i < 200; ++i)    // the common case of a force evaluation: small strains
+    cases.push_back(PeriSISSMTest::random_rotation(rng) *
+                    (Matrix3d::Identity() + 1e-6 * PeriSISSMTest::gaussian_matrix(rng)));
+
+  std::vector<std::unique_ptr<PeriSISSM::Material>> models;
+  for (const std::string& name : PeriSISSM::material_names())
+    models.push_back(PeriSISSM::make_material(name, 1.0, 2.0));
+  for (const Matrix3d& F : cases) {
+    const SignedSVD r = PeriSISSM::signed_svd(F), f = PeriSISSM::fast_signed_svd(F);
+    const double smax = r.s.cwiseAbs().maxCoeff();
+    ASSERT_LE((r.s - f.s).cwiseAbs().maxCoeff(), 1e-13 * smax) << "F =\n" << F;
+    for (const auto& m : models) {
+      // the corotated model's P = U (2 mu (s - 1) + ...) V^T is not unique where s_2 + s_3 = 0
+      // (its kink of inverted F, material_linear.h, and rank < 2, where the rotation U V^T
+      // is not defined)
+      if (m->name() == std::string("linear") && r.s(1) + r.s(2) < 1e-2 * smax) continue;
+      const Vector3d phat = m->principal_stress(r.s);
+      if (!phat.allFinite()) continue;    // neo-Hookean at det F <= 0
+      const Matrix3d Pr = r.U * phat.asDiagonal() * r.V.transpose();
+      const Matrix3d Pf = f.U * m->principal_stress(f.s).asDiagonal() * f.V.transpose();
+      // forward error: s_3 is known to eps s_1 only, and a model whose stress grows like 1/s
+      // (neo-Hookean) turns that into a relative error of eps times the condition number
+      const double kappa = smax / std::max(std::abs(r.s(2)), 1e-300);
+      const double tol = 1e-11 * std::max(1.0, max_abs(Pr)) + 1e3 * kEps * kappa * max_abs(Pr);
+      ASSERT_LE(max_abs(Pr - Pf), tol)
+          << m->name() << " F =\n" << F;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Implementations, SignedSVDTest,
+                         ::testing::Values(&PeriSISSM::signed_svd, &PeriSISSM::fast_signed_svd),
+                         [](const ::testing::TestParamInfo<Svd>& info) {
+                           return std::string(info.index == 0 ? "Reference" : "Fast");
+                         });
 
 }  // namespace

@@ -1,0 +1,30 @@
+// Fast signed singular value decomposition of a 3x3 matrix: the one the force evaluation uses.
+//
+// PERI-SISSM mechanics core (LAMMPS-free). Same contract as signed_svd() (signed_svd.h), which
+// stays the reference the tests compare against.
+
+#ifndef PERISISSM_FAST_SVD_H
+#define PERISISSM_FAST_SVD_H
+
+#include "linalg/signed_svd.h"
+
+namespace PeriSISSM {
+
+// Signed SVD of a 3x3 matrix by Jacobi rotations on F^T F and a Givens QR of F V (McAdams et
+// al., "Computing the singular value decomposition of 3x3 matrices with minimal branching and
+// elementary floating point operations", Univ. Wisconsin TR1690, 2011; here in double precision
+// with exact rotation angles and a convergence test instead of a fixed number of sweeps).
+//
+// Inputs:
+//   F  3x3 matrix, any rank, any sign of det F.
+// Outputs (returned), as signed_svd():
+//   U, V  rotations (det = +1, orthonormal to round-off);
+//   s     |s_1| >= |s_2| >= |s_3|, s_1, s_2 >= 0, s_3 < 0 when det F < 0, never -0;
+//   F = U diag(s) V^T to a few eps |F|. Non-finite F gives s = NaN, U = V = I.
+// U and V may differ from signed_svd()'s where singular values repeat (they are not unique
+// there); s, and every isotropic function U diag(g(s)) V^T, agree to round-off.
+SignedSVD fast_signed_svd(const Eigen::Matrix3d& F);
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_FAST_SVD_H
