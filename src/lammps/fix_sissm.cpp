@@ -516,7 +516,7 @@ void FixSissm::unpack_forward_comm(int n, int first, double *buf)
 /* ----------------------------------------------------------------------
    one force evaluation at the current positions: ghost positions, the peri/nosb force density
    (without energy/virial; the implicit stiffness for the blocks only when asked), ghost forces
-   folded back, with external implicit the post_force of the other fixes (with v the time
+   folded back (where the pair wrote any), with external implicit the post_force of the other fixes (with v the time
    scheme's velocity of the iterate, so velocity dependent forces such as fix viscous are
    implicit too), then
    the time scheme's residual r_i = rho_i (yhat_i - y_i) + c f_i of the owned atoms of the group
@@ -537,8 +537,8 @@ void FixSissm::evaluate(bool blocks)
 
   contact_incomplete = forces->contact_follow_motion() < 0;
   for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
-  forces->evaluate(blocks);
-  if (force->newton_pair) comm->reverse_comm();
+  forces->evaluate(blocks ? kblock : nullptr);
+  if (forces->ghost_forces()) comm->reverse_comm();
   if (external_mode == EXT_IMPLICIT || external_mode == EXT_MIXED) {
     // the other fixes' force at this iterate, kept in fext (f after minus f before)
     for (int i = 0; i < nlocal; i++)
@@ -554,7 +554,6 @@ void FixSissm::evaluate(bool blocks)
           fext[i][k] = f[i][k] - fext[i][k];
         }
   }
-  if (blocks) forces->implicit_blocks(kblock);
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;

@@ -29,13 +29,14 @@ class ImplicitForces {
 
   // one force evaluation at the current positions (ghost positions current, forces zeroed by
   // the caller): adds the force densities to atom->f (ghost parts to be folded back by the
-  // caller under newton on); blocks: also keeps what implicit_blocks() needs
-  virtual void evaluate(bool blocks) = 0;
-  // the SISSM block sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I) of every owned atom (xx yy zz
-  // xy xz yz), from the last evaluation with blocks
-  virtual void implicit_blocks(double **block) = 0;
+  // caller under newton on when ghost_forces() says there are any); block not null: also the
+  // SISSM block sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I) of every owned atom (xx yy zz xy
+  // xz yz) into block[i]
+  virtual void evaluate(double **block) = 0;
+  // true when the last evaluation wrote forces on ghost atoms (short-range contact)
+  virtual bool ghost_forces() const = 0;
   // the bond-projected stiffness of the owned atoms' unbroken bonds in the current positions
-  // (core peri/bond_stiffness.h), from the last evaluation with blocks after implicit_blocks()
+  // (core peri/bond_stiffness.h), from the last evaluation with blocks
   virtual void bond_springs(PeriSISSM::BondSprings &springs) = 0;
 
   // contact candidates while an implicit step moves the atoms: track_contact_motion(1) at

@@ -81,17 +81,18 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     Pair(lmp), family(nullptr), modelid(nullptr), bulk(nullptr), shear(nullptr), cut(nullptr),
     s00(nullptr), alpha(nullptr), cs(nullptr), breakflag(nullptr), contactflag(nullptr),
     kcontact(nullptr), g0(nullptr), g0_s00(nullptr), model_(new PeriSISSM::Model),
-    any_break(0), any_contact(0), external_breaking(0), stiffness_flag(0), contact_groupbit(0),
+    any_break(0), any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
     contact_crossings(0), hmax(0.0), contact_first(nullptr), contact_neigh(nullptr),
     contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
     track_motion(0), nmotion(0), xneigh(nullptr), xcontact(nullptr), state_nlocal(-1), nmax(0),
     gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr),
-    comm_rows(nullptr), comm_width(0)
+    comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;    // forces are densities: f.r is not the virial
   restartinfo = 1;
-  comm_forward = PeriSISSM::ParticleFields::NG;    // the widest field the halo sends
+  // the widest exchange of the halo: F, C, flag with the implicit stiffness
+  comm_forward = PeriSISSM::ParticleFields::NG + PeriSISSM::ParticleFields::NK;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -617,10 +618,10 @@ namespace LAMMPS_NS {
 class NosbHalo : public PeriSISSM::Halo {
  public:
   explicit NosbHalo(PairPeriNosb *pair) : pair_(pair) {}
-  void forward(double *rows, int width) override
+  void forward(const PeriSISSM::HaloField *fields, int n) override
   {
-    pair_->comm_rows = rows;
-    pair_->comm_width = width;
+    pair_->comm_fields = fields;
+    pair_->comm_nfields = n;
     pair_->comm->forward_comm(pair_);
   }
 
@@ -654,6 +655,7 @@ void PairPeriNosb::compute(int eflag, int vflag)
   fields.h = hstate;
   fields.k = kstate;
   fields.w = wdens;
+  fields.energy = eflag_either;
   fields.smin_new = s0_new;
   PeriSISSM::Virial vir;
   if (vflag_either) {
@@ -662,7 +664,7 @@ void PairPeriNosb::compute(int eflag, int vflag)
   }
   NosbHalo halo(this);
   broke.clear();
-  PeriSISSM::evaluate_bond_terms(*model_, p, family->view(), family->box, mode, stiffness_flag,
+  PeriSISSM::evaluate_bond_terms(*model_, p, family->view(), family->box, mode, block_rows,
                                  fields, halo, vir, broke);
   family->forget_broken(broke);
 
@@ -691,19 +693,7 @@ const double *PairPeriNosb::deformation_gradient(int i) const
 }
 
 /* ----------------------------------------------------------------------
-   ImplicitForces: the SISSM blocks from the last evaluation with blocks
-------------------------------------------------------------------------- */
-
-void PairPeriNosb::implicit_blocks(double **block)
-{
-  PeriSISSM::ParticleFields fields;
-  fields.k = kstate;
-  NosbHalo halo(this);
-  PeriSISSM::assemble_blocks(family->view(), atom->nlocal, fields, halo, block);
-}
-
-/* ----------------------------------------------------------------------
-   ImplicitForces: the bond-projected stiffness (implicit_blocks() has sent H+ to the ghosts)
+   ImplicitForces: the bond-projected stiffness (the evaluation with blocks sent H+ to the ghosts)
 ------------------------------------------------------------------------- */
 
 void PairPeriNosb::bond_springs(PeriSISSM::BondSprings &springs)
@@ -727,14 +717,22 @@ void PairPeriNosb::begin_implicit_step(int groupbit)
 void PairPeriNosb::end_implicit_step()
 {
   external_breaking = 0;
-  stiffness_flag = 0;
   contact_groupbit = 0;
 }
 
-void PairPeriNosb::evaluate(bool blocks)
+void PairPeriNosb::evaluate(double **block)
 {
-  stiffness_flag = blocks ? 1 : 0;
+  block_rows = block;
   compute(0, 0);
+  block_rows = nullptr;
+}
+
+// only short-range contact writes forces on ghost atoms (bond forces are summed by the owner of
+// each bond's end); the same answer on every rank, as the reverse communication it decides on
+// needs
+bool PairPeriNosb::ghost_forces() const
+{
+  return any_contact && force->newton_pair;
 }
 
 /* ----------------------------------------------------------------------
@@ -772,10 +770,12 @@ int PairPeriNosb::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fla
                                     int * /*pbc*/)
 {
   int m = 0;
-  for (int ii = 0; ii < n; ii++) {
-    const double *row = comm_rows + (bigint) comm_width * list[ii];
-    for (int k = 0; k < comm_width; k++) buf[m++] = row[k];
-  }
+  for (int ii = 0; ii < n; ii++)
+    for (int q = 0; q < comm_nfields; q++) {
+      const int width = comm_fields[q].width;
+      const double *row = comm_fields[q].rows + (bigint) width * list[ii];
+      for (int k = 0; k < width; k++) buf[m++] = row[k];
+    }
   return m;
 }
 
@@ -785,10 +785,12 @@ void PairPeriNosb::unpack_forward_comm(int n, int first, double *buf)
 {
   int m = 0;
   const int last = first + n;
-  for (int i = first; i < last; i++) {
-    double *row = comm_rows + (bigint) comm_width * i;
-    for (int k = 0; k < comm_width; k++) row[k] = buf[m++];
-  }
+  for (int i = first; i < last; i++)
+    for (int q = 0; q < comm_nfields; q++) {
+      const int width = comm_fields[q].width;
+      double *row = comm_fields[q].rows + (bigint) width * i;
+      for (int k = 0; k < width; k++) row[k] = buf[m++];
+    }
 }
 
 /* ----------------------------------------------------------------------

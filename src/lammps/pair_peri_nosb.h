@@ -25,6 +25,7 @@ PairStyle(peri/nosb,PairPeriNosb);
 
 namespace PeriSISSM {
 class Model;
+struct HaloField;
 struct Particles;
 struct MaterialEntry;
 }
@@ -62,8 +63,8 @@ class PairPeriNosb : public Pair, public ImplicitForces {
 
   void begin_implicit_step(int groupbit) override;
   void end_implicit_step() override;
-  void evaluate(bool blocks) override;
-  void implicit_blocks(double **block) override;
+  void evaluate(double **block) override;
+  bool ghost_forces() const override;
   void bond_springs(PeriSISSM::BondSprings &springs) override;
   void track_contact_motion(int flag) override;
   int contact_follow_motion() override;
@@ -86,7 +87,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   // summary flags
   int any_break, any_contact;
   int external_breaking;    // 1: compute() does not break bonds (inside an implicit step)
-  int stiffness_flag;       // 1: compute() keeps the implicit stiffness for implicit_blocks()
+  double **block_rows;      // not null: compute() also sums the SISSM blocks into these rows
   int contact_groupbit;     // contact pairs crossing this group's boundary are counted
   bigint contact_crossings;
   double hmax;              // largest particle size V^(1/3) (contact range)
@@ -114,8 +115,8 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   double *wdens;            // energy density
   double *s0_new;
   std::vector<int> broke;   // atoms that lost bonds in the last compute()
-  double *comm_rows;        // the field forward_comm sends, comm_width doubles per atom
-  int comm_width;
+  const PeriSISSM::HaloField *comm_fields;    // the fields forward_comm sends
+  int comm_nfields;
 
   void allocate();
   PeriSISSM::MaterialEntry read_material(const std::string &file, const std::string &name);

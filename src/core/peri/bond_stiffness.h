@@ -35,7 +35,7 @@ struct BondSprings {
 };
 
 // Inputs: families; p (x current for owned and ghost rows, volume); fields.k (H+ and C of
-// owned and ghost rows, as after assemble_blocks()).
+// owned and ghost rows, as after an evaluation with blocks).
 // Outputs: springs (resized; one entry per unbroken bond of the owned particles). A bond of
 // zero current length gets e = 0 (it adds nothing).
 void bond_springs(const Families &fam, const Particles &p, const ParticleFields &fields,

@@ -6,6 +6,7 @@
 #include "peri/particle.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace PeriSISSM {
 
@@ -24,6 +25,10 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
   double *s0 = p.smin;
   const int nlocal = p.nlocal;
   constexpr double ACC0 = BreakingRule::initial<UNIFORM>();
+  int nmax = 0;
+  for (int i = 0; i < nlocal; i++) nmax = std::max(nmax, fam.npartner[i]);
+  std::vector<double> scratch(6 * static_cast<size_t>(nmax));
+  double *ub = scratch.data();
 
   for (int i = 0; i < nlocal; i++) {
     const int itype = type[i];
@@ -32,12 +37,12 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
     const int n = fam.npartner[i];
     int *jl = fam.jlocal[i];
     const double *om = fam.omega[i];
-    double m00 = 0.0, m01 = 0.0, m02 = 0.0, m10 = 0.0, m11 = 0.0, m12 = 0.0, m20 = 0.0,
-           m21 = 0.0, m22 = 0.0;
     double acc = ACC0, den = 0.0;
-    int broke = 0;
+    int broke = 0, nu = 0;
     const double smini = (MODE != BreakingRule::NOBREAK) ? s0[i] : 0.0;
 
+    // first loop: the breaking check, and each unbroken bond's omega eta and xi into the
+    // scratch row; second loop: M (split so that each keeps its accumulators in registers)
     for (int b = 0; b < n; b++) {
       const int j = jl[b];
       if (j < 0) continue;
@@ -59,7 +64,19 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
         }
       }
       const double w = om[b];
-      const double w0 = w * e0, w1 = w * e1, w2 = w * e2;
+      double *u = ub + 6 * nu++;
+      u[0] = w * e0;
+      u[1] = w * e1;
+      u[2] = w * e2;
+      u[3] = x0;
+      u[4] = x1;
+      u[5] = x2;
+    }
+    double m00 = 0.0, m01 = 0.0, m02 = 0.0, m10 = 0.0, m11 = 0.0, m12 = 0.0, m20 = 0.0,
+           m21 = 0.0, m22 = 0.0;
+    for (int k = 0; k < nu; k++) {
+      const double *u = ub + 6 * k;
+      const double w0 = u[0], w1 = u[1], w2 = u[2], x0 = u[3], x1 = u[4], x2 = u[5];
       m00 += w0 * x0;
       m01 += w0 * x1;
       m02 += w0 * x2;
@@ -109,9 +126,31 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
     for (int i = 0; i < nlocal; i++) s0[i] = fields.smin_new[i];
 }
 
-template <int EVFLAG, int PBC>
+// the SISSM block of particle i (elastic.h)
+inline void implicit_block(const Families &fam, const ParticleFields &fields, int i, double *out)
+{
+  constexpr int NK = ParticleFields::NK;
+  const double *ki = fields.k + NK * i;
+  const int n = fam.npartner[i];
+  const int *jl = fam.jlocal[i];
+  const double *om = fam.omega[i];
+  double a[NK] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  double wsum = 0.0;
+  for (int b = 0; b < n; b++) {
+    const int j = jl[b];
+    if (j < 0) continue;
+    const double *kj = fields.k + NK * j;
+    const double w = om[b];
+    wsum += w;
+    for (int k = 0; k < NK; k++) a[k] += w * kj[k];
+  }
+  const double cdiag = 0.5 * (wsum * ki[6] + a[6]);
+  for (int k = 0; k < 6; k++) out[k] = wsum * ki[k] + a[k] + (k < 3 ? cdiag : 0.0);
+}
+
+template <int EVFLAG, int PBC, int BLOCKS>
 void force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-                const ParticleFields &fields, const Virial &virial)
+                const ParticleFields &fields, const Virial &virial, double **block)
 {
   const double *xf = p.x;
   const double *rf = p.x0;
@@ -154,6 +193,7 @@ void force_pass(const Particles &p, const Families &fam, const ReferenceBox &box
     f[3 * i + 1] += fy;
     f[3 * i + 2] += fz;
     if (EVFLAG) vir.tally(virial, i, -0.5 * vfrac[i]);
+    if (BLOCKS) implicit_block(fam, fields, i, block[i]);
   }
 }
 
@@ -180,36 +220,20 @@ void elastic_state_pass(const Model &model, const Particles &p, const Families &
 }
 
 void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-                        const ParticleFields &fields, const Virial &virial)
+                        const ParticleFields &fields, const Virial &virial, double **block)
 {
-  const bool pbc = box.any(), ev = virial.any();
-  if (pbc) ev ? force_pass<1, 1>(p, fam, box, fields, virial) : force_pass<0, 1>(p, fam, box, fields, virial);
-  else ev ? force_pass<1, 0>(p, fam, box, fields, virial) : force_pass<0, 0>(p, fam, box, fields, virial);
-}
-
-void implicit_blocks(const Families &fam, int nlocal, const ParticleFields &fields,
-                     double **block)
-{
-  constexpr int NK = ParticleFields::NK;
-  for (int i = 0; i < nlocal; i++) {
-    const double *ki = fields.k + NK * i;
-    const int n = fam.npartner[i];
-    const int *jl = fam.jlocal[i];
-    const double *om = fam.omega[i];
-    double a[NK] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    double wsum = 0.0;
-    for (int b = 0; b < n; b++) {
-      const int j = jl[b];
-      if (j < 0) continue;
-      const double *kj = fields.k + NK * j;
-      const double w = om[b];
-      wsum += w;
-      for (int k = 0; k < NK; k++) a[k] += w * kj[k];
-    }
-    double *out = block[i];
-    const double cdiag = 0.5 * (wsum * ki[6] + a[6]);
-    for (int k = 0; k < 6; k++) out[k] = wsum * ki[k] + a[k] + (k < 3 ? cdiag : 0.0);
-  }
+  auto run = [&](auto blocks) {
+    constexpr int B = decltype(blocks)::value;
+    const bool pbc = box.any(), ev = virial.any();
+    if (pbc)
+      ev ? force_pass<1, 1, B>(p, fam, box, fields, virial, block)
+         : force_pass<0, 1, B>(p, fam, box, fields, virial, block);
+    else
+      ev ? force_pass<1, 0, B>(p, fam, box, fields, virial, block)
+         : force_pass<0, 0, B>(p, fam, box, fields, virial, block);
+  };
+  if (block) run(std::integral_constant<int, 1>());
+  else run(std::integral_constant<int, 0>());
 }
 
 }  // namespace PeriSISSM

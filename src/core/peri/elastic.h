@@ -33,15 +33,13 @@ void elastic_state_pass(const Model &model, const Particles &p, const Families &
                         std::vector<int> &broke);
 
 // The bond force pass over the owned particles: f_i += sum_j omega (H_i + H_j) xi (needs H of
-// the ghosts), and its virial (each end tallies half of (x_i - x_j) (x) V_i f_ij).
-void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-                        const ParticleFields &fields, const Virial &virial);
-
-// Diagonal blocks of the owned particles (needs fields.k of the ghosts):
+// the ghosts), and its virial (each end tallies half of (x_i - x_j) (x) V_i f_ij). When block
+// is not null (then fields.k of the ghosts is needed too), also the diagonal blocks
 //   block_i = sum_j omega_ij (H^+_i + H^+_j + (C_i + C_j)/2 I)   (xx yy zz xy xz yz)
-// the elastic term's implicit stiffness plus the stabilization term's (C_i + C_j)/2 omega I.
-void implicit_blocks(const Families &fam, int nlocal, const ParticleFields &fields,
-                     double **block);
+// the elastic term's implicit stiffness plus the stabilization term's (C_i + C_j)/2 omega I,
+// summed while the particle's bonds are in cache.
+void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
+                        const ParticleFields &fields, const Virial &virial, double **block);
 
 }  // namespace PeriSISSM
 

@@ -29,17 +29,29 @@ struct ParticleFields {
   double *g = nullptr;          // NG per particle
   double *h = nullptr;          // 9 per particle: H = (P + Q) K^-1
   double *k = nullptr;          // NK per particle (only when blocks are asked for)
-  double *w = nullptr;          // energy density of each owned particle
+  double *w = nullptr;          // energy density of each owned particle (complete only with energy)
+  bool energy = true;           // false: w lacks the stabilization energy (not summed: faster)
   double *smin_new = nullptr;   // scratch, one per owned particle
 };
 
-// Forward communication of a per-particle field from the owners to their ghost copies.
+// One per-particle field: width doubles per particle, contiguous rows.
+struct HaloField {
+  double *rows;
+  int width;
+};
+
+// Forward communication of per-particle fields from the owners to their ghost copies.
 class Halo {
  public:
   virtual ~Halo() = default;
-  // rows: width doubles per particle, contiguous; after the call the ghost rows hold their
-  // owners' values
-  virtual void forward(double *rows, int width) = 0;
+  // n fields in one exchange (one message per neighbor rank, not n); after the call the ghost
+  // rows of every field hold their owners' values
+  virtual void forward(const HaloField *fields, int n) = 0;
+  void forward(double *rows, int width)
+  {
+    const HaloField one{rows, width};
+    forward(&one, 1);
+  }
 };
 
 // Where virial contributions go (either may be null).

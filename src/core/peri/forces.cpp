@@ -9,23 +9,21 @@
 namespace PeriSISSM {
 
 void evaluate_bond_terms(const Model &model, const Particles &p, const Families &fam,
-                         const ReferenceBox &box, int mode, bool blocks, ParticleFields &fields,
-                         Halo &halo, const Virial &virial, std::vector<int> &broke)
+                         const ReferenceBox &box, int mode, double **block,
+                         ParticleFields &fields, Halo &halo, const Virial &virial,
+                         std::vector<int> &broke)
 {
+  const bool blocks = block != nullptr;
   elastic_state_pass(model, p, fam, box, mode, blocks, fields, broke);
+  const HaloField state[2] = {{fields.g, ParticleFields::NG}, {fields.k, ParticleFields::NK}};
   if (model.any_stabilization()) {
-    halo.forward(fields.g, ParticleFields::NG);
-    stabilization_pass(p, fam, box, fields, virial);
+    halo.forward(state, blocks ? 2 : 1);
+    stabilization_pass(p, fam, box, fields, virial, fields.energy);
+  } else if (blocks) {
+    halo.forward(state + 1, 1);
   }
   halo.forward(fields.h, 9);
-  elastic_force_pass(p, fam, box, fields, virial);
-}
-
-void assemble_blocks(const Families &fam, int nlocal, ParticleFields &fields, Halo &halo,
-                     double **block)
-{
-  halo.forward(fields.k, ParticleFields::NK);
-  implicit_blocks(fam, nlocal, fields, block);
+  elastic_force_pass(p, fam, box, fields, virial, block);
 }
 
 }  // namespace PeriSISSM

@@ -2,6 +2,10 @@
 
 #include "peri/stabilization.h"
 
+#include <algorithm>
+#include <type_traits>
+#include <vector>
+
 namespace PeriSISSM {
 
 // Cs 18K/(pi delta^5) * kappa_i / kappa_0 with kappa = tr(K^-1)/3 and kappa_0 = 15/(4 pi delta^5):
@@ -18,7 +22,13 @@ namespace {
 //   singular K and no F),
 // direct force density Cbar omega z on i, energy density 1/4 Cbar omega |z|^2 on i, and
 // Q_i = -sum_j a_i Cbar omega z (x) xi, so that H_i = A_i + Q_i K_i^-1.
-template <int EVFLAG, int PBC>
+// Two loops over the bonds of each particle: the first forms z and the direct force, the second
+// the 3x3 sum Q from the per-bond products it stored (u = 2 a_i Cbar omega z and xi, in a
+// scratch row the size of the largest family). One loop holding the 13 accumulators and the
+// particle's F at once spilled accumulators to the stack on x86-64 (16 vector registers); split,
+// each loop keeps its accumulators in registers. The energy is summed only when asked for
+// (EFLAG), which keeps the first loop at three accumulators.
+template <int EFLAG, int EVFLAG, int PBC>
 void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
           ParticleFields &fields, const Virial &virial)
 {
@@ -29,6 +39,10 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
   const double *vfrac = p.volume;
   const int nlocal = p.nlocal;
   const double *gf = fields.g;
+  int nmax = 0;
+  for (int i = 0; i < nlocal; i++) nmax = std::max(nmax, fam.npartner[i]);
+  std::vector<double> scratch(6 * static_cast<size_t>(nmax));
+  double *ub = scratch.data();
 
   for (int i = 0; i < nlocal; i++) {
     const double *gi = gf + NG * i;
@@ -41,9 +55,8 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
     const int *jl = fam.jlocal[i];
     const double *om = fam.omega[i];
     double fx = 0.0, fy = 0.0, fz = 0.0, ws = 0.0;
-    double q00 = 0.0, q01 = 0.0, q02 = 0.0, q10 = 0.0, q11 = 0.0, q12 = 0.0, q20 = 0.0,
-           q21 = 0.0, q22 = 0.0;
     BondVirial vir;
+    int nu = 0;
 
     for (int b = 0; b < n; b++) {
       const int j = jl[b];
@@ -77,8 +90,29 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
       fx += t0;
       fy += t1;
       fz += t2;
-      ws += t0 * z0 + t1 * z1 + t2 * z2;
-      const double u0 = qa * t0, u1 = qa * t1, u2 = qa * t2;
+      if (EFLAG) ws += t0 * z0 + t1 * z1 + t2 * z2;
+      double *u = ub + 6 * nu++;
+      u[0] = qa * t0;
+      u[1] = qa * t1;
+      u[2] = qa * t2;
+      u[3] = x0;
+      u[4] = x1;
+      u[5] = x2;
+      if (EVFLAG) vir.add(e0, e1, e2, t0, t1, t2);
+    }
+
+    f[3 * i] += fx;
+    f[3 * i + 1] += fy;
+    f[3 * i + 2] += fz;
+    if (EFLAG) fields.w[i] += 0.25 * ws;
+    if (EVFLAG) vir.tally(virial, i, -0.5 * vfrac[i]);
+    if (!regi) continue;
+
+    double q00 = 0.0, q01 = 0.0, q02 = 0.0, q10 = 0.0, q11 = 0.0, q12 = 0.0, q20 = 0.0,
+           q21 = 0.0, q22 = 0.0;
+    for (int k = 0; k < nu; k++) {
+      const double *u = ub + 6 * k;
+      const double u0 = u[0], u1 = u[1], u2 = u[2], x0 = u[3], x1 = u[4], x2 = u[5];
       q00 += u0 * x0;
       q01 += u0 * x1;
       q02 += u0 * x2;
@@ -88,37 +122,31 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
       q20 += u2 * x0;
       q21 += u2 * x1;
       q22 += u2 * x2;
-      if (EVFLAG) vir.add(e0, e1, e2, t0, t1, t2);
     }
-
-    f[3 * i] += fx;
-    f[3 * i + 1] += fy;
-    f[3 * i + 2] += fz;
-    fields.w[i] += 0.25 * ws;
-
-    if (regi) {
-      // H_i = A_i + Q_i K_i^-1 with Q_i = -(sum above)/2 (the sum carries 2 a_i)
-      const double *k = fam.kinv[i];
-      double *h = fields.h + 9 * i;
-      const double q[9] = {q00, q01, q02, q10, q11, q12, q20, q21, q22};
-      for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++)
-          h[3 * r + c] -=
-              0.5 * (q[3 * r] * k[c] + q[3 * r + 1] * k[3 + c] + q[3 * r + 2] * k[6 + c]);
-    }
-
-    if (EVFLAG) vir.tally(virial, i, -0.5 * vfrac[i]);
+    // H_i = A_i + Q_i K_i^-1 with Q_i = -(sum above)/2 (the sum carries 2 a_i)
+    const double *k = fam.kinv[i];
+    double *h = fields.h + 9 * i;
+    const double q[9] = {q00, q01, q02, q10, q11, q12, q20, q21, q22};
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++)
+        h[3 * r + c] -=
+            0.5 * (q[3 * r] * k[c] + q[3 * r + 1] * k[3 + c] + q[3 * r + 2] * k[6 + c]);
   }
 }
 
 }  // namespace
 
 void stabilization_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-                        ParticleFields &fields, const Virial &virial)
+                        ParticleFields &fields, const Virial &virial, bool energy)
 {
-  const bool pbc = box.any(), ev = virial.any();
-  if (pbc) ev ? pass<1, 1>(p, fam, box, fields, virial) : pass<0, 1>(p, fam, box, fields, virial);
-  else ev ? pass<1, 0>(p, fam, box, fields, virial) : pass<0, 0>(p, fam, box, fields, virial);
+  auto run = [&](auto eflag) {
+    constexpr int E = decltype(eflag)::value;
+    const bool pbc = box.any(), ev = virial.any();
+    if (pbc) ev ? pass<E, 1, 1>(p, fam, box, fields, virial) : pass<E, 0, 1>(p, fam, box, fields, virial);
+    else ev ? pass<E, 1, 0>(p, fam, box, fields, virial) : pass<E, 0, 0>(p, fam, box, fields, virial);
+  };
+  if (energy) run(std::integral_constant<int, 1>());
+  else run(std::integral_constant<int, 0>());
 }
 
 }  // namespace PeriSISSM

@@ -45,11 +45,11 @@ namespace PeriSISSM {
 double stabilization_modulus(double Cs, double K, const double Kinv[9]);
 
 // The stabilization pass over the owned particles: needs F, C and the regular flag of every
-// particle and its ghosts (fields.g). Adds the direct force density to p.f, the energy density
-// to fields.w, Q_i K_i^-1 to fields.h, and the virial of the direct force (half of each bond to
-// each end).
+// particle and its ghosts (fields.g). Adds the direct force density to p.f, Q_i K_i^-1 to
+// fields.h, the virial of the direct force (half of each bond to each end), and, when energy is
+// true, the energy density to fields.w (left alone otherwise).
 void stabilization_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-                        ParticleFields &fields, const Virial &virial);
+                        ParticleFields &fields, const Virial &virial, bool energy);
 
 }  // namespace PeriSISSM
 

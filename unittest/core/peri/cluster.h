@@ -125,10 +125,15 @@ class Cluster : public PeriSISSM::Halo {
   }
 
   // the halo: owners' rows to their ghosts
-  void forward(double *rows, int width) override
+  using PeriSISSM::Halo::forward;
+  void forward(const PeriSISSM::HaloField *fields, int n) override
   {
-    for (size_t g = 0; g < owner.size(); g++)
-      for (int k = 0; k < width; k++) rows[(nlocal + g) * width + k] = rows[owner[g] * width + k];
+    for (int q = 0; q < n; q++) {
+      double *rows = fields[q].rows;
+      const int width = fields[q].width;
+      for (size_t g = 0; g < owner.size(); g++)
+        for (int k = 0; k < width; k++) rows[(nlocal + g) * width + k] = rows[owner[g] * width + k];
+    }
   }
 
   struct Result {
@@ -136,6 +141,7 @@ class Cluster : public PeriSISSM::Halo {
     std::vector<double> f;          // force densities of the owned rows
     std::vector<double> k;          // implicit stiffness rows (all rows)
     std::vector<double> g;          // F, C, regular (all rows)
+    std::vector<double> blocks;     // SISSM diagonal blocks of the owned rows (6 each)
     double virial[6] = {0, 0, 0, 0, 0, 0};
   };
 
@@ -164,9 +170,11 @@ class Cluster : public PeriSISSM::Halo {
     PeriSISSM::Virial vir;
     vir.global = out.virial;
     std::vector<int> broke;
+    out.blocks.assign(6 * nlocal, 0.0);
+    std::vector<double *> brows(nlocal);
+    for (int i = 0; i < nlocal; i++) brows[i] = out.blocks.data() + 6 * i;
     PeriSISSM::evaluate_bond_terms(model, p, families(), box, PeriSISSM::BreakingRule::NOBREAK,
-                                   true, fields, *this, vir, broke);
-    forward(kk.data(), PeriSISSM::ParticleFields::NK);
+                                   brows.data(), fields, *this, vir, broke);
     for (int i = 0; i < nlocal; i++) out.energy += volume[i] * w[i];
     out.f.assign(f.begin(), f.begin() + 3 * nlocal);
     out.k = kk;

@@ -58,19 +58,12 @@ std::vector<double> deformed(const Cluster &c, unsigned seed, double noise)
   return y;
 }
 
-// the SISSM blocks of every owned particle of an evaluation (implicit_blocks()), as matrices
-std::vector<Eigen::Matrix3d> assembled_blocks(Cluster &cl, const Cluster::Result &r)
+// the SISSM blocks of every owned particle of an evaluation, as matrices
+std::vector<Eigen::Matrix3d> assembled_blocks(const Cluster::Result &r)
 {
-  std::vector<double> rows(6 * cl.nlocal);
-  std::vector<double *> brows(cl.nlocal);
-  for (int i = 0; i < cl.nlocal; i++) brows[i] = rows.data() + 6 * i;
-  PeriSISSM::ParticleFields fields;
-  std::vector<double> k = r.k;
-  fields.k = k.data();
-  PeriSISSM::implicit_blocks(cl.families(), cl.nlocal, fields, brows.data());
-  std::vector<Eigen::Matrix3d> out(cl.nlocal);
-  for (int i = 0; i < cl.nlocal; i++) {
-    const double *b = brows[i];
+  std::vector<Eigen::Matrix3d> out(r.blocks.size() / 6);
+  for (size_t i = 0; i < out.size(); i++) {
+    const double *b = r.blocks.data() + 6 * i;
     out[i] << b[0], b[3], b[4], b[3], b[1], b[5], b[4], b[5], b[2];
   }
   return out;
@@ -180,7 +173,7 @@ TEST(BondTerms, BlocksAreTheImplicitStiffness)
       cl.add_lonely(1.5);
       cl.build(model);
       const Cluster::Result r = cl.evaluate(model, deformed(cl, 9u, 0.04));
-      const std::vector<Eigen::Matrix3d> blocks = assembled_blocks(cl, r);
+      const std::vector<Eigen::Matrix3d> blocks = assembled_blocks(r);
       for (int i = 0; i < cl.nlocal; i++) {
         const Eigen::Matrix3d &D = blocks[i];
         const double lo = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(D).eigenvalues().minCoeff();
@@ -242,7 +235,7 @@ TEST(BondTerms, BlocksAreTheImplicitStiffness)
                                    r.g[NG * j + PeriSISSM::ParticleFields::G_C]);
         expect += w * (hplus(c) + hplus(j)) + w * cbar * Eigen::Matrix3d::Identity();
       }
-      const std::vector<Eigen::Matrix3d> blocks = assembled_blocks(cl, r);
+      const std::vector<Eigen::Matrix3d> blocks = assembled_blocks(r);
       const Eigen::Matrix3d &B = blocks[c];
       EXPECT_GT(r.g[NG * c + PeriSISSM::ParticleFields::G_C], 0.0);
       EXPECT_LE((B - expect).norm(), 1e-13 * expect.norm());
