@@ -95,11 +95,13 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   int contact_maxfirst, contact_maxneigh, contact_inum;
   double contact_margin;    // the candidates hold the pairs within contact_reach() + this
   int track_motion;         // keep the positions below (fix sissm)
+  int follow_explicit;      // explicit runs: narrow candidates, chosen again as atoms move
   int nmotion;              // their allocated length
-  double **xneigh;          // positions of owned atoms at the last neighbor list build
-  double **xcontact;        // positions of owned atoms when the contact candidates were chosen
+  double **xneigh;          // positions of owned and ghost atoms at the last neighbor list build
+  double **xcontact;        // positions of owned and ghost atoms when the candidates were chosen
   double contact_reach() const;    // largest contact range, 1.35 hmax
   void grow_motion();
+  void follow_motion_explicit();
   double motion_since(double **ref, double *moved, tagint *worst);
   bool contact_reachable(double moved) const;
   double contact_horizon() const;

@@ -80,6 +80,7 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
   // (built here only if that did not happen, e.g. a compute without a run)
 
   if (contact_inum != list->inum) build_contact_list(neighbor->skin);
+  else if (follow_explicit) follow_motion_explicit();
 
   const PeriSISSM::Particles p = particles();
   PeriSISSM::ContactCandidates cand;
@@ -99,13 +100,50 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
 void PairPeriNosb::neighbor_rebuilt()
 {
   if (!any_contact || !list) return;
-  if (track_motion) {
+  const double skin = neighbor->skin;
+  follow_explicit = !track_motion && contact_reach() + 0.25 * skin <= contact_horizon();
+  if (track_motion || follow_explicit) {
     grow_motion();
     double **x = atom->x;
-    for (int i = 0; i < atom->nlocal; i++)
+    const int nall = atom->nlocal + atom->nghost;
+    for (int i = 0; i < nall; i++)
       for (int k = 0; k < 3; k++) xneigh[i][k] = x[i][k];
   }
-  build_contact_list(neighbor->skin);
+  build_contact_list(follow_explicit ? 0.25 * skin : skin);
+}
+
+/* ----------------------------------------------------------------------
+   explicit runs: the candidates, chosen with the margin m = skin/4 instead of the skin, stay
+   complete while no atom has moved m/2 from where they were chosen (pairs close by at most
+   twice that); beyond, they are chosen again from the neighbor list, whose pairs cover reach +
+   m while reach + m + 2 max|x - x_n| <= horizon + skin (LAMMPS keeps max|x - x_n| below skin/2
+   by its own rebuilds, and follow_explicit is set only where reach + skin/4 <= horizon). Owned
+   and ghost atoms alike (every candidate pair has both on this rank; ghost indices do not
+   change between neighbor list builds), so each rank decides alone. About six times fewer
+   candidates than with the whole skin as margin on a lattice with horizon 3a and skin 2a.
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::follow_motion_explicit()
+{
+  double **x = atom->x;
+  const int nall = atom->nlocal + atom->nghost;
+  const double trigger = 0.25 * contact_margin * contact_margin;
+  double dc = 0.0;
+  for (int i = 0; i < nall && dc < trigger; i++) {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++) d2 += (x[i][k] - xcontact[i][k]) * (x[i][k] - xcontact[i][k]);
+    dc = std::max(dc, d2);
+  }
+  if (dc < trigger) return;
+  double moved = 0.0;
+  for (int i = 0; i < nall; i++) {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++) d2 += (x[i][k] - xneigh[i][k]) * (x[i][k] - xneigh[i][k]);
+    moved = std::max(moved, d2);
+  }
+  const double skin = neighbor->skin;
+  const double room = contact_horizon() + skin - contact_reach() - 2.0 * sqrt(moved);
+  build_contact_list(std::max(0.0, std::min(0.25 * skin, room)));
 }
 
 /* ----------------------------------------------------------------------
@@ -122,6 +160,7 @@ double PairPeriNosb::contact_reach() const
 void PairPeriNosb::track_contact_motion(int flag)
 {
   track_motion = flag && any_contact;
+  follow_explicit = 0;    // decided again at the next neighbor list build
   if (!track_motion) {
     memory->destroy(xneigh);
     memory->destroy(xcontact);
@@ -292,9 +331,10 @@ void PairPeriNosb::build_contact_list(double margin)
   }
   contact_first[inum] = n;
   contact_inum = inum;
-  if (track_motion) {
+  if (track_motion || follow_explicit) {
     grow_motion();
-    for (int i = 0; i < atom->nlocal; i++)
+    const int nall = atom->nlocal + atom->nghost;
+    for (int i = 0; i < nall; i++)
       for (int k = 0; k < 3; k++) xcontact[i][k] = x[i][k];
   }
 }

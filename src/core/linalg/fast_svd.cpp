@@ -48,34 +48,57 @@ constexpr double kSmallAngle = 2.0e-8;
 // on the critical path. The Gram entries come from the current columns, not from F^T F formed
 // once, so small singular values keep their relative accuracy (Demmel and Veselic 1992);
 // convergence is quadratic.
-void orthogonalize(Columns &m)
+// One rotation of the pair r (0: columns 0-1, 1: 0-2, 2: 1-2); false when the pair already
+// counts as orthogonal (nothing done)
+inline bool jacobi_rotation(Columns &m, int r)
 {
   static constexpr int P[3] = {0, 0, 1}, Q[3] = {1, 2, 2};
   constexpr double tol2 = kOrthogonal * kOrthogonal;
+  double *bp = m.b[P[r]], *bq = m.b[Q[r]];
+  const double alpha = dot3(bp, bp), beta = dot3(bq, bq), gamma = dot3(bp, bq);
+  if (!(gamma * gamma > tol2 * alpha * beta)) return false;
+  const double d = 0.5 * (beta - alpha);
+  double c, s;
+  if (std::fabs(gamma) < kSmallAngle * std::fabs(d)) {
+    // |t| < 1e-8: t = gamma / (2 d) to a relative t^2 < 1e-16, c = 1 - t^2/2 and s = t
+    // to round-off (c^2 + s^2 = 1 + t^4/4)
+    s = gamma / (2.0 * d);
+    c = 1.0 - 0.5 * s * s;
+  } else {
+    const double a = std::fabs(d) + std::sqrt(d * d + gamma * gamma);
+    const double inv = 1.0 / std::sqrt(a * a + gamma * gamma);
+    c = a * inv;
+    s = std::copysign(1.0, d) * gamma * inv;
+  }
+  rotate(bp, bq, c, s);
+  rotate(m.v[P[r]], m.v[Q[r]], c, s);
+  return true;
+}
+
+// Cyclic sweeps until a sweep rotates nothing.
+void orthogonalize(Columns &m)
+{
   for (int sweep = 0; sweep < kMaxSweeps; sweep++) {
     bool rotated = false;
-    for (int r = 0; r < 3; r++) {
-      double *bp = m.b[P[r]], *bq = m.b[Q[r]];
-      const double alpha = dot3(bp, bp), beta = dot3(bq, bq), gamma = dot3(bp, bq);
-      if (!(gamma * gamma > tol2 * alpha * beta)) continue;
-      const double d = 0.5 * (beta - alpha);
-      double c, s;
-      if (std::fabs(gamma) < kSmallAngle * std::fabs(d)) {
-        // |t| < 1e-8: t = gamma / (2 d) to a relative t^2 < 1e-16, c = 1 - t^2/2 and s = t
-        // to round-off (c^2 + s^2 = 1 + t^4/4)
-        s = gamma / (2.0 * d);
-        c = 1.0 - 0.5 * s * s;
-      } else {
-        const double a = std::fabs(d) + std::sqrt(d * d + gamma * gamma);
-        const double inv = 1.0 / std::sqrt(a * a + gamma * gamma);
-        c = a * inv;
-        s = std::copysign(1.0, d) * gamma * inv;
-      }
-      rotate(bp, bq, c, s);
-      rotate(m.v[P[r]], m.v[Q[r]], c, s);
-      rotated = true;
-    }
+    for (int r = 0; r < 3; r++) rotated |= jacobi_rotation(m, r);
     if (!rotated) break;
+  }
+}
+
+// The same for two matrices at once, each exactly as orthogonalize() would (a matrix whose sweep
+// rotated nothing is left alone): the two chains of dependent square roots and divisions are
+// independent, and the processor overlaps them.
+void orthogonalize(Columns &a, Columns &b)
+{
+  bool done_a = false, done_b = false;
+  for (int sweep = 0; sweep < kMaxSweeps && !(done_a && done_b); sweep++) {
+    bool rotated_a = false, rotated_b = false;
+    for (int r = 0; r < 3; r++) {
+      if (!done_a) rotated_a |= jacobi_rotation(a, r);
+      if (!done_b) rotated_b |= jacobi_rotation(b, r);
+    }
+    done_a = done_a || !rotated_a;
+    done_b = done_b || !rotated_b;
   }
 }
 
@@ -150,22 +173,9 @@ void order(SignedSVD &d)
     }
 }
 
-}  // namespace
-
-// Method:
-// 1. Scale F by a power of two (exact) when its largest entry is outside [2^-400, 2^400], so
-//    that the squared norms below neither overflow nor underflow.
-// 2. One-sided Jacobi on B = F, V = I: B = F V with orthogonal columns, V a product of
-//    rotations (det +1). Sort the columns by norm.
-// 3. QR of B by three Givens rotations: B = U R, U a rotation; the columns of B being
-//    orthogonal, R is diagonal up to round-off, and its diagonal is s: R_11, R_22 >= 0 by
-//    construction, and sign(R_33) = sign(det B) = sign(det F) (det U = det V = +1), the signed
-//    convention of signed_svd().
-// 4. Repair the order where round-off swapped nearly repeated values; undo the scaling.
-SignedSVD fast_signed_svd(const Eigen::Matrix3d &F)
+// Step 1 (columns of F into m, V = I, scaled); false for a non-finite F (out then set)
+bool load(const Eigen::Matrix3d &F, Columns &m, int &exponent, SignedSVD &out)
 {
-  SignedSVD out;
-  Columns m;
   double fmax = 0.0;
   for (int c = 0; c < 3; c++)
     for (int r = 0; r < 3; r++) {
@@ -174,22 +184,25 @@ SignedSVD fast_signed_svd(const Eigen::Matrix3d &F)
         out.U.setIdentity();
         out.V.setIdentity();
         out.s.setConstant(std::numeric_limits<double>::quiet_NaN());
-        return out;
+        return false;
       }
       m.b[c][r] = a;
       m.v[c][r] = (r == c) ? 1.0 : 0.0;
       fmax = std::fmax(fmax, std::fabs(a));
     }
-  int exponent = 0;
+  exponent = 0;
   if (fmax != 0.0 && (fmax > 0x1p400 || fmax < 0x1p-400)) {
     std::frexp(fmax, &exponent);
     for (auto &col : m.b)
       for (double &a : col) a = std::ldexp(a, -exponent);
   }
+  return true;
+}
 
-  orthogonalize(m);
+// Steps 3 and 4, after the sort
+void finish(Columns &m, int exponent, SignedSVD &out)
+{
   sort_columns(m);
-
   double R[3][3], U[3][3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) R[r][c] = m.b[c][r];
@@ -207,7 +220,42 @@ SignedSVD fast_signed_svd(const Eigen::Matrix3d &F)
   order(out);
   if (exponent != 0)
     for (int k = 0; k < 3; k++) out.s(k) = std::ldexp(out.s(k), exponent);
+}
+
+}  // namespace
+
+// Method:
+// 1. Scale F by a power of two (exact) when its largest entry is outside [2^-400, 2^400], so
+//    that the squared norms below neither overflow nor underflow.
+// 2. One-sided Jacobi on B = F, V = I: B = F V with orthogonal columns, V a product of
+//    rotations (det +1).
+// 3. Sort the columns by norm; QR of B by three Givens rotations: B = U R, U a rotation; the columns of B being
+//    orthogonal, R is diagonal up to round-off, and its diagonal is s: R_11, R_22 >= 0 by
+//    construction, and sign(R_33) = sign(det B) = sign(det F) (det U = det V = +1), the signed
+//    convention of signed_svd().
+// 4. Repair the order where round-off swapped nearly repeated values; undo the scaling.
+SignedSVD fast_signed_svd(const Eigen::Matrix3d &F)
+{
+  SignedSVD out;
+  Columns m;
+  int exponent;
+  if (!load(F, m, exponent, out)) return out;
+  orthogonalize(m);
+  finish(m, exponent, out);
   return out;
+}
+
+void fast_signed_svd(const Eigen::Matrix3d &Fa, const Eigen::Matrix3d &Fb, SignedSVD &a,
+                     SignedSVD &b)
+{
+  Columns ma, mb;
+  int ea, eb;
+  const bool fa = load(Fa, ma, ea, a), fb = load(Fb, mb, eb, b);
+  if (fa && fb) orthogonalize(ma, mb);
+  else if (fa) orthogonalize(ma);
+  else if (fb) orthogonalize(mb);
+  if (fa) finish(ma, ea, a);
+  if (fb) finish(mb, eb, b);
 }
 
 }  // namespace PeriSISSM

@@ -25,6 +25,12 @@ namespace PeriSISSM {
 // there); s, and every isotropic function U diag(g(s)) V^T, agree to round-off.
 SignedSVD fast_signed_svd(const Eigen::Matrix3d& F);
 
+// Two at once: a = fast_signed_svd(Fa), b = fast_signed_svd(Fb) to the last bit, in about the
+// time of one and a half (the Jacobi rotations of one matrix are a chain of dependent square
+// roots and divisions; the two chains run side by side).
+void fast_signed_svd(const Eigen::Matrix3d& Fa, const Eigen::Matrix3d& Fb, SignedSVD& a,
+                     SignedSVD& b);
+
 }  // namespace PeriSISSM
 
 #endif  // PERISISSM_FAST_SVD_H

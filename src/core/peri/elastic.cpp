@@ -29,6 +29,9 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
   for (int i = 0; i < nlocal; i++) nmax = std::max(nmax, fam.npartner[i]);
   std::vector<double> scratch(6 * static_cast<size_t>(nmax));
   double *ub = scratch.data();
+  double mrow[2][9];    // M of the particle waiting for its stress, and of the current one
+  CorrespondenceState wait{};
+  bool waiting = false;
 
   for (int i = 0; i < nlocal; i++) {
     const int itype = type[i];
@@ -99,16 +102,20 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
     double *g = fields.g + NG * i;
     double *h = fields.h + 9 * i;
     if (fam.kregular[i]) {
-      const double M[9] = {m00, m01, m02, m10, m11, m12, m20, m21, m22};
+      // the stresses of regular particles two at a time (their SVDs run side by side): this
+      // one waits for the next, or goes with the one waiting
+      double *M = mrow[waiting ? 1 : 0];
+      const double Mi[9] = {m00, m01, m02, m10, m11, m12, m20, m21, m22};
+      for (int k = 0; k < 9; k++) M[k] = Mi[k];
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
-      if (blocks) {
-        double *k = fields.k + NK * i;
-        fields.w[i] = correspondence_state(model.material(itype), M, fam.kinv[i], g, h, k);
-        k[6] = g[ParticleFields::G_C];
-      } else {
-        fields.w[i] = correspondence_state(model.material(itype), M, fam.kinv[i], g, h);
-      }
+      double *k = blocks ? fields.k + NK * i : nullptr;
+      if (k) k[6] = g[ParticleFields::G_C];
       g[ParticleFields::G_REG] = 1.0;
+      const CorrespondenceState state{&model.material(itype), M, fam.kinv[i], g, h, k,
+                                      fields.w + i};
+      if (waiting) correspondence_states(wait, state);
+      else wait = state;
+      waiting = !waiting;
     } else {
       // singular K: F is undefined, the particle carries no force state of its own (H = 0,
       // C = 0, W = 0) and F is reported as the identity
@@ -121,6 +128,9 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
       fields.w[i] = 0.0;
     }
   }
+
+  if (waiting)
+    *wait.W = correspondence_state(*wait.material, wait.M, wait.Kinv, wait.F, wait.A, wait.H);
 
   if (MODE != BreakingRule::NOBREAK)
     for (int i = 0; i < nlocal; i++) s0[i] = fields.smin_new[i];

@@ -19,10 +19,15 @@ using Map = Eigen::Map<RowMatrix3d>;
 void particle_stress(const Material& material, const Eigen::Matrix3d& F, ParticleStress& out,
                      bool with_split)
 {
+  stress_from_svd(material, fast_signed_svd(F), out, with_split);
+}
+
+void stress_from_svd(const Material& material, const SignedSVD& svd, ParticleStress& out,
+                     bool with_split)
+{
   // (P is formed in a local and then stored: Eigen's vectorized 3x3 products may sum in another
   // order when they write straight into a member, and every force must have the same bits
   // wherever the pipeline is called from)
-  const SignedSVD svd = fast_signed_svd(F);
   const Eigen::Vector3d phat = material.principal_stress(svd.s);
   const Eigen::Matrix3d P = svd.U * phat.asDiagonal() * svd.V.transpose();
   out.svd = svd;
@@ -61,18 +66,45 @@ void implicit_stiffness(const ParticleStress& ps, double kappa, double H[6])
   H[5] = h(1, 2);
 }
 
-double correspondence_state(const Material& material, const double M[9], const double Kinv[9],
-                            double F[9], double A[9], double H[6])
+namespace {
+
+// F = M K^-1
+Eigen::Matrix3d gradient(const double M[9], const double Kinv[9])
 {
   const RowMatrix3d kinv = ConstMap(Kinv);
-  const Eigen::Matrix3d f = ConstMap(M) * kinv;
+  return ConstMap(M) * kinv;
+}
+
+// the outputs of correspondence_state() from F and its SVD
+double finish_state(const Material& material, const Eigen::Matrix3d& f, const SignedSVD& svd,
+                    const double Kinv[9], double F[9], double A[9], double H[6])
+{
   ParticleStress ps;
-  particle_stress(material, f, ps, H != nullptr);
+  stress_from_svd(material, svd, ps, H != nullptr);
+  const RowMatrix3d kinv = ConstMap(Kinv);
   Map fout(F), aout(A);
   fout = f;
   aout = ps.P * kinv;
   if (H) implicit_stiffness(ps, (Kinv[0] + Kinv[4] + Kinv[8]) / 3.0, H);
   return ps.W;
+}
+
+}  // namespace
+
+double correspondence_state(const Material& material, const double M[9], const double Kinv[9],
+                            double F[9], double A[9], double H[6])
+{
+  const Eigen::Matrix3d f = gradient(M, Kinv);
+  return finish_state(material, f, fast_signed_svd(f), Kinv, F, A, H);
+}
+
+void correspondence_states(const CorrespondenceState& a, const CorrespondenceState& b)
+{
+  const Eigen::Matrix3d fa = gradient(a.M, a.Kinv), fb = gradient(b.M, b.Kinv);
+  SignedSVD sa, sb;
+  fast_signed_svd(fa, fb, sa, sb);
+  *a.W = finish_state(*a.material, fa, sa, a.Kinv, a.F, a.A, a.H);
+  *b.W = finish_state(*b.material, fb, sb, b.Kinv, b.F, b.A, b.H);
 }
 
 // tau = P F^T = U diag(phat) V^T V diag(s) U^T = U diag(phat .* s) U^T.

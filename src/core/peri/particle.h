@@ -39,6 +39,10 @@ struct ParticleStress {
 void particle_stress(const Material& material, const Eigen::Matrix3d& F, ParticleStress& out,
                      bool with_split = false);
 
+// The same from the signed SVD of F (fast_signed_svd(F): particle_stress() is exactly this).
+void stress_from_svd(const Material& material, const SignedSVD& svd, ParticleStress& out,
+                     bool with_split = false);
+
 // First Piola-Kirchhoff stress P = dW/dF (particle_stress().P).
 Eigen::Matrix3d first_piola(const Material& material, const Eigen::Matrix3d& F);
 
@@ -66,6 +70,21 @@ void implicit_stiffness(const ParticleStress& ps, double kappa, double H[6]);
 //          not null also H = implicit_stiffness(kappa = tr(K^-1)/3). Returns W(F).
 double correspondence_state(const Material& material, const double M[9], const double Kinv[9],
                             double F[9], double A[9], double H[6] = nullptr);
+
+// The arguments of one correspondence_state() call; W receives its return value.
+struct CorrespondenceState {
+  const Material* material;
+  const double* M;
+  const double* Kinv;
+  double* F;
+  double* A;
+  double* H;    // may be null
+  double* W;
+};
+
+// Two correspondence_state() calls at once, each with exactly the results it has alone: their
+// two SVDs run side by side (fast_svd.h), about 1.4x the throughput of one after the other.
+void correspondence_states(const CorrespondenceState& a, const CorrespondenceState& b);
 
 // Cauchy stress sigma = P F^T / J from one signed SVD: P F^T = U diag(phat .* s) U^T is the
 // Kirchhoff stress tau (exactly symmetric). For J = det F below kCauchyMinJ (collapsed or
