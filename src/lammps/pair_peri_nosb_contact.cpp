@@ -109,7 +109,9 @@ void PairPeriNosb::neighbor_rebuilt()
     for (int i = 0; i < nall; i++)
       for (int k = 0; k < 3; k++) xneigh[i][k] = x[i][k];
   }
-  build_contact_list(follow_explicit ? 0.25 * skin : skin);
+  // followed (fix sissm's iterates, or explicit runs): the narrow margin, chosen again as the
+  // atoms move; otherwise the whole skin, which covers all motion until the next build
+  build_contact_list(track_motion || follow_explicit ? 0.25 * skin : skin);
 }
 
 /* ----------------------------------------------------------------------

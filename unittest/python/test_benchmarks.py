@@ -1,7 +1,9 @@
-"""The issue-5 benchmark drivers (examples/benchmarks/{stability,error-vs-time}/run.py) run end
-to end in their --quick form, write their report, CSVs and plots where they are told, and keep
-the physical facts the committed reports state. Slow (about 2 minutes each)."""
+"""The benchmark drivers (examples/benchmarks/{stability,error-vs-time,dynamics}/run.py, issues 5
+and 12; examples/benchmarks/speed/bench_impact.py, issue 13) run end to end in their --quick
+form, write their report, CSVs and plots where they are told, and keep the physical facts the
+committed reports state (never a wall time). Slow (about 1 to 3 minutes each)."""
 import csv
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -137,3 +139,37 @@ def test_dynamics_driver(tmp_path):
     # backward Euler has damped half of it away (measured 50 %)
     assert error_at("scheme genalpha 1.0", 50) < 0.05
     assert error_at("scheme genalpha 1.0", 50) < 0.1 * error_at("", 50)
+
+
+@pytest.mark.slow
+@pytest.mark.mpi
+def test_impact_speed_driver(tmp_path):
+    # The speed benchmark of issue 13 in its quick form: every configuration once (1 round of
+    # 20 steps) on the small impact deck, on 1 and 2 ranks; the 54K size is not run. Only what
+    # cannot depend on the machine's speed is checked.
+    runs = tmp_path / "runs.csv"
+    out = run_driver("speed/bench_impact.py", "--ranks", 1, 2, "--csv", runs).stdout
+    rows = read_csv(runs)
+    configs = ("pmb", "lps", "nosb", "stvk", "neohookean", "jacobi", "block", "amg")
+    assert sorted((r["config"], int(r["ranks"])) for r in rows) == \
+        sorted((c, n) for c in configs for n in (1, 2))
+    for r in rows:
+        assert (r["size"], r["steps"], r["atoms"]) == ("small", "20", "3487"), r
+        for name in ("us", "rss_bytes", "lammps_bytes"):
+            assert float(r[name]) > 0, (name, r)
+    k = {(r["config"], int(r["ranks"])): float(r["iterations"]) for r in rows
+         if r["config"] in ("jacobi", "block", "amg")}
+    assert not [r for r in rows if r["config"] not in ("jacobi", "block", "amg")
+                and r["iterations"]]
+    # iterations 5 tolerance 0: every Jacobi step sweeps exactly 5 times; a Krylov step never
+    # uses more than 5 evaluations and stops at 4 when one is too few for a CG product and the
+    # check of its Newton iterate; with precond block the iterations do not depend on the ranks
+    assert k["jacobi", 1] == k["jacobi", 2] == 5.0, k
+    assert all(4 <= v <= 5 for v in k.values()), k
+    assert k["block", 1] == k["block", 2], k
+    assert "== small: 3487 atoms, 20 steps ==" in out and "== 54k" not in out
+    for goal in ("[small] peri/nosb linear / peri/lps <= 0.5",
+                 "[small] one fix sissm iteration / peri/nosb step <= 1.0"):
+        assert re.search(re.escape(goal) + r".* -> (PASS|FAIL)$", out, re.M), goal
+    assert re.search(r"\[54k\] 2-rank efficiency >= 0\.95 nve .*: \(not run\) -> not measured",
+                     out), out[-2000:]

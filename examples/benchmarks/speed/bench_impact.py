@@ -1,99 +1,384 @@
 #!/usr/bin/env python3
-"""Speed of peridynamic styles on the projectile-impact deck (examples/impact).
+"""Speed and memory of the peridynamic styles on the projectile-impact deck (examples/impact),
+and the acceptance lines of issue 13, from one invocation.
 
-Runs each deck with build/lmp, serial and on 2 MPI ranks, and prints the cost in microseconds
-per particle-step (LAMMPS's "Loop time" divided by steps x particles) and the ratio to peri/lps
-measured in the same invocation, so machine speed cancels out.
+    /usr/bin/python3 examples/benchmarks/speed/bench_impact.py [--quick] [--rounds 3]
+        [--steps 500 [100]] [--ranks 1 2] [--sizes small 54k] [--styles lps nosb ...]
+        [--csv runs.csv] [--lmp build/lmp]
 
-peri/nosb+sissm is the nosb deck integrated by fix sissm with exactly 5 iterations per step
-(in.impact.sissm: plain SISSM sweeps, solver jacobi); peri/nosb+krylov the same with solver
-krylov (1 Newton residual + 4 conjugate-gradient products per step). Their rows are per step
-(5 iterations + the regular force evaluation). A separate line gives the cost of ONE
-iteration relative to one peri/nosb explicit step:
-(time per SISSM step / iterations per step) / (time per peri/nosb step), at each rank count
-(goal of issue 4: at most 1.5).
+Configurations (--styles keys), each run on every rank count of --ranks:
 
-    /usr/bin/python3 examples/benchmarks/speed/bench_impact.py [--steps 1000] [--ranks 1 2]
+    pmb, lps            in.impact.pmb, in.impact.lps (built-in peri/pmb, peri/lps; fix nve)
+    nosb                in.impact.nosb: peri/nosb linear, fix nve
+    stvk, neohookean    in.impact.nosb with that model in place of linear in pair_coeff (a
+                        generated copy of the deck; the deck has no variable for the model)
+    jacobi              in.impact.sissm: fix sissm iterations 5 tolerance 0 with -var opts
+                        "solver jacobi external lagged" (the deck's default)
+    block               the same with "solver krylov precond block external lagged"
+    amg                 the same with "solver krylov precond amg external lagged" (information
+                        only: its loop time includes the set-ups of PETSc's multigrid hierarchy)
+
+Sizes: small, the deck as it is (3487 particles, --steps default 500); 54k, the same decks with
+impact54k.geometry (this folder; 54027 particles, --steps default 100) copied into the work
+directory as impact.geometry. 54k runs lps, nosb, jacobi and block only. A second --steps value
+is the 54k step count; one value sets both.
+
+Runs alternate: each of the --rounds rounds (default 3) runs every configuration of every size
+on every rank count once, so a slow moment of the shared machine hits them alike. Per
+configuration the tables give the median over the rounds and the spread min..max; every ratio
+is formed from medians of this invocation. Printed:
+
+- microseconds per particle-step, LAMMPS's "Loop time" / (steps x atoms), and the ratio to
+  peri/lps at the same size and rank count;
+- LAMMPS's "% CPU use" of every run (CPU time / wall time of the loop, mean over the ranks):
+  well below 100 means other jobs took the cores;
+- fix sissm: k = iterations per step, fix sissm's output 3 (f_integrate[3], mean over the run),
+  its force evaluations inside the solve. The regular force evaluation that ends every step
+  (thermo output, next step's lagged external forces) is NOT in k: a step costs k + 1
+  evaluations. With t_nve the us per particle-step of peri/nosb linear with fix nve (an
+  explicit step, which costs what the step's regular evaluation does), the cost of one
+  iteration is given three ways, relative to t_nve: (t - t_nve) / k, what one iteration adds
+  (the acceptance line uses this); t / k, the regular evaluation charged to the iterations;
+  t / (k + 1), per force evaluation. jacobi takes exactly 5 iterations per step; krylov may
+  take 4 (when CG meets its Eisenstat-Walker target early, one evaluation left is too few for
+  a CG product and the check of its Newton iterate: that step ends with a SISSM sweep);
+- 2-rank parallel efficiency t1 / (2 t2) where both rank counts ran;
+- memory per particle: peak resident memory (/usr/bin/time, per rank) summed over the ranks /
+  atoms, and LAMMPS's "Per MPI rank memory allocation" avg x ranks / atoms, with the ratios to
+  peri/lps;
+- the acceptance lines of issue 13 with PASS/FAIL: peri/nosb linear / peri/lps <= 0.5 (1 and 2
+  ranks); one fix sissm iteration / peri/nosb step <= 1.0 (jacobi and krylov block,
+  (t - t_nve) / k); 2-rank efficiency at 54K >= 0.95 for nve (peri/nosb linear + fix nve),
+  >= 0.9 for fix sissm (jacobi and krylov block). A goal whose runs were not made says "not measured".
+
+--quick: 20 steps, 1 round, small size (a smoke test; explicit options override). --csv writes
+one row per run. A run that fails is reported at the end, and the exit status is 1.
 """
+from __future__ import annotations
+
 import argparse
+import csv
 import re
 import shutil
+import statistics
+import subprocess
 import sys
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[3]
-sys.path.insert(0, str(REPO / "unittest" / "python"))
-sys.path.insert(0, str(REPO / "tools"))
-from lammps_run import run_deck  # noqa: E402
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent / "solver"))
+from bench_common import LOOP, REPO, build_info, print_build  # noqa: E402
+from lammps_run import LMP, mpirun_prefix, parse_thermo  # noqa: E402
 from progress import Progress  # noqa: E402
 
 IMPACT = REPO / "examples" / "impact"
-# column name -> deck; later styles add their decks here
-STYLES = {"peri/pmb": "in.impact.pmb", "peri/lps": "in.impact.lps", "peri/nosb": "in.impact.nosb",
-          "peri/nosb+sissm": "in.impact.sissm", "peri/nosb+krylov": "in.impact.sissm"}
-EXTRA = {"peri/nosb+krylov": {"opts": "solver krylov"}}
-SISSM = ("peri/nosb+sissm", "peri/nosb+krylov")
-LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+GEOMETRY = {"small": IMPACT / "impact.geometry", "54k": HERE / "impact54k.geometry"}
+DEFAULT_STEPS = {"small": 500, "54k": 100}
+PARTICLES = {"small": 3487, "54k": 54027}  # for the progress estimate only
+QUICK_STEPS = 20
+
+# "99.1% CPU use with 2 MPI tasks x 1 OpenMP threads" after each run
+CPU = re.compile(r"([0-9.]+)% CPU use with")
+MEMORY = re.compile(r"Per MPI rank memory allocation \(min/avg/max\) = "
+                    r"([0-9.eE+-]+) \| ([0-9.eE+-]+) \| ([0-9.eE+-]+) Mbytes")
+RSS = re.compile(r"PEAKRSS (\d+)")       # /usr/bin/time -f "PEAKRSS %M": kilobytes, per rank
+AMG_SETUPS = re.compile(r"(\d+) set-ups? of the AMG hierarchy")
+ITERATIONS = "f_integrate[3]"            # fix sissm output 3: mean iterations per step
 
 
-def measure(deck: str, ranks: int, steps: int, workdir: Path, extra=None) -> tuple:
-    """Microseconds per particle-step of one run, and fix sissm's mean iterations per step
-    (f_integrate[3] in the last thermo line; None for decks without fix sissm)."""
-    shutil.copy(IMPACT / "impact.geometry", workdir)
-    run = run_deck(IMPACT / deck, workdir, nprocs=ranks,
-                   variables={"nsteps": steps, "thermo_every": steps, **(extra or {})})
-    seconds, procs, nsteps, atoms = LOOP.findall(run.log)[-1]
-    assert int(procs) == ranks
-    table = run.thermo[-1]
-    iterations = float(table["f_integrate[3]"][-1]) if "f_integrate[3]" in table else None
-    return float(seconds) / (int(nsteps) * int(atoms)) * 1e6, iterations
+@dataclass(frozen=True)
+class Config:
+    key: str                 # --styles name
+    label: str               # row name in the tables
+    deck: str                # file in examples/impact
+    model: str = ""          # peri/nosb model replacing linear in the deck's pair_coeff
+    opts: str = ""           # fix sissm options (-var opts of in.impact.sissm)
+    large: bool = False      # also runs at the 54k size
 
 
-def cost(deck: str, ranks: int, steps: int, workdir: Path) -> float:
-    """Microseconds per particle-step of one run."""
-    return measure(deck, ranks, steps, workdir)[0]
+CONFIGS = [
+    Config("pmb", "peri/pmb", "in.impact.pmb"),
+    Config("lps", "peri/lps", "in.impact.lps", large=True),
+    Config("nosb", "peri/nosb linear", "in.impact.nosb", large=True),
+    Config("stvk", "peri/nosb stvk", "in.impact.nosb", model="stvk"),
+    Config("neohookean", "peri/nosb neohookean", "in.impact.nosb", model="neohookean"),
+    Config("jacobi", "sissm jacobi", "in.impact.sissm", opts="solver jacobi external lagged",
+           large=True),
+    Config("block", "sissm krylov block", "in.impact.sissm",
+           opts="solver krylov precond block external lagged", large=True),
+    Config("amg", "sissm krylov amg", "in.impact.sissm",
+           opts="solver krylov precond amg external lagged"),
+]
+BY_KEY = {c.key: c for c in CONFIGS}
+SISSM = ("jacobi", "block", "amg")
+ACCEPTED_SISSM = ("jacobi", "block")     # the per-iteration acceptance line
+
+
+class RunFailed(Exception):
+    pass
+
+
+def deck_path(config: Config, workdir: Path) -> Path:
+    """The deck a configuration runs: the example itself, or a copy with another model."""
+    deck = IMPACT / config.deck
+    if not config.model:
+        return deck
+    text = deck.read_text()
+    linear = "pair_coeff      * * linear "
+    assert text.count(linear) == 1, f"{deck}: no single '{linear}' line"
+    copy = workdir / f"{config.deck}-{config.model}"
+    copy.write_text(text.replace(linear, f"pair_coeff      * * {config.model} "))
+    return copy
+
+
+def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
+             lmp: Path) -> dict:
+    """Run one configuration once in a fresh workdir; return parse_run() of what it wrote."""
+    workdir.mkdir(parents=True)
+    shutil.copy(GEOMETRY[size], workdir / "impact.geometry")
+    log, rss = workdir / "log.lammps", workdir / "rss.txt"
+    cmd = mpirun_prefix(ranks) + [
+        "/usr/bin/time", "-a", "-o", str(rss), "-f", "PEAKRSS %M",
+        str(lmp), "-in", str(deck_path(config, workdir)), "-log", str(log), "-echo", "log",
+        "-nocite", "-var", "nsteps", str(steps), "-var", "thermo_every", str(steps)]
+    if config.opts:
+        cmd += ["-var", "opts", config.opts]
+    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True,
+                          stdin=subprocess.DEVNULL)
+    text = log.read_text(errors="replace") if log.exists() else ""
+    errors = [ln for ln in (proc.stdout + text).splitlines() if ln.startswith("ERROR")]
+    if proc.returncode != 0 or errors or not LOOP.search(text):
+        tail = errors[:1] or (proc.stdout + proc.stderr).splitlines()[-10:]
+        raise RunFailed(f"exit {proc.returncode}: " + " | ".join(tail))
+    return parse_run(text, rss.read_text() if rss.exists() else "", ranks)
+
+
+def parse_run(log: str, rss: str, ranks: int) -> dict:
+    """What one run's log and /usr/bin/time file say: microseconds per particle-step, atoms,
+    % CPU use, memory (bytes per particle, two ways), and for fix sissm the iterations per
+    step (None without it) and the set-ups of the AMG hierarchy."""
+    seconds, procs, steps, atoms = LOOP.findall(log)[-1]
+    if int(procs) != ranks:
+        raise RunFailed(f"ran on {procs} procs, not {ranks}")
+    atoms = int(atoms)
+    cpu = CPU.findall(log)
+    table = parse_thermo(log)[-1]
+    rss_kb = [int(v) for v in RSS.findall(rss)]
+    setups = AMG_SETUPS.findall(log)
+    return dict(
+        us=float(seconds) / (int(steps) * atoms) * 1e6, atoms=atoms,
+        cpu=float(cpu[-1]) if cpu else float("nan"),
+        iterations=float(table[ITERATIONS][-1]) if ITERATIONS in table else None,
+        amg_setups=int(setups[-1]) if setups else None,
+        rss_bytes=sum(rss_kb) * 1024 / atoms if len(rss_kb) == ranks else float("nan"),
+        lammps_bytes=float(MEMORY.findall(log)[-1][1]) * 2**20 * ranks / atoms)
+
+
+def median(runs: list, name: str) -> float:
+    return statistics.median(r[name] for r in runs)
+
+
+class Results:
+    """The runs of one invocation, {(size, key, ranks): [parse_run() of each round]}, and the
+    medians and ratios formed from them (None where a run is missing)."""
+
+    def __init__(self):
+        self.runs = {}
+
+    def get(self, size, key, ranks) -> list:
+        return self.runs.get((size, key, ranks), [])
+
+    def med(self, size, key, ranks, name="us"):
+        found = self.get(size, key, ranks)
+        return median(found, name) if found else None
+
+    def ratio(self, size, key, ranks, name="us"):
+        """Median of key over median of peri/lps."""
+        a, b = self.med(size, key, ranks, name), self.med(size, "lps", ranks, name)
+        return a / b if a and b else None
+
+    def per_iteration(self, size, key, ranks, extra=0, marginal=False):
+        """(us per particle-step / (k + extra)) / us per particle-step of peri/nosb + nve; with
+        marginal, ((us per particle-step - that of peri/nosb + nve) / k) / the latter: what one
+        iteration adds to the step's regular evaluation, which costs an explicit step."""
+        t, k, base = (self.med(size, key, ranks), self.med(size, key, ranks, "iterations"),
+                      self.med(size, "nosb", ranks))
+        if not (t and k and base):
+            return None
+        return (t - base) / k / base if marginal else t / (k + extra) / base
+
+    def efficiency(self, size, key):
+        t1, t2 = self.med(size, key, 1), self.med(size, key, 2)
+        return t1 / (2 * t2) if t1 and t2 else None
+
+
+W = 32          # width of a table cell
+
+
+def rank_text(r: int) -> str:
+    return f"{r} rank" + "s" * (r > 1)
+
+
+def table(title: str, labels: list, ranks: list, text, width: int = W) -> None:
+    """A table with one row per label and one column per rank count; text(label, ranks) gives
+    a cell."""
+    print("\n" + title)
+    print(f"{'configuration':<22}" + "".join(f"  {rank_text(r):>{width}}" for r in ranks))
+    for label, key in labels:
+        print(f"{label:<22}" + "".join(f"  {text(key, r):>{width}}" for r in ranks))
+
+
+def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) -> None:
+    """The tables of one size."""
+    atoms = next((r[0]["atoms"] for (s, _, _), r in res.runs.items() if s == size), "?")
+    print(f"\n== {size}: {atoms} atoms, {steps} steps ==")
+    rows = [(c.label, c.key) for c in configs]
+
+    def speed(key, r):
+        found = res.get(size, key, r)
+        if not found:
+            return "failed"
+        lo, hi = min(x["us"] for x in found), max(x["us"] for x in found)
+        ratio = res.ratio(size, key, r)
+        return (f"{res.med(size, key, r):.3f} ({lo:.3f}..{hi:.3f})"
+                + (f" {ratio:5.2f}x" if ratio else ""))
+    table("us per particle-step: median (min..max), ratio to peri/lps", rows, ranks, speed, 34)
+    table("% CPU use of each run (LAMMPS; well below 100: the machine was busy)", rows, ranks,
+          lambda key, r: " ".join(f"{x['cpu']:.1f}" for x in res.get(size, key, r)))
+
+    solvers = [(c.label, c.key) for c in configs if c.key in SISSM]
+    if solvers:
+        def sissm(key, r):
+            k, one = res.med(size, key, r, "iterations"), res.per_iteration(size, key, r)
+            if k is None:
+                return "failed"
+            if one is None:
+                return f"k {k:.2f}, no peri/nosb run"
+            return (f"k {k:.2f}: {res.per_iteration(size, key, r, marginal=True):.2f}x | "
+                    f"{one:.2f}x / {res.per_iteration(size, key, r, 1):.2f}x")
+        table("fix sissm iterations 5 tolerance 0: k = iterations per step (" + ITERATIONS
+              + ", mean over the run), WITHOUT\nthe regular force evaluation that ends each "
+              "step (a step costs k + 1 evaluations). Cost of one iteration, relative to\n"
+              "t_nve, the us per particle-step of peri/nosb linear + nve: (t - t_nve) / k, what "
+              "an iteration adds to the\nstep's regular evaluation (which costs an explicit "
+              "step) | t / k, the regular evaluation charged to the\niterations / t / (k + 1), "
+              "per force evaluation", solvers, ranks, sissm, 40)
+        if "amg" in [key for _, key in solvers]:
+            setups = sorted({x["amg_setups"] for r in ranks for x in res.get(size, "amg", r)})
+            print(f"(sissm krylov amg: information only; its loop time includes the set-ups of "
+                  f"the AMG hierarchy, {setups} per run)")
+
+    if 1 in ranks and 2 in ranks:
+        print("\n2-rank parallel efficiency t1 / (2 t2) of the medians: " + ", ".join(
+            f"{c.label} {e:.2f}" for c in configs if (e := res.efficiency(size, c.key))))
+
+    def memory(key, r):
+        if not res.get(size, key, r):
+            return "failed"
+        parts = []
+        for name in ("rss_bytes", "lammps_bytes"):
+            ratio = res.ratio(size, key, r, name)
+            parts.append(f"{res.med(size, key, r, name):.0f}"
+                         + (f" ({ratio:.2f}x)" if ratio else ""))
+        return " | ".join(parts)
+    table("memory, bytes per particle (ratio to peri/lps): peak RSS summed over the ranks / "
+          "atoms | LAMMPS's\nper-rank allocation avg x ranks / atoms", rows, ranks, memory, 36)
+
+
+def goal(text: str, values: list, limit: float, expected: int, above: bool = False) -> None:
+    """One acceptance line: values [(name, value)] against <= limit (>= with above); "not
+    measured" unless all expected values are there."""
+    if len(values) < expected:
+        outcome = "not measured"
+    else:
+        ok = all(v >= limit if above else v <= limit for _, v in values)
+        outcome = "PASS" if ok else "FAIL"
+    shown = ", ".join(f"{n} {v:.2f}" for n, v in values) or "(not run)"
+    print(f"  {text}: {shown} -> {outcome}")
+
+
+def print_acceptance(res: Results, sizes: list, ranks: list) -> None:
+    both = [r for r in (1, 2) if r in ranks]
+    print("\nissue 13 acceptance (medians of this invocation):")
+    for size in sizes:
+        goal(f"[{size}] peri/nosb linear / peri/lps <= 0.5 (1 and 2 ranks)",
+             [(rank_text(r), v) for r in both if (v := res.ratio(size, "nosb", r))],
+             0.5, 2)
+        goal(f"[{size}] one fix sissm iteration / peri/nosb step <= 1.0 (jacobi and krylov "
+             "block; (t - t_nve) / k)",
+             [(f"{BY_KEY[k].label} {rank_text(r)}", v) for k in ACCEPTED_SISSM for r in both
+              if (v := res.per_iteration(size, k, r, marginal=True))], 1.0, 4)
+    nve = [("nve", e) for e in [res.efficiency("54k", "nosb")] if e]
+    sissm = [(BY_KEY[k].label, e) for k in ACCEPTED_SISSM if (e := res.efficiency("54k", k))]
+    goal("[54k] 2-rank efficiency >= 0.95 nve (peri/nosb linear)", nve, 0.95, 1, above=True)
+    goal("[54k] 2-rank efficiency >= 0.9 sissm (jacobi and krylov block)", sissm, 0.9, 2,
+         above=True)
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--steps", type=int, default=1000)
-    parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
-    parser.add_argument("--styles", nargs="+", default=list(STYLES), choices=list(STYLES))
-    args = parser.parse_args()
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true",
+                    help=f"smoke test: {QUICK_STEPS} steps, 1 round, small size")
+    ap.add_argument("--rounds", type=int, default=None, help="alternating rounds (default 3)")
+    ap.add_argument("--steps", type=int, nargs="+", default=None,
+                    help="steps of the small size [and of 54k] (default 500 100)")
+    ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--sizes", nargs="+", choices=list(GEOMETRY), default=None)
+    ap.add_argument("--styles", nargs="+", choices=list(BY_KEY), default=list(BY_KEY))
+    ap.add_argument("--csv", type=Path, help="write one row per run here")
+    ap.add_argument("--lmp", type=Path, default=LMP)
+    args = ap.parse_args()
+    rounds = args.rounds or (1 if args.quick else 3)
+    sizes = args.sizes or (["small"] if args.quick else list(GEOMETRY))
+    given = args.steps or ([QUICK_STEPS] if args.quick else None)
+    steps = ({s: given[min(k, len(given) - 1)] for k, s in enumerate(GEOMETRY)} if given
+             else DEFAULT_STEPS)
+    configs = {s: [c for c in CONFIGS if c.key in args.styles and (s == "small" or c.large)]
+               for s in sizes}
+    start = build_info()
 
-    results, iterations = {}, {}
-    progress = Progress(len(args.ranks) * len(args.styles), "bench_impact")
-    with tempfile.TemporaryDirectory() as tmp:
-        for ranks in args.ranks:
-            for style in args.styles:
-                work = Path(tmp) / f"{style.replace('/', '_').replace('+', '_')}-{ranks}"
-                work.mkdir()
-                results[style, ranks], iterations[style, ranks] = measure(
-                    STYLES[style], ranks, args.steps, work, EXTRA.get(style))
-                progress.step(f"{style} on {ranks} rank(s)")
+    # rounds x (size, configuration, ranks), round-robin; progress weighted by particle-steps
+    # (x6 for fix sissm's evaluations)
+    order = [(s, c, r) for s in sizes for c in configs[s] for r in args.ranks]
+    weight = {(s, c): steps[s] * PARTICLES[s] * (6 if c.opts else 1) for s, c, _ in order}
+    progress = Progress(rounds * sum(weight[s, c] for s, c, _ in order), "bench_impact")
+    res, failures, rows = Results(), [], []
+    with tempfile.TemporaryDirectory(prefix="bench_impact-") as tmp:
+        for n in range(1, rounds + 1):
+            for size, config, ranks in order:
+                what = f"{size} {config.label} on {ranks} rank(s), round {n}"
+                try:
+                    run = run_once(config, size, ranks, steps[size],
+                                   Path(tmp) / f"{size}-{config.key}-{ranks}-{n}", args.lmp)
+                except RunFailed as err:
+                    failures.append(f"{what}: {err}")
+                else:
+                    res.runs.setdefault((size, config.key, ranks), []).append(run)
+                    rows.append(dict(round=n, size=size, config=config.key, ranks=ranks,
+                                     steps=steps[size], **run))
+                progress.step(what, weight[size, config])
+    progress.done()
+    if args.csv and rows:
+        with open(args.csv, "w", newline="") as fh:
+            writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
 
-    print(f"impact deck, {args.steps} steps: microseconds per particle-step "
-          "(ratio to peri/lps at the same rank count)")
-    print(f"{'style':<16}" + "".join(f"{f'{r} rank(s)':>24}" for r in args.ranks))
-    for style in args.styles:
-        cells = []
-        for r in args.ranks:
-            us = results[style, r]
-            ref = results.get(("peri/lps", r))
-            cells.append(f"{us:10.3f} us" + (f" ({us / ref:5.2f}x)" if ref else ""))
-        print(f"{style:<16}" + "".join(f"{c:>24}" for c in cells))
-
-    solvers = [s for s in SISSM if s in args.styles]
-    if solvers and "peri/nosb" in args.styles:
-        print("\nfix sissm: one iteration per particle relative to one peri/nosb explicit step "
-              "((time per step / iterations per step) / peri/nosb time per step; goal <= 1.5)")
-        for style in solvers:
-            cells = []
-            for r in args.ranks:
-                per_iteration = results[style, r] / iterations[style, r]
-                cells.append(f"{per_iteration / results['peri/nosb', r]:10.2f}x")
-            print(f"{style:<16}" + "".join(f"{c:>24}" for c in cells))
+    print("Projectile impact (examples/impact): microseconds per particle-step = LAMMPS loop "
+          "time / (steps x atoms);")
+    print(f"median of {rounds} alternating round(s) (min..max); ratios of medians to peri/lps at "
+          "the same size and rank count")
+    print_build(start)
+    for size in sizes:
+        print_size(res, size, configs[size], args.ranks, steps[size])
+    print_acceptance(res, sizes, args.ranks)
+    if failures:
+        print("\nfailed runs:")
+        for line in failures:
+            print("  " + line)
+        sys.exit(1)
 
 
 if __name__ == "__main__":
