@@ -515,12 +515,11 @@ void FixSissm::unpack_forward_comm(int n, int first, double *buf)
 
 /* ----------------------------------------------------------------------
    one force evaluation at the current positions: ghost positions, the peri/nosb force density
-   (without energy/virial; the implicit stiffness for the blocks only when asked), ghost forces
-   folded back (where the pair wrote any), with external implicit the post_force of the other fixes (with v the time
-   scheme's velocity of the iterate, so velocity dependent forces such as fix viscous are
-   implicit too), then
-   the time scheme's residual r_i = rho_i (yhat_i - y_i) + c f_i of the owned atoms of the group
-   into res
+   (without energy/virial; the diagonal blocks only when asked), ghost forces folded back
+   (where the pair wrote any), with external implicit the post_force of the other fixes (with
+   v the time scheme's velocity of the iterate, so velocity dependent forces such as fix
+   viscous are implicit too), then the time scheme's residual r_i = rho_i (yhat_i - y_i) + c f_i
+   of the owned atoms of the group into res
 ------------------------------------------------------------------------- */
 
 void FixSissm::evaluate(bool blocks)

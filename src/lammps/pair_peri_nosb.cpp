@@ -84,7 +84,8 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     any_break(0), any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
     contact_crossings(0), hmax(0.0), contact_first(nullptr), contact_neigh(nullptr),
     contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
-    track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr), state_nlocal(-1), nmax(0),
+    track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
+    state_nlocal(-1), nmax(0),
     gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr),
     comm_fields(nullptr), comm_nfields(0)
 {

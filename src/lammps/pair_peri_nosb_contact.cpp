@@ -125,24 +125,25 @@ void PairPeriNosb::neighbor_rebuilt()
    candidates than with the whole skin as margin on a lattice with horizon 3a and skin 2a.
 ------------------------------------------------------------------------- */
 
+// largest squared distance of rows 0 .. n-1 of x from ref, or the first that reaches stop
+static double largest_motion2(double **x, double **ref, int n, double stop)
+{
+  double d = 0.0;
+  for (int i = 0; i < n && d < stop; i++) {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++) d2 += (x[i][k] - ref[i][k]) * (x[i][k] - ref[i][k]);
+    d = std::max(d, d2);
+  }
+  return d;
+}
+
 void PairPeriNosb::follow_motion_explicit()
 {
   double **x = atom->x;
   const int nall = atom->nlocal + atom->nghost;
   const double trigger = 0.25 * contact_margin * contact_margin;
-  double dc = 0.0;
-  for (int i = 0; i < nall && dc < trigger; i++) {
-    double d2 = 0.0;
-    for (int k = 0; k < 3; k++) d2 += (x[i][k] - xcontact[i][k]) * (x[i][k] - xcontact[i][k]);
-    dc = std::max(dc, d2);
-  }
-  if (dc < trigger) return;
-  double moved = 0.0;
-  for (int i = 0; i < nall; i++) {
-    double d2 = 0.0;
-    for (int k = 0; k < 3; k++) d2 += (x[i][k] - xneigh[i][k]) * (x[i][k] - xneigh[i][k]);
-    moved = std::max(moved, d2);
-  }
+  if (largest_motion2(x, xcontact, nall, trigger) < trigger) return;
+  const double moved = largest_motion2(x, xneigh, nall, DBL_MAX);
   const double skin = neighbor->skin;
   const double room = contact_horizon() + skin - contact_reach() - 2.0 * sqrt(moved);
   build_contact_list(std::max(0.0, std::min(0.25 * skin, room)));

@@ -173,7 +173,8 @@ void order(SignedSVD &d)
     }
 }
 
-// Step 1 (columns of F into m, V = I, scaled); false for a non-finite F (out then set)
+// Step 1 of the method (columns of F into m, V = I, scaled); false for a non-finite F (out
+// then set)
 bool load(const Eigen::Matrix3d &F, Columns &m, int &exponent, SignedSVD &out)
 {
   double fmax = 0.0;
@@ -199,7 +200,7 @@ bool load(const Eigen::Matrix3d &F, Columns &m, int &exponent, SignedSVD &out)
   return true;
 }
 
-// Steps 3 and 4, after the sort
+// Steps 3 and 4 of the method (fast_signed_svd() below)
 void finish(Columns &m, int exponent, SignedSVD &out)
 {
   sort_columns(m);
@@ -229,10 +230,10 @@ void finish(Columns &m, int exponent, SignedSVD &out)
 //    that the squared norms below neither overflow nor underflow.
 // 2. One-sided Jacobi on B = F, V = I: B = F V with orthogonal columns, V a product of
 //    rotations (det +1).
-// 3. Sort the columns by norm; QR of B by three Givens rotations: B = U R, U a rotation; the columns of B being
-//    orthogonal, R is diagonal up to round-off, and its diagonal is s: R_11, R_22 >= 0 by
-//    construction, and sign(R_33) = sign(det B) = sign(det F) (det U = det V = +1), the signed
-//    convention of signed_svd().
+// 3. Sort the columns by norm; QR of B by three Givens rotations: B = U R, U a rotation; the
+//    columns of B being orthogonal, R is diagonal up to round-off, and its diagonal is s:
+//    R_11, R_22 >= 0 by construction, and sign(R_33) = sign(det B) = sign(det F) (det U =
+//    det V = +1), the signed convention of signed_svd().
 // 4. Repair the order where round-off swapped nearly repeated values; undo the scaling.
 SignedSVD fast_signed_svd(const Eigen::Matrix3d &F)
 {

@@ -2,6 +2,7 @@
 
 #include "peri/elastic.h"
 
+#include "peri/bond_rows.h"
 #include "peri/model.h"
 #include "peri/particle.h"
 
@@ -25,10 +26,7 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
   double *s0 = p.smin;
   const int nlocal = p.nlocal;
   constexpr double ACC0 = BreakingRule::initial<UNIFORM>();
-  int nmax = 0;
-  for (int i = 0; i < nlocal; i++) nmax = std::max(nmax, fam.npartner[i]);
-  std::vector<double> scratch(6 * static_cast<size_t>(nmax));
-  double *ub = scratch.data();
+  BondRows rows(fam, nlocal);
   double mrow[2][9];    // M of the particle waiting for its stress, and of the current one
   CorrespondenceState wait{};
   bool waiting = false;
@@ -41,11 +39,12 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
     int *jl = fam.jlocal[i];
     const double *om = fam.omega[i];
     double acc = ACC0, den = 0.0;
-    int broke = 0, nu = 0;
+    int broke = 0;
     const double smini = (MODE != BreakingRule::NOBREAK) ? s0[i] : 0.0;
 
-    // first loop: the breaking check, and each unbroken bond's omega eta and xi into the
-    // scratch row; second loop: M (split so that each keeps its accumulators in registers)
+    // the breaking check, and each unbroken bond's omega eta and xi into the rows, whose sum
+    // is M (bond_rows.h)
+    rows.clear();
     for (int b = 0; b < n; b++) {
       const int j = jl[b];
       if (j < 0) continue;
@@ -67,28 +66,7 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
         }
       }
       const double w = om[b];
-      double *u = ub + 6 * nu++;
-      u[0] = w * e0;
-      u[1] = w * e1;
-      u[2] = w * e2;
-      u[3] = x0;
-      u[4] = x1;
-      u[5] = x2;
-    }
-    double m00 = 0.0, m01 = 0.0, m02 = 0.0, m10 = 0.0, m11 = 0.0, m12 = 0.0, m20 = 0.0,
-           m21 = 0.0, m22 = 0.0;
-    for (int k = 0; k < nu; k++) {
-      const double *u = ub + 6 * k;
-      const double w0 = u[0], w1 = u[1], w2 = u[2], x0 = u[3], x1 = u[4], x2 = u[5];
-      m00 += w0 * x0;
-      m01 += w0 * x1;
-      m02 += w0 * x2;
-      m10 += w1 * x0;
-      m11 += w1 * x1;
-      m12 += w1 * x2;
-      m20 += w2 * x0;
-      m21 += w2 * x1;
-      m22 += w2 * x2;
+      rows.push(w * e0, w * e1, w * e2, x0, x1, x2);
     }
 
     if (MODE != BreakingRule::NOBREAK) {
@@ -105,8 +83,7 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
       // the stresses of regular particles two at a time (their SVDs run side by side): this
       // one waits for the next, or goes with the one waiting
       double *M = mrow[waiting ? 1 : 0];
-      const double Mi[9] = {m00, m01, m02, m10, m11, m12, m20, m21, m22};
-      for (int k = 0; k < 9; k++) M[k] = Mi[k];
+      rows.outer_sum(M);
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
       double *k = blocks ? fields.k + NK * i : nullptr;
       if (k) k[6] = g[ParticleFields::G_C];

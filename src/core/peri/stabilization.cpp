@@ -2,9 +2,9 @@
 
 #include "peri/stabilization.h"
 
-#include <algorithm>
+#include "peri/bond_rows.h"
+
 #include <type_traits>
-#include <vector>
 
 namespace PeriSISSM {
 
@@ -22,12 +22,9 @@ namespace {
 //   singular K and no F),
 // direct force density Cbar omega z on i, energy density 1/4 Cbar omega |z|^2 on i, and
 // Q_i = -sum_j a_i Cbar omega z (x) xi, so that H_i = A_i + Q_i K_i^-1.
-// Two loops over the bonds of each particle: the first forms z and the direct force, the second
-// the 3x3 sum Q from the per-bond products it stored (u = 2 a_i Cbar omega z and xi, in a
-// scratch row the size of the largest family). One loop holding the 13 accumulators and the
-// particle's F at once spilled accumulators to the stack on x86-64 (16 vector registers); split,
-// each loop keeps its accumulators in registers. The energy is summed only when asked for
-// (EFLAG), which keeps the first loop at three accumulators.
+// The loop over the bonds of each particle forms z and the direct force, and stores u = 2 a_i
+// Cbar omega z with xi; the 3x3 sum Q of u (x) xi follows from those rows (bond_rows.h). The
+// energy is summed only when asked for (EFLAG), which keeps the loop at three accumulators.
 template <int EFLAG, int EVFLAG, int PBC>
 void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
           ParticleFields &fields, const Virial &virial)
@@ -39,10 +36,7 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
   const double *vfrac = p.volume;
   const int nlocal = p.nlocal;
   const double *gf = fields.g;
-  int nmax = 0;
-  for (int i = 0; i < nlocal; i++) nmax = std::max(nmax, fam.npartner[i]);
-  std::vector<double> scratch(6 * static_cast<size_t>(nmax));
-  double *ub = scratch.data();
+  BondRows rows(fam, nlocal);
 
   for (int i = 0; i < nlocal; i++) {
     const double *gi = gf + NG * i;
@@ -56,7 +50,7 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
     const double *om = fam.omega[i];
     double fx = 0.0, fy = 0.0, fz = 0.0, ws = 0.0;
     BondVirial vir;
-    int nu = 0;
+    rows.clear();
 
     for (int b = 0; b < n; b++) {
       const int j = jl[b];
@@ -91,13 +85,7 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
       fy += t1;
       fz += t2;
       if (EFLAG) ws += t0 * z0 + t1 * z1 + t2 * z2;
-      double *u = ub + 6 * nu++;
-      u[0] = qa * t0;
-      u[1] = qa * t1;
-      u[2] = qa * t2;
-      u[3] = x0;
-      u[4] = x1;
-      u[5] = x2;
+      rows.push(qa * t0, qa * t1, qa * t2, x0, x1, x2);
       if (EVFLAG) vir.add(e0, e1, e2, t0, t1, t2);
     }
 
@@ -108,25 +96,11 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
     if (EVFLAG) vir.tally(virial, i, -0.5 * vfrac[i]);
     if (!regi) continue;
 
-    double q00 = 0.0, q01 = 0.0, q02 = 0.0, q10 = 0.0, q11 = 0.0, q12 = 0.0, q20 = 0.0,
-           q21 = 0.0, q22 = 0.0;
-    for (int k = 0; k < nu; k++) {
-      const double *u = ub + 6 * k;
-      const double u0 = u[0], u1 = u[1], u2 = u[2], x0 = u[3], x1 = u[4], x2 = u[5];
-      q00 += u0 * x0;
-      q01 += u0 * x1;
-      q02 += u0 * x2;
-      q10 += u1 * x0;
-      q11 += u1 * x1;
-      q12 += u1 * x2;
-      q20 += u2 * x0;
-      q21 += u2 * x1;
-      q22 += u2 * x2;
-    }
+    double q[9];
+    rows.outer_sum(q);
     // H_i = A_i + Q_i K_i^-1 with Q_i = -(sum above)/2 (the sum carries 2 a_i)
     const double *k = fam.kinv[i];
     double *h = fields.h + 9 * i;
-    const double q[9] = {q00, q01, q02, q10, q11, q12, q20, q21, q22};
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++)
         h[3 * r + c] -=
@@ -142,8 +116,10 @@ void stabilization_pass(const Particles &p, const Families &fam, const Reference
   auto run = [&](auto eflag) {
     constexpr int E = decltype(eflag)::value;
     const bool pbc = box.any(), ev = virial.any();
-    if (pbc) ev ? pass<E, 1, 1>(p, fam, box, fields, virial) : pass<E, 0, 1>(p, fam, box, fields, virial);
-    else ev ? pass<E, 1, 0>(p, fam, box, fields, virial) : pass<E, 0, 0>(p, fam, box, fields, virial);
+    if (pbc)
+      ev ? pass<E, 1, 1>(p, fam, box, fields, virial) : pass<E, 0, 1>(p, fam, box, fields, virial);
+    else
+      ev ? pass<E, 1, 0>(p, fam, box, fields, virial) : pass<E, 0, 0>(p, fam, box, fields, virial);
   };
   if (energy) run(std::integral_constant<int, 1>());
   else run(std::integral_constant<int, 0>());
