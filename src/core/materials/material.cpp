@@ -5,6 +5,7 @@
 #include "materials/material_linear.h"
 #include "materials/material_neohookean.h"
 #include "materials/material_stvk.h"
+#include "materials/material_xu.h"
 
 #include <algorithm>
 #include <cmath>
@@ -140,13 +141,14 @@ std::unique_ptr<Material> make_material(const std::string& name, double mu, doub
   if (name == LinearMaterial::kName) return std::make_unique<LinearMaterial>(mu, lambda);
   if (name == StVKMaterial::kName) return std::make_unique<StVKMaterial>(mu, lambda);
   if (name == NeoHookeanMaterial::kName) return std::make_unique<NeoHookeanMaterial>(mu, lambda);
+  if (name == XuMaterial::kName) return std::make_unique<XuMaterial>(mu);
   return nullptr;
 }
 
 const std::vector<std::string>& material_names()
 {
   static const std::vector<std::string> names = {
-      LinearMaterial::kName, StVKMaterial::kName, NeoHookeanMaterial::kName};
+      LinearMaterial::kName, StVKMaterial::kName, NeoHookeanMaterial::kName, XuMaterial::kName};
   return names;
 }
 

@@ -61,7 +61,7 @@ class Material {
   Material(double mu, double lambda) : mu_(mu), lambda_(lambda) {}
   virtual ~Material() = default;
 
-  // Model name as used in pair_coeff ("linear", "stvk", "neohookean").
+  // Model name as used in pair_coeff ("linear", "stvk", "neohookean", "xu").
   virtual const char* name() const = 0;
 
   double mu() const { return mu_; }
@@ -129,14 +129,15 @@ class Material {
 
 // Factory.
 //
-// Inputs:  name model name (one of material_names()), mu, lambda Lame constants.
+// Inputs:  name model name (one of material_names()), mu, lambda Lame constants. The one-
+//          parameter model "xu" takes its s0 = mu and ignores lambda (its lambda() is 0).
 // Outputs: the model, or nullptr for an unknown name.
 std::unique_ptr<Material> make_material(const std::string& name, double mu, double lambda);
 
 // Names accepted by make_material, in documentation order.
 const std::vector<std::string>& material_names();
 
-// The names joined for error messages: "linear, stvk, neohookean".
+// The names joined for error messages: "linear, stvk, neohookean, xu".
 std::string material_names_joined();
 
 }  // namespace PeriSISSM

@@ -39,7 +39,7 @@ Vector3d phat(const Material& m, double s1, double s2, double s3)
   return m.principal_stress(Vector3d(s1, s2, s3));
 }
 
-// Every model with every parameter set of test_helpers.h.
+// Every model with every parameter set of test_helpers.h (xu takes s0 = mu).
 struct Model {
   std::string label;
   std::unique_ptr<Material> m;
@@ -168,7 +168,7 @@ const std::vector<std::pair<std::string, std::pair<double, double>>>& bulk_shear
 
 // Uniaxial plane stress at eps = 1e-7 recovers E = 9KG/(3K + G) and nu = (3K - 2G)/(2(3K + G))
 // to 1e-5 relative (the nonlinearity is O(eps) relative, round-off ~1e-9): the membrane has the
-// 3D material's constants.
+// 3D material's constants. For xu (s0 = 8000): E = 2 s0, nu = 0.
 TEST(PlaneStress, UniaxialSmallStrainGivesYoungAndPoisson)
 {
   const double eps = 1e-7;
@@ -185,11 +185,16 @@ TEST(PlaneStress, UniaxialSmallStrainGivesYoungAndPoisson)
       EXPECT_NEAR(nu_meas, nu, 1e-5 * nu);
     }
   }
+  const double s0 = 8000.0;
+  const auto xu = PeriSISSM::make_material("xu", s0, 0.0);
+  const auto [E_meas, nu_meas] = uniaxial_plane_stress(*xu, eps);
+  EXPECT_NEAR(E_meas, 2.0 * s0, 1e-5 * 2.0 * s0);
+  EXPECT_LE(std::abs(nu_meas), 1e-5);
 }
 
 // Equibiaxial plane stress s1 = s2 = 1 + eps: Phat_1 / eps -> E / (1 - nu), the biaxial
 // modulus. Exact for the linear model (Phat is linear in s): 1e-12 relative there; 1e-5 (the
-// O(eps) nonlinearity) for stvk and neohookean.
+// O(eps) nonlinearity) for stvk and neohookean; xu: 2 s0.
 TEST(PlaneStress, EquibiaxialSmallStrainGivesBiaxialModulus)
 {
   const double eps = 1e-7;
@@ -206,6 +211,10 @@ TEST(PlaneStress, EquibiaxialSmallStrainGivesBiaxialModulus)
       EXPECT_NEAR(measured, E / (1.0 - nu), (name == "linear" ? 1e-9 : 1e-5) * E / (1.0 - nu));
     }
   }
+  const double s0 = 8000.0, s = 1.0 + eps;
+  const auto xu = PeriSISSM::make_material("xu", s0, 0.0);
+  EXPECT_NEAR(phat(*xu, s, s, xu->plane_stress_stretch(s, s))(0) / (s - 1.0), 2.0 * s0,
+              1e-5 * 2.0 * s0);
 }
 
 // Finite, >= 0, and a root wherever positive, also for degenerate and extreme in-plane
