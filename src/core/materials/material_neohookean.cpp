@@ -118,4 +118,20 @@ Eigen::Vector3d NeoHookeanMaterial::implicit_coefficient(const Eigen::Vector3d& 
   return Eigen::Vector3d::Constant(std::max(mu_, 0.0)) + curv * cof.cwiseProduct(cof);
 }
 
+// Newton on phi(t) = Phat_3(s1, s2, e^t) = mu s3 + g'(J) s1 s2 (principal_stress itself, so the
+// continuation below J0 is included) with the analytic slope
+// dphi/dt = s3 dPhat_3/ds3 = s3 (mu + g''(J) (s1 s2)^2), g'' the continued curvature (constant
+// g''(J0) below J0). g'' >= 0 everywhere (header), so for mu > 0 phi increases with s3 and its
+// root is unique; it always exists for s1, s2 > 0: phi -> s1 s2 g'(0) < 0 as s3 -> 0 and
+// phi ~ mu s3 for large s3.
+double NeoHookeanMaterial::plane_stress_stretch(double s1, double s2) const
+{
+  const double a = s1 * s2;
+  return plane_stress_newton([this, s1, s2, a](double t) {
+    const double s3 = std::exp(t);
+    const double phi = principal_stress(Eigen::Vector3d(s1, s2, s3))(2);
+    return PlaneStressSample{phi, s3 * (mu_ + volumetric_curvature(a * s3) * a * a)};
+  });
+}
+
 }  // namespace PeriSISSM

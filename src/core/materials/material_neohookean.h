@@ -51,6 +51,7 @@ class NeoHookeanMaterial : public Material {
   double energy(const Eigen::Vector3d& s) const override;
   Eigen::Vector3d principal_stress(const Eigen::Vector3d& s) const override;
   Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d& s) const override;
+  double plane_stress_stretch(double s1, double s2) const override;
 
   // Continuation threshold J0 (dimensionless, in [0.1, 1)).
   double continuation_threshold() const { return j0_; }

@@ -20,6 +20,7 @@ class StVKMaterial : public Material {
   double energy(const Eigen::Vector3d& s) const override;
   Eigen::Vector3d principal_stress(const Eigen::Vector3d& s) const override;
   Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d& s) const override;
+  double plane_stress_stretch(double s1, double s2) const override;
 };
 
 }  // namespace PeriSISSM
