@@ -2,6 +2,7 @@
 
 #include "peri/elastic.h"
 
+#include "membrane/membrane.h"
 #include "peri/bond_rows.h"
 #include "peri/model.h"
 #include "peri/particle.h"
@@ -13,7 +14,7 @@ namespace PeriSISSM {
 
 namespace {
 
-template <int MODE, int UNIFORM, int PBC>
+template <int MODE, int UNIFORM, int PBC, int MEMBRANE>
 void state_pass(const Model &model, const Particles &p, const Families &fam,
                 const ReferenceBox &box, bool blocks, ParticleFields &fields,
                 std::vector<int> &broke_list)
@@ -72,14 +73,24 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
     if (MODE != BreakingRule::NOBREAK) {
       fields.smin_new[i] = BreakingRule::smin_from<UNIFORM>(acc, den, smini);
       if (broke) {
-        update_shape(fam, rf, box, i);
+        update_shape(fam, rf, box, i, MEMBRANE ? model.reference_normal(fam, itype, i) : nullptr);
         broke_list.push_back(i);
       }
     }
 
     double *g = fields.g + NG * i;
     double *h = fields.h + 9 * i;
-    if (fam.kregular[i]) {
+    if (MEMBRANE && fam.kregular[i] && model.membrane(itype)) {
+      // a membrane particle: its own state (membrane/membrane.h)
+      double M[9];
+      rows.outer_sum(M);
+      g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
+      double *k = blocks ? fields.k + NK * i : nullptr;
+      if (k) k[6] = g[ParticleFields::G_C];
+      g[ParticleFields::G_REG] = 1.0;
+      fields.w[i] =
+          membrane_state(model.material(itype), M, fam.kinv[i], fam.normal[i], g, h, k);
+    } else if (fam.kregular[i]) {
       // the stresses of regular particles two at a time (their SVDs run side by side): this
       // one waits for the next, or goes with the one waiting
       double *M = mrow[waiting ? 1 : 0];
@@ -192,18 +203,23 @@ void elastic_state_pass(const Model &model, const Particles &p, const Families &
 {
   using R = BreakingRule;
   const bool uniform = model.breaking().uniform();
-  auto run = [&](auto pbc) {
-    constexpr int PBC = decltype(pbc)::value;
-    if (mode == R::NOBREAK) state_pass<R::NOBREAK, 0, PBC>(model, p, fam, box, blocks, fields, broke);
+  auto run = [&](auto pbc, auto membrane) {
+    constexpr int PBC = decltype(pbc)::value, MB = decltype(membrane)::value;
+    if (mode == R::NOBREAK)
+      state_pass<R::NOBREAK, 0, PBC, MB>(model, p, fam, box, blocks, fields, broke);
     else if (mode == R::S0ONLY)
-      uniform ? state_pass<R::S0ONLY, 1, PBC>(model, p, fam, box, blocks, fields, broke)
-              : state_pass<R::S0ONLY, 0, PBC>(model, p, fam, box, blocks, fields, broke);
+      uniform ? state_pass<R::S0ONLY, 1, PBC, MB>(model, p, fam, box, blocks, fields, broke)
+              : state_pass<R::S0ONLY, 0, PBC, MB>(model, p, fam, box, blocks, fields, broke);
     else
-      uniform ? state_pass<R::BREAK, 1, PBC>(model, p, fam, box, blocks, fields, broke)
-              : state_pass<R::BREAK, 0, PBC>(model, p, fam, box, blocks, fields, broke);
+      uniform ? state_pass<R::BREAK, 1, PBC, MB>(model, p, fam, box, blocks, fields, broke)
+              : state_pass<R::BREAK, 0, PBC, MB>(model, p, fam, box, blocks, fields, broke);
   };
-  if (box.any()) run(std::integral_constant<int, 1>());
-  else run(std::integral_constant<int, 0>());
+  // membrane particles only in decks that have them (the volume decks' loop is unchanged)
+  using I0 = std::integral_constant<int, 0>;
+  using I1 = std::integral_constant<int, 1>;
+  const bool membranes = fam.normal && model.any_membrane();
+  if (box.any()) membranes ? run(I1(), I1()) : run(I1(), I0());
+  else membranes ? run(I0(), I1()) : run(I0(), I0());
 }
 
 void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,

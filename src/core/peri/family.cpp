@@ -2,6 +2,8 @@
 
 #include "peri/family.h"
 
+#include "membrane/membrane.h"
+
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -51,13 +53,16 @@ double partial_volume_factor(double r, double delta, double h)
   return (delta + half - r) / h;
 }
 
-double bond_weight(double r, double delta, double vi, double vj)
+double bond_weight(double r, double delta, double vi, double vj, double ti, double tj)
 {
-  const double h = 0.5 * (std::cbrt(vi) + std::cbrt(vj));
+  const double hi = ti > 0.0 ? std::sqrt(vi / ti) : std::cbrt(vi);
+  const double hj = tj > 0.0 ? std::sqrt(vj / tj) : std::cbrt(vj);
+  const double h = 0.5 * (hi + hj);
   return partial_volume_factor(r, delta, h) * vj;
 }
 
-void update_shape(const Families &fam, const double *x0, const ReferenceBox &box, int i)
+void update_shape(const Families &fam, const double *x0, const ReferenceBox &box, int i,
+                  const double *n0)
 {
   double K[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   const int *jl = fam.jlocal[i];
@@ -66,11 +71,17 @@ void update_shape(const Families &fam, const double *x0, const ReferenceBox &box
     if (jl[b] < 0) continue;
     double xi[3];
     reference_bond(x0, box, i, jl[b], xi);
+    if (n0) {
+      const double along = xi[0] * n0[0] + xi[1] * n0[1] + xi[2] * n0[2];
+      for (int k = 0; k < 3; k++) xi[k] -= along * n0[k];
+    }
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++) K[3 * r + c] += om[b] * xi[r] * xi[c];
   }
   double lmax;
-  fam.kregular[i] = invert_shape_tensor(K, fam.lamref[i], fam.kinv[i], &lmax) ? 1 : 0;
+  const bool regular = n0 ? invert_membrane_shape_tensor(K, n0, fam.lamref[i], fam.kinv[i], &lmax)
+                          : invert_shape_tensor(K, fam.lamref[i], fam.kinv[i], &lmax);
+  fam.kregular[i] = regular ? 1 : 0;
   fam.lamref[i] = std::max(fam.lamref[i], lmax);
 }
 

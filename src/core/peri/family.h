@@ -56,6 +56,8 @@ struct Families {
   double **kinv = nullptr;    // K^-1 (row-major 3x3) of each particle; zeros when singular
   int *kregular = nullptr;    // 1 if K is regular (F defined), 0 otherwise
   double *lamref = nullptr;   // largest eigenvalue of the particle's initial K
+  double **normal = nullptr;  // reference unit normal of each membrane particle (rows of the
+                              //   others unused); null when no particle is a membrane
 };
 
 // Smallest accepted ratio lambda_min(K) / lambda_ref for a shape tensor K, where lambda_ref is
@@ -91,9 +93,13 @@ bool invert_shape_tensor(const double K[9], double lambda_ref, double Kinv[9],
 double partial_volume_factor(double r, double delta, double h);
 
 // Weight of a bond: influence function w = 1 times the partial-volume factor (h the mean of the
-// two particles' sizes V^(1/3), so the weight is symmetric up to the factor V_j) times V_j.
-// Inputs: r reference length, delta horizon, vi, vj volumes. Outputs: omega (volume).
-double bond_weight(double r, double delta, double vi, double vj);
+// two particles' sizes, so the weight is symmetric up to the factor V_j) times V_j.
+// Inputs: r reference length, delta horizon, vi, vj volumes; ti, tj thicknesses of membrane
+//         particles (0 for volume particles). Outputs: omega (volume).
+// A volume particle's size is V^(1/3); a membrane particle's, its spacing in the plane,
+// (V / t)^(1/2) (V = area times thickness t).
+double bond_weight(double r, double delta, double vi, double vj, double ti = 0.0,
+                   double tj = 0.0);
 
 // Reference bond xi = x0_j - x0_i of particles i and j (x0 three doubles per particle).
 inline void reference_bond(const double *x0, const ReferenceBox &box, int i, int j, double xi[3])
@@ -105,10 +111,13 @@ inline void reference_bond(const double *x0, const ReferenceBox &box, int i, int
 }
 
 // K_i = sum over the unbroken bonds of omega xi (x) xi, its inverse, the regular flag, and the
-// largest eigenvalue seen so far (lamref, the reference of the singularity test).
-// Inputs: families (npartner, jlocal, omega of row i), x0, box. Outputs: kinv[i], kregular[i],
-// lamref[i] of the families.
-void update_shape(const Families &fam, const double *x0, const ReferenceBox &box, int i);
+// largest eigenvalue seen so far (lamref, the reference of the singularity test). For a
+// membrane particle (n0 given) the bonds are projected on its tangent plane, xi - (xi . n0) n0,
+// and kinv is the in-plane pseudo-inverse (membrane/membrane.h).
+// Inputs: families (npartner, jlocal, omega of row i), x0, box; n0 the particle's reference
+//         unit normal if it is a membrane, else null. Outputs: kinv[i], kregular[i], lamref[i].
+void update_shape(const Families &fam, const double *x0, const ReferenceBox &box, int i,
+                  const double *n0 = nullptr);
 
 }  // namespace PeriSISSM
 

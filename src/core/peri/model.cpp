@@ -2,6 +2,7 @@
 
 #include "peri/model.h"
 
+#include "membrane/membrane.h"
 #include "peri/family.h"
 #include "peri/stabilization.h"
 
@@ -22,6 +23,11 @@ void Model::set_type(int itype, std::unique_ptr<Material> material, double cs, d
   types_[itype].bulk = bulk;
 }
 
+void Model::set_membrane(int itype, bool membrane)
+{
+  types_[itype].membrane = membrane;
+}
+
 void Model::set_pair(int itype, int jtype, double horizon, bool contact, double kcontact)
 {
   for (int k = 0; k < 2; k++) {
@@ -39,6 +45,13 @@ bool Model::any_stabilization() const
   return false;
 }
 
+bool Model::any_membrane() const
+{
+  for (int i = 1; i < n_; i++)
+    if (types_[i].membrane) return true;
+  return false;
+}
+
 bool Model::any_contact() const
 {
   for (const Pair &p : pairs_)
@@ -46,14 +59,19 @@ bool Model::any_contact() const
   return false;
 }
 
-double Model::bond_weight(double r, int itype, int jtype, double vi, double vj) const
+double Model::bond_weight(double r, int itype, int jtype, double vi, double vj, double ti,
+                          double tj) const
 {
-  return PeriSISSM::bond_weight(r, horizon(itype, jtype), vi, vj);
+  return PeriSISSM::bond_weight(r, horizon(itype, jtype), vi, vj,
+                                types_[itype].membrane ? ti : 0.0,
+                                types_[jtype].membrane ? tj : 0.0);
 }
 
 double Model::stabilization_modulus(int itype, const double Kinv[9]) const
 {
-  return PeriSISSM::stabilization_modulus(types_[itype].cs, types_[itype].bulk, Kinv);
+  const Type &t = types_[itype];
+  return t.membrane ? membrane_stabilization_modulus(t.cs, t.bulk, Kinv)
+                    : PeriSISSM::stabilization_modulus(t.cs, t.bulk, Kinv);
 }
 
 }  // namespace PeriSISSM

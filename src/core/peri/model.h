@@ -8,6 +8,7 @@
 
 #include "materials/material.h"
 #include "peri/breaking.h"
+#include "peri/family.h"
 
 #include <memory>
 #include <vector>
@@ -22,12 +23,23 @@ class Model {
 
   // Inputs: itype; material (owned from now on); cs >= 0 stabilization factor; bulk modulus K.
   void set_type(int itype, std::unique_ptr<Material> material, double cs, double bulk);
+  // Inputs: itype; whether its particles are membranes (vertices of a triangle mesh, whose
+  // correspondence works in their tangent plane: membrane/membrane.h). Default: no.
+  void set_membrane(int itype, bool membrane);
   // Inputs: type pair (set for both orders); horizon; contact on/off; contact stiffness.
   void set_pair(int itype, int jtype, double horizon, bool contact, double kcontact);
 
   const Material &material(int itype) const { return *types_[itype].material; }
   double cs(int itype) const { return types_[itype].cs; }
   double bulk(int itype) const { return types_[itype].bulk; }
+  bool membrane(int itype) const { return types_[itype].membrane; }
+  bool any_membrane() const;
+  // the reference normal a particle of type itype passes to update_shape(): its row of
+  // fam.normal if the type is a membrane, else null
+  const double *reference_normal(const Families &fam, int itype, int i) const
+  {
+    return (fam.normal && types_[itype].membrane) ? fam.normal[i] : nullptr;
+  }
   double horizon(int itype, int jtype) const { return pairs_[itype * n_ + jtype].horizon; }
   bool contact(int itype, int jtype) const { return pairs_[itype * n_ + jtype].contact; }
   double kcontact(int itype, int jtype) const { return pairs_[itype * n_ + jtype].kcontact; }
@@ -37,16 +49,20 @@ class Model {
   bool any_contact() const;
 
   // weight of a bond of reference length r between particles of types itype, jtype and
-  // volumes vi, vj (bond_weight() with the pair's horizon)
-  double bond_weight(double r, int itype, int jtype, double vi, double vj) const;
+  // volumes vi, vj (bond_weight() with the pair's horizon); ti, tj the particles' thicknesses,
+  // used for membrane types only
+  double bond_weight(double r, int itype, int jtype, double vi, double vj, double ti = 0.0,
+                     double tj = 0.0) const;
   // stabilization modulus C of a particle of type itype with a regular K^-1
-  // (stabilization_modulus() with the type's Cs and K)
+  // (stabilization_modulus() with the type's Cs and K; membrane_stabilization_modulus() for
+  // membranes)
   double stabilization_modulus(int itype, const double Kinv[9]) const;
 
  private:
   struct Type {
     std::unique_ptr<Material> material;
     double cs = 0.0, bulk = 0.0;
+    bool membrane = false;
   };
   struct Pair {
     double horizon = 0.0, kcontact = 0.0;

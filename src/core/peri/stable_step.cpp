@@ -9,9 +9,10 @@
 
 namespace PeriSISSM {
 
-double stable_step_stiffness(const Material &material, const double Kinv[9], double C)
+double stable_step_stiffness(const Material &material, const double Kinv[9], double C,
+                             bool membrane)
 {
-  const double kappa = (Kinv[0] + Kinv[4] + Kinv[8]) / 3.0;
+  const double kappa = (Kinv[0] + Kinv[4] + Kinv[8]) / (membrane ? 2.0 : 3.0);
   return kappa * (material.lambda() + 2.0 * material.mu()) + 0.5 * C;
 }
 

@@ -25,8 +25,10 @@ class Material;
 constexpr double kStableStepSafety = 1.25;
 
 // s_i of a particle with a regular shape tensor: kappa (lambda + 2 mu) + C / 2.
-// Inputs: material, Kinv (row-major K^-1), C stabilization modulus.
-double stable_step_stiffness(const Material &material, const double Kinv[9], double C);
+// Inputs: material, Kinv (row-major K^-1; a membrane's in-plane K^+), C stabilization modulus,
+//         membrane: kappa = tr(K^+) / 2 (the mean over the plane) instead of tr(K^-1) / 3.
+double stable_step_stiffness(const Material &material, const double Kinv[9], double C,
+                             bool membrane = false);
 
 // dt_i from rho_i and d_i = sum_j omega_ij (s_i + s_j); +infinity when d_i <= 0.
 double stable_time_step(double rho, double d);

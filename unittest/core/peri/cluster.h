@@ -109,7 +109,9 @@ class Cluster : public PeriSISSM::Halo {
       npartner[i] = (int) jl[i].size();
     }
     rows();
-    for (int i = 0; i < nlocal; i++) PeriSISSM::update_shape(families(), ref.data(), box, i);
+    const PeriSISSM::Families fam = families();
+    for (int i = 0; i < nlocal; i++)
+      PeriSISSM::update_shape(fam, ref.data(), box, i, model.reference_normal(fam, type[i], i));
   }
 
   PeriSISSM::Families families()
@@ -121,6 +123,7 @@ class Cluster : public PeriSISSM::Halo {
     fam.kinv = krows.data();
     fam.kregular = kregular.data();
     fam.lamref = lamref.data();
+    if (!normal.empty()) fam.normal = nrows.data();
     return fam;
   }
 
@@ -190,8 +193,10 @@ class Cluster : public PeriSISSM::Halo {
   std::vector<std::vector<int>> jl;
   std::vector<std::vector<double>> om;
   std::vector<double> kinv, lamref;
+  std::vector<double> normal;    // reference normals of membrane particles (3 per owned
+                                 // particle; empty: none), set before build()
   std::vector<int *> jrows;
-  std::vector<double *> orows, krows;
+  std::vector<double *> orows, krows, nrows;
 
  private:
   void rows()
@@ -204,6 +209,8 @@ class Cluster : public PeriSISSM::Halo {
       orows[i] = om[i].data();
       krows[i] = kinv.data() + 9 * i;
     }
+    nrows.clear();
+    for (int i = 0; i < nlocal && !normal.empty(); i++) nrows.push_back(normal.data() + 3 * i);
   }
   double delta_;
 };
