@@ -9,8 +9,10 @@
 
 #include "compute_nosb_atom.h"
 #include "fix_nosb_family.h"
+#include "fix_nosb_mesh.h"
 #include "fix_sissm.h"
 #include "pair_peri_nosb.h"
+#include "read_mesh.h"
 
 using namespace LAMMPS_NS;
 
@@ -27,6 +29,16 @@ static Fix *nosb_family_creator(LAMMPS *lmp, int argc, char **argv)
 static Fix *sissm_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixSissm(lmp, argc, argv);
+}
+
+static Fix *nosb_mesh_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixNosbMesh(lmp, argc, argv);
+}
+
+static Command *read_mesh_creator(LAMMPS *lmp)
+{
+  return new ReadMesh(lmp);
 }
 
 static Compute *nosb_atom_creator(LAMMPS *lmp, int argc, char **argv)
@@ -59,6 +71,18 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "sissm";
   plugin.info = "PERI-SISSM semi-implicit successive substitution integrator";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &sissm_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "nosb/mesh";
+  plugin.info = "PERI-SISSM triangles of the meshes read by read_mesh";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &nosb_mesh_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "command";
+  plugin.name = "read_mesh";
+  plugin.info = "PERI-SISSM one peri particle per vertex of a triangle mesh (Wavefront OBJ)";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &read_mesh_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "compute";

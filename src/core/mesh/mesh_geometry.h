@@ -1,0 +1,48 @@
+/* PERI-SISSM core: geometry of triangle meshes: placing a mesh file in the box, triangle and
+   vertex areas, and angle-weighted vertex normals.
+*/
+#ifndef PERISISSM_MESH_MESH_GEOMETRY_H
+#define PERISISSM_MESH_MESH_GEOMETRY_H
+
+#include <array>
+#include <vector>
+
+namespace PeriSISSM {
+
+// Where a mesh file goes: x = R(theta, axis) (scale X) + offset, i.e. scaled about the file's
+// origin, then rotated by theta degrees (right-handed) about the axis through the file's
+// origin, then shifted.
+struct Placement {
+  double scale = 1.0;
+  double theta = 0.0;                     // degrees
+  double axis[3] = {0.0, 0.0, 1.0};       // any nonzero length
+  double offset[3] = {0.0, 0.0, 0.0};
+};
+
+// Inputs: placement, X (a position in the file). Outputs: x (in the box).
+void place(const Placement &placement, const double X[3], double x[3]);
+
+// area of the triangle (a, b, c)
+double triangle_area(const double a[3], const double b[3], const double c[3]);
+
+// Vertex areas: one third of the areas of the triangles at each vertex (they sum to the mesh's
+// area).
+// Inputs: vertices, triangles (0-based indices into vertices).
+// Outputs: one area per vertex.
+std::vector<double> vertex_areas(const std::vector<std::array<double, 3>> &vertices,
+                                 const std::vector<std::array<int, 3>> &triangles);
+
+// Adds to n the contribution of triangle (i, a, b) to the angle-weighted normal of vertex i:
+// its interior angle at i, atan2(|e1 x e2|, e1 . e2), times its unit normal
+// e1 x e2 / |e1 x e2|, with e1 = a - i, e2 = b - i. A degenerate triangle adds nothing.
+// Inputs: xi, xa, xb (positions of the triangle's vertices in its orientation, i first).
+// Outputs: n (accumulated).
+void add_angle_weighted_normal(const double xi[3], const double xa[3], const double xb[3],
+                               double n[3]);
+
+// n / |n|; a zero vector stays zero. Returns false for a zero vector.
+bool normalize_or_zero(double n[3]);
+
+}    // namespace PeriSISSM
+
+#endif

@@ -1,0 +1,837 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix nosb/mesh: the triangles of the meshes read by read_mesh.
+
+   Per atom: the mesh id (0 = not a mesh vertex), the mesh's thickness, the triangles at the
+   atom (at most MAXTRI, each as the IDs of its other two vertices in the triangle's
+   orientation) and the reference unit normal normal0. Everything migrates with the atoms and
+   is kept in restart files; mesh id, thickness and triangles also reach the ghost atoms by
+   border communication (at every neighbor list build), so that the other vertices of a
+   triangle can be looked up by ID wherever the atom is. A deck without read_mesh has no such
+   fix and pays nothing.
+
+   At every init (before each run, and before write_data, write_restart, ...): atom IDs must be
+   those the triangles were stored with (renumbering is an error), and a triangle with a vertex
+   that no longer exists (delete_atoms, lost atoms), or whose ID now belongs to an atom of
+   another mesh, is dropped by the vertices that still have it.
+
+   write_data writes the triangles as a section "Mesh Triangles" (one line per triangle: ID,
+   mesh id, thickness, the three vertex IDs in the triangle's orientation), announced by the
+   header line "N mesh triangles"; read_data ... fix NOSB_MESH "mesh triangles" "Mesh
+   Triangles" reads it back (doc/read_mesh.rst).
+------------------------------------------------------------------------- */
+
+#include "fix_nosb_mesh.h"
+
+#include "mesh/mesh_geometry.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "memory.h"
+#include "modify.h"
+#include "tokenizer.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+// per-atom doubles of a mesh vertex in exchange and restart buffers before its triangles:
+// mesh id, thickness, owntag, normal0 (3), ntri
+static constexpr int NATOMDATA = 7;
+// global restart data: format version, nmesh, ntriangles
+static constexpr int NGLOBAL = 3;
+static constexpr int RESTART_VERSION = 1;
+// columns of the per-atom array: mesh, thickness, ntri, normal0 x y z
+static constexpr int NOUTPUT = 6;
+
+/* ---------------------------------------------------------------------- */
+
+FixNosbMesh::FixNosbMesh(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), nmesh(0), ntriangles(0), mesh(nullptr), thickness(nullptr),
+    ntri(nullptr), tri(nullptr), normal0(nullptr), owntag(nullptr), output(nullptr),
+    normals_at_setup(0), data_header(0), data_ntriangles(0), data_nread(0), data_mesh_offset(0),
+    data_first_row(0)
+{
+  if (narg != 3)
+    error->all(FLERR, "Illegal fix nosb/mesh command: no arguments expected, got '{}'", arg[3]);
+  if (igroup != 0)
+    error->all(FLERR, "Fix nosb/mesh must be defined for group all (it holds every mesh of the "
+               "deck), got group {}", arg[1]);
+  if (!atom->tag_enable || atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "Fix nosb/mesh requires atom IDs and an atom map: use atom_modify map "
+               "array (or hash) before the box is created");
+  for (const auto &other : modify->get_fix_by_style("^nosb/mesh$"))
+    if (other != this)
+      error->all(FLERR, "Fix nosb/mesh {}: fix {} of that style exists already; a deck has one "
+                 "(it holds every mesh)", id, other->id);
+
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  peratom_flag = 1;
+  size_peratom_cols = NOUTPUT;
+  peratom_freq = 1;
+  maxexchange = NATOMDATA + 2 * MAXTRI;
+  comm_border = 3 + 2 * MAXTRI;
+  wd_header = 1;
+  wd_section = 1;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  atom->add_callback(Atom::BORDER);
+  for (int i = 0; i < atom->nmax; i++) set_arrays(i);
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixNosbMesh::~FixNosbMesh()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  atom->delete_callback(id, Atom::BORDER);
+
+  memory->destroy(mesh);
+  memory->destroy(thickness);
+  memory->destroy(ntri);
+  memory->destroy(tri);
+  memory->destroy(normal0);
+  memory->destroy(owntag);
+  memory->destroy(output);
+}
+
+/* ----------------------------------------------------------------------
+   no per-step work: the data change only with the atoms
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::setmask()
+{
+  return 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixNosbMesh *FixNosbMesh::find(LAMMPS *lmp)
+{
+  Modify *modify = lmp->modify;
+  const auto fixes = modify->get_fix_by_style("^nosb/mesh$");
+  if (!fixes.empty()) return dynamic_cast<FixNosbMesh *>(fixes[0]);
+
+  // after read_restart (until the first run or init clears the restart data), LAMMPS gives a
+  // new fix the state stored under its ID and style: a mesh fix of the file comes back here
+
+  if (modify->nfix_restart_global == 0 && modify->nfix_restart_peratom == 0) return nullptr;
+  auto fix = dynamic_cast<FixNosbMesh *>(
+      modify->add_fix(std::string(DEFAULT_ID) + " all nosb/mesh"));
+  if (fix && fix->restart_reset) return fix;
+  modify->delete_fix(DEFAULT_ID);
+  return nullptr;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::init()
+{
+  check_ids();
+  drop_lost_triangles();
+  data_rows.clear();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::setup(int /*vflag*/)
+{
+  if (normals_at_setup) normals_where_missing();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::min_setup(int /*vflag*/)
+{
+  if (normals_at_setup) normals_where_missing();
+}
+
+/* ----------------------------------------------------------------------
+   fix_modify NOSB_MESH normals yes|no
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::modify_param(int narg, char **arg)
+{
+  if (strcmp(arg[0], "normals") == 0) {
+    if (narg < 2) utils::missing_cmd_args(FLERR, "fix_modify nosb/mesh normals", error);
+    const std::string v(arg[1]);
+    if (v == "yes")
+      normals_at_setup = 1;
+    else if (v == "no")
+      normals_at_setup = 0;
+    else
+      error->all(FLERR, "Illegal fix_modify {} command: normals must be yes or no, got '{}'", id,
+                 arg[1]);
+    return 2;
+  }
+  return 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbMesh::add_mesh(bigint ntriangles_added)
+{
+  ntriangles += ntriangles_added;
+  return ++nmesh;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::set_vertex(int i, int meshid, double t, int n, const tagint (*others)[2])
+{
+  mesh[i] = meshid;
+  thickness[i] = t;
+  ntri[i] = n;
+  for (int k = 0; k < n; k++) {
+    tri[i][k][0] = others[k][0];
+    tri[i][k][1] = others[k][1];
+  }
+  normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
+  owntag[i] = atom->tag[i];
+  refresh_output(i);
+}
+
+/* ----------------------------------------------------------------------
+   normals: every owned mesh atom, all ranks agree on errors
+------------------------------------------------------------------------- */
+
+void FixNosbMesh::vertex_normals(double **x, double **n)
+{
+  const int nlocal = atom->nlocal;
+  tagint *tag = atom->tag;
+  tagint bad_atom = MAXTAGINT, bad_vertex = MAXTAGINT;
+
+  for (int i = 0; i < nlocal; i++) {
+    n[i][0] = n[i][1] = n[i][2] = 0.0;
+    if (!mesh[i]) continue;
+    for (int k = 0; k < ntri[i]; k++) {
+      const int ja = closest_image(i, tri[i][k][0], x);
+      const int jb = closest_image(i, tri[i][k][1], x);
+      if (ja < 0 || jb < 0) {
+        if (tag[i] < bad_atom) {
+          bad_atom = tag[i];
+          bad_vertex = (ja < 0) ? tri[i][k][0] : tri[i][k][1];
+        }
+        continue;
+      }
+      PeriSISSM::add_angle_weighted_normal(x[i], x[ja], x[jb], n[i]);
+    }
+    PeriSISSM::normalize_or_zero(n[i]);
+  }
+
+  tagint bad_all;
+  MPI_Allreduce(&bad_atom, &bad_all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  if (bad_all == MAXTAGINT) return;
+  tagint vertex = (bad_atom == bad_all) ? bad_vertex : MAXTAGINT, vertex_all;
+  MPI_Allreduce(&vertex, &vertex_all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  error->all(FLERR,
+             "Fix nosb/mesh: vertex {} of a triangle of atom {} is neither an owned nor a ghost "
+             "atom on its MPI rank: the ghost cutoff {} is shorter than the mesh's edges there; "
+             "increase it with comm_modify cutoff",
+             vertex_all, bad_all, comm->get_comm_cutoff());
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::set_reference_normals()
+{
+  vertex_normals(atom->x, normal0);
+  for (int i = 0; i < atom->nlocal; i++) refresh_output(i);
+}
+
+/* ----------------------------------------------------------------------
+   fix_modify normals yes: mesh atoms without a reference normal get one
+------------------------------------------------------------------------- */
+
+void FixNosbMesh::normals_where_missing()
+{
+  const int nlocal = atom->nlocal;
+  auto missing = [this](int i) {
+    return mesh[i] && normal0[i][0] == 0.0 && normal0[i][1] == 0.0 && normal0[i][2] == 0.0;
+  };
+  int any = 0, any_all;
+  for (int i = 0; i < nlocal && !any; i++) any = missing(i) ? 1 : 0;
+  MPI_Allreduce(&any, &any_all, 1, MPI_INT, MPI_MAX, world);
+  if (!any_all) return;
+
+  double **n;
+  memory->create(n, std::max(nlocal, 1), 3, "nosb/mesh:n");
+  vertex_normals(atom->x, n);
+  for (int i = 0; i < nlocal; i++) {
+    if (!missing(i)) continue;
+    for (int d = 0; d < 3; d++) normal0[i][d] = n[i][d];
+    refresh_output(i);
+  }
+  memory->destroy(n);
+}
+
+/* ----------------------------------------------------------------------
+   the image of atom jtag closest to x[i] (positions x), -1 if neither owned nor ghost
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::closest_image(int i, tagint jtag, double **x) const
+{
+  int j = local_index(jtag);
+  if (j < 0) return -1;
+  int closest = j;
+  double rsqmin = 0.0;
+  for (int d = 0; d < 3; d++) rsqmin += (x[j][d] - x[i][d]) * (x[j][d] - x[i][d]);
+  for (int k = atom->sametag[j]; k >= 0; k = atom->sametag[k]) {
+    double rsq = 0.0;
+    for (int d = 0; d < 3; d++) rsq += (x[k][d] - x[i][d]) * (x[k][d] - x[i][d]);
+    if (rsq < rsqmin) {
+      rsqmin = rsq;
+      closest = k;
+    }
+  }
+  return closest;
+}
+
+/* ----------------------------------------------------------------------
+   atom->map() with guards: IDs beyond the map (deleted atoms) and stale entries give -1
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::local_index(tagint jtag) const
+{
+  if (jtag <= 0 || jtag > atom->map_tag_max) return -1;
+  const int j = atom->map(jtag);
+  if (j < 0 || j >= atom->nlocal + atom->nghost || atom->tag[j] != jtag) return -1;
+  return j;
+}
+
+/* ----------------------------------------------------------------------
+   triangles refer to atom IDs: renumbered IDs would connect the wrong atoms
+------------------------------------------------------------------------- */
+
+void FixNosbMesh::check_ids()
+{
+  int renumbered = 0, renumbered_all;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mesh[i] && owntag[i] != atom->tag[i]) renumbered = 1;
+  MPI_Allreduce(&renumbered, &renumbered_all, 1, MPI_INT, MPI_MAX, world);
+  if (renumbered_all)
+    error->all(FLERR,
+               "Fix nosb/mesh: atom IDs changed after the mesh was read (triangles are stored "
+               "by atom ID): use delete_atoms ... compress no, and do not renumber atoms "
+               "(reset_atoms id) in a deck with meshes");
+}
+
+/* ----------------------------------------------------------------------
+   drop triangles whose other vertices no longer exist as atoms of the same mesh; then
+   count the triangles of all meshes
+------------------------------------------------------------------------- */
+
+void FixNosbMesh::drop_lost_triangles()
+{
+  const int nlocal = atom->nlocal;
+
+  // vertices found here: the atom must belong to the same mesh; the others are looked for on
+  // all ranks (tag, mesh id); a vertex that is gone is marked with ID 0
+
+  std::vector<tagint> wanted;
+  std::vector<tagint *> where;
+  for (int i = 0; i < nlocal; i++) {
+    if (!mesh[i]) continue;
+    for (int k = 0; k < ntri[i]; k++) {
+      for (int c = 0; c < 2; c++) {
+        const int j = local_index(tri[i][k][c]);
+        if (j >= 0) {
+          if (mesh[j] != mesh[i]) tri[i][k][c] = 0;
+        } else {
+          wanted.push_back(tri[i][k][c]);
+          wanted.push_back(mesh[i]);
+          where.push_back(&tri[i][k][c]);
+        }
+      }
+    }
+  }
+
+  int nme = (int) wanted.size(), ntotal = 0;
+  MPI_Allreduce(&nme, &ntotal, 1, MPI_INT, MPI_SUM, world);
+  if (ntotal) {
+    std::vector<int> counts(comm->nprocs), displs(comm->nprocs);
+    MPI_Allgather(&nme, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+    for (int p = 1; p < comm->nprocs; p++) displs[p] = displs[p - 1] + counts[p - 1];
+    std::vector<tagint> all(ntotal);
+    MPI_Allgatherv(wanted.data(), nme, MPI_LMP_TAGINT, all.data(), counts.data(), displs.data(),
+                   MPI_LMP_TAGINT, world);
+    const int npairs = ntotal / 2;
+    std::vector<int> here(npairs, 0), exists(npairs, 0);
+    for (int k = 0; k < npairs; k++) {
+      const int j = local_index(all[2 * k]);
+      if (j >= 0 && j < nlocal && mesh[j] == (int) all[2 * k + 1]) here[k] = 1;
+    }
+    MPI_Allreduce(here.data(), exists.data(), npairs, MPI_INT, MPI_MAX, world);
+    const int first = displs[comm->me] / 2;
+    for (size_t k = 0; k < where.size(); k++)
+      if (!exists[first + k]) *where[k] = 0;
+  }
+
+  // keep the triangles whose vertices all exist
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!mesh[i]) continue;
+    int n = 0;
+    for (int k = 0; k < ntri[i]; k++) {
+      if (tri[i][k][0] == 0 || tri[i][k][1] == 0) continue;
+      tri[i][n][0] = tri[i][k][0];
+      tri[i][n][1] = tri[i][k][1];
+      n++;
+    }
+    ntri[i] = n;
+    refresh_output(i);
+  }
+
+  const bigint before = ntriangles;
+  count_triangles();
+  if (comm->me == 0 && ntriangles < before)
+    error->warning(FLERR,
+                   "Fix nosb/mesh: {} mesh triangles lost a vertex (deleted or lost atoms) and "
+                   "were dropped; {} remain",
+                   before - ntriangles, ntriangles);
+}
+
+/* ----------------------------------------------------------------------
+   a triangle is written (and counted) by its vertex with the smallest ID
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::writes_triangle(int i, int k) const
+{
+  const tagint me = atom->tag[i];
+  return me < tri[i][k][0] && me < tri[i][k][1];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::count_triangles()
+{
+  bigint n = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mesh[i])
+      for (int k = 0; k < ntri[i]; k++) n += writes_triangle(i, k);
+  MPI_Allreduce(&n, &ntriangles, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::refresh_output(int i)
+{
+  output[i][0] = mesh[i];
+  output[i][1] = thickness[i];
+  output[i][2] = ntri[i];
+  output[i][3] = normal0[i][0];
+  output[i][4] = normal0[i][1];
+  output[i][5] = normal0[i][2];
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixNosbMesh::memory_usage()
+{
+  const double nmax = atom->nmax;
+  return nmax * (2.0 * sizeof(int) + sizeof(tagint) + (4.0 + NOUTPUT) * sizeof(double) +
+                 2.0 * MAXTRI * sizeof(tagint));
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::grow_arrays(int nmax)
+{
+  memory->grow(mesh, nmax, "nosb/mesh:mesh");
+  memory->grow(thickness, nmax, "nosb/mesh:thickness");
+  memory->grow(ntri, nmax, "nosb/mesh:ntri");
+  memory->grow(tri, nmax, MAXTRI, 2, "nosb/mesh:tri");
+  memory->grow(normal0, nmax, 3, "nosb/mesh:normal0");
+  memory->grow(owntag, nmax, "nosb/mesh:owntag");
+  memory->grow(output, nmax, NOUTPUT, "nosb/mesh:output");
+  array_atom = output;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::copy_arrays(int i, int j, int /*delflag*/)
+{
+  mesh[j] = mesh[i];
+  thickness[j] = thickness[i];
+  ntri[j] = ntri[i];
+  for (int k = 0; k < ntri[i]; k++) {
+    tri[j][k][0] = tri[i][k][0];
+    tri[j][k][1] = tri[i][k][1];
+  }
+  for (int d = 0; d < 3; d++) normal0[j][d] = normal0[i][d];
+  owntag[j] = owntag[i];
+  for (int d = 0; d < NOUTPUT; d++) output[j][d] = output[i][d];
+}
+
+/* ----------------------------------------------------------------------
+   a new atom is not a mesh vertex, unless read_data has just made it one (its section is read
+   before read_data initializes the fixes' data of the new atoms)
+------------------------------------------------------------------------- */
+
+void FixNosbMesh::set_arrays(int i)
+{
+  if (data_rows.erase(i)) return;
+  mesh[i] = 0;
+  thickness[i] = 0.0;
+  ntri[i] = 0;
+  normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
+  owntag[i] = 0;
+  refresh_output(i);
+}
+
+/* ----------------------------------------------------------------------
+   per atom: mesh id; for a mesh vertex then thickness, owntag, normal0, ntri and the
+   2 x ntri vertex IDs
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::pack_exchange(int i, double *buf)
+{
+  int m = 0;
+  buf[m++] = mesh[i];
+  if (!mesh[i]) return m;
+  buf[m++] = thickness[i];
+  buf[m++] = ubuf(owntag[i]).d;
+  for (int d = 0; d < 3; d++) buf[m++] = normal0[i][d];
+  buf[m++] = ntri[i];
+  for (int k = 0; k < ntri[i]; k++) {
+    buf[m++] = ubuf(tri[i][k][0]).d;
+    buf[m++] = ubuf(tri[i][k][1]).d;
+  }
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbMesh::unpack_exchange(int nlocal, double *buf)
+{
+  int m = 0;
+  const int i = nlocal;
+  mesh[i] = static_cast<int>(buf[m++]);
+  if (!mesh[i]) {
+    thickness[i] = 0.0;
+    ntri[i] = 0;
+    normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
+    owntag[i] = 0;
+  } else {
+    thickness[i] = buf[m++];
+    owntag[i] = (tagint) ubuf(buf[m++]).i;
+    for (int d = 0; d < 3; d++) normal0[i][d] = buf[m++];
+    ntri[i] = static_cast<int>(buf[m++]);
+    for (int k = 0; k < ntri[i]; k++) {
+      tri[i][k][0] = (tagint) ubuf(buf[m++]).i;
+      tri[i][k][1] = (tagint) ubuf(buf[m++]).i;
+    }
+  }
+  refresh_output(i);
+  return m;
+}
+
+/* ----------------------------------------------------------------------
+   ghosts: mesh id; for a mesh vertex then thickness, ntri and the vertex IDs
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::pack_border(int n, int *list, double *buf)
+{
+  int m = 0;
+  for (int l = 0; l < n; l++) {
+    const int j = list[l];
+    buf[m++] = mesh[j];
+    if (!mesh[j]) continue;
+    buf[m++] = thickness[j];
+    buf[m++] = ntri[j];
+    for (int k = 0; k < ntri[j]; k++) {
+      buf[m++] = ubuf(tri[j][k][0]).d;
+      buf[m++] = ubuf(tri[j][k][1]).d;
+    }
+  }
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbMesh::unpack_border(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    mesh[i] = static_cast<int>(buf[m++]);
+    if (!mesh[i]) {
+      thickness[i] = 0.0;
+      ntri[i] = 0;
+      continue;
+    }
+    thickness[i] = buf[m++];
+    ntri[i] = static_cast<int>(buf[m++]);
+    for (int k = 0; k < ntri[i]; k++) {
+      tri[i][k][0] = (tagint) ubuf(buf[m++]).i;
+      tri[i][k][1] = (tagint) ubuf(buf[m++]).i;
+    }
+  }
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::write_restart(FILE *fp)
+{
+  double list[NGLOBAL] = {(double) RESTART_VERSION, (double) nmesh, ubuf(ntriangles).d};
+  if (comm->me == 0) {
+    int size = NGLOBAL * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), NGLOBAL, fp);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::restart(char *buf)
+{
+  auto list = (double *) buf;
+  if (list[0] != (double) RESTART_VERSION)
+    error->all(FLERR,
+               "Fix nosb/mesh: the restart file holds mesh data of another format version ({} "
+               "instead of {}): write the restart file again with this build (or use the build "
+               "that wrote it)",
+               list[0], RESTART_VERSION);
+  nmesh = static_cast<int>(list[1]);
+  ntriangles = (bigint) ubuf(list[2]).i;
+}
+
+/* ----------------------------------------------------------------------
+   per-atom restart data: size first (as other fixes expect), then as in pack_exchange
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::pack_restart(int i, double *buf)
+{
+  const int m = pack_exchange(i, &buf[1]);
+  buf[0] = m + 1;
+  return m + 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbMesh::maxsize_restart()
+{
+  return 1 + NATOMDATA + 2 * MAXTRI;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbMesh::size_restart(int i)
+{
+  return mesh[i] ? 1 + NATOMDATA + 2 * ntri[i] : 2;
+}
+
+/* ----------------------------------------------------------------------
+   write_data: "N mesh triangles" in the header (rank 0 only: ntriangles is kept on all ranks,
+   counted at every init, which write_data does first)
+------------------------------------------------------------------------- */
+
+void FixNosbMesh::write_data_header(FILE *fp, int /*mth*/)
+{
+  utils::print(fp, "{} mesh triangles\n", ntriangles);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::write_data_section_size(int /*mth*/, int &nx, int &ny)
+{
+  int n = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mesh[i])
+      for (int k = 0; k < ntri[i]; k++) n += writes_triangle(i, k);
+  bigint nbig = n, nall;
+  MPI_Allreduce(&nbig, &nall, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (nall != ntriangles)
+    error->all(FLERR,
+               "Fix nosb/mesh: write_data found {} mesh triangles, but the header says {}: the "
+               "triangle lists of the atoms are inconsistent",
+               nall, ntriangles);
+  nx = n;
+  ny = 5;    // mesh id, thickness, three vertex IDs
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::write_data_section_pack(int /*mth*/, double **buf)
+{
+  int n = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!mesh[i]) continue;
+    for (int k = 0; k < ntri[i]; k++) {
+      if (!writes_triangle(i, k)) continue;
+      buf[n][0] = mesh[i];
+      buf[n][1] = thickness[i];
+      buf[n][2] = ubuf(atom->tag[i]).d;
+      buf[n][3] = ubuf(tri[i][k][0]).d;
+      buf[n][4] = ubuf(tri[i][k][1]).d;
+      n++;
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::write_data_section_keyword(int /*mth*/, FILE *fp)
+{
+  fputs("\nMesh Triangles\n\n", fp);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbMesh::write_data_section(int /*mth*/, FILE *fp, int n, double **buf, int index)
+{
+  for (int k = 0; k < n; k++)
+    utils::print(fp, "{} {} {} {} {} {}\n", index + k, (int) buf[k][0], buf[k][1],
+                 (tagint) ubuf(buf[k][2]).i, (tagint) ubuf(buf[k][3]).i,
+                 (tagint) ubuf(buf[k][4]).i);
+}
+
+/* ----------------------------------------------------------------------
+   read_data ... fix ID "mesh triangles" "Mesh Triangles": the header line "N mesh triangles"
+   starts a new read; its mesh ids follow those of the deck
+------------------------------------------------------------------------- */
+
+void FixNosbMesh::read_data_header(char *line)
+{
+  try {
+    ValueTokenizer values(line);
+    data_ntriangles = values.next_bigint();
+  } catch (TokenizerException &e) {
+    error->all(FLERR, "Fix nosb/mesh: invalid mesh triangles line in the data file header: '{}'",
+               utils::trim(line));
+  }
+  if (data_ntriangles < 0)
+    error->all(FLERR, "Fix nosb/mesh: negative number of mesh triangles in the data file: '{}'",
+               utils::trim(line));
+  data_header = 1;
+  data_nread = 0;
+  data_mesh_offset = nmesh;
+  data_first_row = atom->nlocal;
+  data_rows.clear();
+}
+
+/* ---------------------------------------------------------------------- */
+
+bigint FixNosbMesh::read_data_skip_lines(char *keyword)
+{
+  if (!data_header)
+    error->all(FLERR,
+               "Fix nosb/mesh: the data file's {} section needs its header line 'N mesh "
+               "triangles': read it with read_data ... fix {} \"mesh triangles\" \"{}\"",
+               keyword, id, keyword);
+  if (data_nread == data_ntriangles) data_header = 0;    // an empty section
+  return data_ntriangles;
+}
+
+/* ----------------------------------------------------------------------
+   lines "ID mesh thickness v1 v2 v3": each owned vertex stores the triangle rotated to start
+   at it; every vertex must be an atom (of the data file: IDs get the read_data offset)
+------------------------------------------------------------------------- */
+
+void FixNosbMesh::read_data_section(char *keyword, int n, char *buf, tagint id_offset)
+{
+  const int nlocal = atom->nlocal;
+  tagint *tag = atom->tag;
+  std::vector<int> owned(3 * n, 0), owned_all(3 * n);
+  std::vector<tagint> vertices(3 * n);
+  std::vector<std::string> lines(n);
+  int meshmax = nmesh;
+
+  for (int l = 0; l < n; l++) {
+    char *next = strchr(buf, '\n');
+    if (!next) error->all(FLERR, "Unexpected end of file while reading data section {}", keyword);
+    *next = '\0';
+    lines[l] = utils::trim(buf);
+    int meshid = 0;
+    double t = 0.0;
+    tagint v[3];
+    try {
+      ValueTokenizer values(utils::trim_comment(buf));
+      if (values.count() != 6)
+        error->all(FLERR,
+                   "Fix nosb/mesh: line '{}' of the {} section of the data file has {} values "
+                   "instead of 6 (ID mesh thickness v1 v2 v3)",
+                   lines[l], keyword, values.count());
+      values.next_tagint();
+      meshid = values.next_int();
+      t = values.next_double();
+      for (int c = 0; c < 3; c++) v[c] = values.next_tagint() + id_offset;
+    } catch (TokenizerException &e) {
+      error->all(FLERR, "Fix nosb/mesh: invalid line '{}' in the {} section of the data file: {}",
+                 lines[l], keyword, e.what());
+    }
+    if (meshid < 1 || !(t > 0.0) || v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+      error->all(FLERR,
+                 "Fix nosb/mesh: invalid line '{}' in the {} section of the data file: the mesh "
+                 "id must be >= 1, the thickness > 0 and the three vertex IDs distinct",
+                 lines[l], keyword);
+    meshid += data_mesh_offset;
+    meshmax = std::max(meshmax, meshid);
+
+    for (int c = 0; c < 3; c++) {
+      vertices[3 * l + c] = v[c];
+      const int i = local_index(v[c]);
+      if (i < 0 || i >= nlocal) continue;
+      owned[3 * l + c] = 1;
+      if (i >= data_first_row && !data_rows.count(i)) {    // new atom of this read_data
+        mesh[i] = 0;
+        ntri[i] = 0;
+      }
+      if (mesh[i] && mesh[i] != meshid)
+        error->one(FLERR,
+                   "Fix nosb/mesh: atom {} is a vertex of mesh {} and of mesh {} (line '{}' of "
+                   "the {} section of the data file)",
+                   tag[i], mesh[i], meshid, lines[l], keyword);
+      mesh[i] = meshid;
+      thickness[i] = t;
+      owntag[i] = tag[i];
+      normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
+      if (ntri[i] == MAXTRI)
+        error->one(FLERR,
+                   "Fix nosb/mesh: atom {} is in more than {} triangles of the {} section of the "
+                   "data file",
+                   tag[i], MAXTRI, keyword);
+      tri[i][ntri[i]][0] = v[(c + 1) % 3];
+      tri[i][ntri[i]][1] = v[(c + 2) % 3];
+      ntri[i]++;
+      refresh_output(i);
+      data_rows.insert(i);
+    }
+    buf = next + 1;
+  }
+
+  // every vertex is an atom on exactly one rank
+
+  MPI_Allreduce(owned.data(), owned_all.data(), 3 * n, MPI_INT, MPI_SUM, world);
+  for (int k = 0; k < 3 * n; k++)
+    if (owned_all[k] != 1)
+      error->all(FLERR,
+                 "Fix nosb/mesh: vertex {} of line '{}' of the {} section of the data file is no "
+                 "atom of the deck (vertex IDs are atom IDs of the data file)",
+                 vertices[k], lines[k / 3], keyword);
+
+  nmesh = meshmax;
+  ntriangles += n;
+  data_nread += n;
+  if (data_nread == data_ntriangles) data_header = 0;
+}

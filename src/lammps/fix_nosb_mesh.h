@@ -1,0 +1,122 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix nosb/mesh: the triangles of the meshes read by read_mesh (created by the first read_mesh
+   as "NOSB_MESH all nosb/mesh"; users define it only to read a data file's mesh triangles back,
+   or to re-specify it after read_restart: doc/read_mesh.rst).
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(nosb/mesh,FixNosbMesh);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_NOSB_MESH_H
+#define LMP_FIX_NOSB_MESH_H
+
+#include "fix.h"
+
+#include <unordered_set>
+
+namespace LAMMPS_NS {
+
+class FixNosbMesh : public Fix {
+ public:
+  // largest number of triangles at a vertex (the per-atom storage; read_mesh refuses more)
+  static constexpr int MAXTRI = 16;
+  // the ID read_mesh gives the fix
+  static constexpr const char *DEFAULT_ID = "NOSB_MESH";
+
+  FixNosbMesh(class LAMMPS *, int, char **);
+  ~FixNosbMesh() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void min_setup(int) override;
+  int modify_param(int, char **) override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_border(int, int *, double *) override;
+  int unpack_border(int, int, double *) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+
+  void write_data_header(FILE *, int) override;
+  void write_data_section_size(int, int &, int &) override;
+  void write_data_section_pack(int, double **) override;
+  void write_data_section_keyword(int, FILE *) override;
+  void write_data_section(int, FILE *, int, double **, int) override;
+  void read_data_header(char *) override;
+  void read_data_section(char *, int, char *, tagint) override;
+  bigint read_data_skip_lines(char *) override;
+
+  // the deck's mesh fix, nullptr if none. After read_restart, before the first run, a mesh fix
+  // of the restart file is re-created here (as "NOSB_MESH all nosb/mesh", which takes its
+  // data from the file) the first time it is asked for.
+  static FixNosbMesh *find(class LAMMPS *);
+
+  // angle-weighted unit vertex normal of every owned mesh atom from the positions x (owned and
+  // ghost rows, as atom->x): n_i = sum over the triangles (i, a, b) at i of the triangle's unit
+  // normal (x_a - x_i) x (x_b - x_i) / |...| times its interior angle at i, normalized; the
+  // other vertices are looked up by ID with atom->map, each at its image closest to x_i (as
+  // Domain::closest_image, with the positions x). n[i] = 0 for non-mesh atoms.
+  // Collective: a vertex that is neither owned nor a ghost on a rank is an error on all ranks
+  // naming the atom and the vertex (the ghost cutoff is shorter than the mesh's edges).
+  // Inputs: x (nlocal + nghost rows). Outputs: n (nlocal rows).
+  void vertex_normals(double **x, double **n);
+  // normal0 := vertex_normals(atom->x) (collective; called when the bond families are built)
+  void set_reference_normals();
+
+  // read_mesh: a new mesh of ntriangles triangles; returns its mesh id (1, 2, ...)
+  int add_mesh(bigint ntriangles_added);
+  // read_mesh: owned atom i is a vertex of mesh id with thickness t, in the n triangles
+  // (i, others[k][0], others[k][1]) (n <= MAXTRI)
+  void set_vertex(int i, int id, double t, int n, const tagint (*others)[2]);
+
+  // state (per atom: owned and ghost rows unless said otherwise)
+  int nmesh;           // number of meshes read (mesh ids are 1..nmesh)
+  bigint ntriangles;   // number of triangles of all meshes (all ranks)
+  int *mesh;           // mesh id of the atom, 0 = not a mesh vertex
+  double *thickness;   // thickness of its mesh, 0 for non-mesh atoms
+  int *ntri;           // number of triangles at the atom (0..MAXTRI)
+  tagint ***tri;       // tri[i][k][0], tri[i][k][1]: IDs of the other two vertices of triangle
+                       //   k of atom i, in the triangle's orientation: (i, tri[i][k][0],
+                       //   tri[i][k][1]) is the file's vertex order rotated to start at i
+  double **normal0;    // reference unit normal (owned rows only); 0 until set
+
+ protected:
+  tagint *owntag;      // the atom's ID when its triangles were stored (detects renumbering)
+  double **output;     // per-atom array: mesh, thickness, ntri, normal0 x y z (owned rows)
+  int normals_at_setup;    // fix_modify normals yes: set missing normal0 at each run's setup
+  int data_header;         // read_data: 1 once the header line of this read was seen
+  bigint data_ntriangles;  // read_data: triangles announced by the header
+  bigint data_nread;       // read_data: section lines read so far
+  int data_mesh_offset;    // read_data: added to the mesh ids of the data file
+  int data_first_row;      // read_data: atoms from this row on are new (no data yet)
+  std::unordered_set<int> data_rows;    // read_data: rows set by the section (set_arrays)
+
+  void refresh_output(int i);
+  void add_triangle(int i, tagint a, tagint b);
+  int local_index(tagint) const;
+  int closest_image(int i, tagint jtag, double **x) const;
+  void check_ids();
+  void drop_lost_triangles();
+  void count_triangles();
+  int writes_triangle(int i, int k) const;
+  void normals_where_missing();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

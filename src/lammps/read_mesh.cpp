@@ -1,0 +1,357 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   read_mesh FILE type T thickness t density rho [offset dx dy dz] [scale s]
+             [rotate theta Rx Ry Rz] [group G]
+
+   Rank 0 reads and checks the OBJ file (core: mesh/obj_file.h, mesh/triangle_mesh.h) and
+   broadcasts the mesh; every rank places all vertices (mesh/mesh_geometry.h) and creates the
+   atoms of the vertices in its sub-domain, as create_atoms does: vertex k of the file becomes
+   atom maxtag + 1 + k of type T, with vfrac = t x (one third of the areas of its triangles),
+   rmass = rho (the density, as atom_style peri stores it), x0 = x, v = 0, image flags 0, in the
+   groups all and G. A vertex outside a fixed boundary of the box is an error (create_atoms
+   would drop it); across a periodic boundary it is wrapped into the box; beyond a
+   shrink-wrapped one the box grows. The triangles go to fix nosb/mesh (created by the first
+   read_mesh as NOSB_MESH), each mesh with the next mesh id.
+------------------------------------------------------------------------- */
+
+#include "read_mesh.h"
+
+#include "fix_nosb_mesh.h"
+
+#include "mesh/mesh_geometry.h"
+#include "mesh/obj_file.h"
+#include "mesh/triangle_mesh.h"
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "group.h"
+#include "irregular.h"
+#include "modify.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+struct Options {
+  std::string file;
+  int type = 0;
+  double thickness = 0.0;
+  double density = 0.0;
+  PeriSISSM::Placement place;
+  std::string group;
+};
+
+// a finite number for read_mesh, naming the keyword on error
+double number(const char *what, const char *str, Error *error)
+{
+  char *end = nullptr;
+  const double value = std::strtod(str, &end);
+  if (end == str || *end != '\0' || !std::isfinite(value))
+    error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'", what,
+               str);
+  return value;
+}
+
+double positive(const char *what, const char *str, Error *error)
+{
+  const double value = number(what, str, error);
+  if (!(value > 0.0))
+    error->all(FLERR, "Illegal read_mesh command: {} must be > 0, got '{}'", what, str);
+  return value;
+}
+
+Options parse(int narg, char **arg, LAMMPS *lmp)
+{
+  Error *error = lmp->error;
+  const char *usage = "read_mesh FILE type T thickness t density rho [offset dx dy dz] "
+                      "[scale s] [rotate theta Rx Ry Rz] [group G]";
+  if (narg < 1) error->all(FLERR, "Illegal read_mesh command: no mesh file ({})", usage);
+  Options opt;
+  opt.file = arg[0];
+  bool have_type = false, have_thickness = false, have_density = false;
+  int iarg = 1;
+  auto need = [&](const char *keyword, int n) {
+    if (iarg + n >= narg)
+      error->all(FLERR, "Illegal read_mesh command: keyword {} needs {} value{} ({})", keyword, n,
+                 n > 1 ? "s" : "", usage);
+  };
+  while (iarg < narg) {
+    const std::string keyword = arg[iarg];
+    if (keyword == "type") {
+      need("type", 1);
+      const char *str = arg[iarg + 1];
+      if (!utils::is_integer(str) || atoi(str) < 1 || atoi(str) > lmp->atom->ntypes)
+        error->all(FLERR, "Illegal read_mesh command: type must be an atom type from 1 to {}, "
+                   "got '{}'", lmp->atom->ntypes, str);
+      opt.type = atoi(str);
+      have_type = true;
+      iarg += 2;
+    } else if (keyword == "thickness") {
+      need("thickness", 1);
+      opt.thickness = positive("thickness", arg[iarg + 1], error);
+      have_thickness = true;
+      iarg += 2;
+    } else if (keyword == "density") {
+      need("density", 1);
+      opt.density = positive("density", arg[iarg + 1], error);
+      have_density = true;
+      iarg += 2;
+    } else if (keyword == "offset") {
+      need("offset", 3);
+      for (int d = 0; d < 3; d++) opt.place.offset[d] = number("offset", arg[iarg + 1 + d], error);
+      iarg += 4;
+    } else if (keyword == "scale") {
+      need("scale", 1);
+      opt.place.scale = positive("scale", arg[iarg + 1], error);
+      iarg += 2;
+    } else if (keyword == "rotate") {
+      need("rotate", 4);
+      opt.place.theta = number("rotate angle theta", arg[iarg + 1], error);
+      for (int d = 0; d < 3; d++)
+        opt.place.axis[d] = number("rotate axis", arg[iarg + 2 + d], error);
+      const double *r = opt.place.axis;
+      if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0)
+        error->all(FLERR, "Illegal read_mesh command: the rotate axis must not be zero, got {} {} "
+                   "{}", arg[iarg + 2], arg[iarg + 3], arg[iarg + 4]);
+      iarg += 5;
+    } else if (keyword == "group") {
+      need("group", 1);
+      opt.group = arg[iarg + 1];
+      iarg += 2;
+    } else {
+      error->all(FLERR, "Illegal read_mesh command: unknown keyword '{}' ({})", keyword, usage);
+    }
+  }
+  const char *missing = !have_type ? "type" : !have_thickness ? "thickness" :
+                        !have_density ? "density" : nullptr;
+  if (missing)
+    error->all(FLERR, "Illegal read_mesh command: keyword {} is required ({})", missing, usage);
+  return opt;
+}
+
+// rank 0 reads and checks the file, all ranks get the mesh (or the same error)
+PeriSISSM::TriangleMesh read_mesh_file(const std::string &file, LAMMPS *lmp)
+{
+  PeriSISSM::TriangleMesh mesh;
+  std::string message;
+  if (lmp->comm->me == 0) {
+    FILE *fp = fopen(file.c_str(), "rb");
+    if (!fp) {
+      message = "Read_mesh: cannot open mesh file " + file + ": " + utils::getsyserror();
+    } else {
+      std::string text;
+      char chunk[65536];
+      size_t n;
+      while ((n = fread(chunk, 1, sizeof(chunk), fp)) > 0) text.append(chunk, n);
+      fclose(fp);
+      try {
+        mesh = PeriSISSM::parse_obj(text, file);
+        PeriSISSM::check_mesh(mesh, file, FixNosbMesh::MAXTRI);
+      } catch (std::exception &e) {
+        message = std::string("Read_mesh: ") + e.what();
+      }
+    }
+  }
+
+  int len = (int) message.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, lmp->world);
+  if (len) {
+    message.resize(len);
+    MPI_Bcast(&message[0], len, MPI_CHAR, 0, lmp->world);
+    lmp->error->all(FLERR, message);
+  }
+
+  int sizes[2] = {(int) mesh.vertices.size(), (int) mesh.triangles.size()};
+  MPI_Bcast(sizes, 2, MPI_INT, 0, lmp->world);
+  mesh.vertices.resize(sizes[0]);
+  mesh.vertex_line.resize(sizes[0]);
+  mesh.triangles.resize(sizes[1]);
+  mesh.triangle_line.resize(sizes[1]);
+  MPI_Bcast(mesh.vertices.data(), 3 * sizes[0], MPI_DOUBLE, 0, lmp->world);
+  MPI_Bcast(mesh.vertex_line.data(), sizes[0], MPI_INT, 0, lmp->world);
+  MPI_Bcast(mesh.triangles.data(), 3 * sizes[1], MPI_INT, 0, lmp->world);
+  MPI_Bcast(mesh.triangle_line.data(), sizes[1], MPI_INT, 0, lmp->world);
+  return mesh;
+}
+
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+void ReadMesh::command(int narg, char **arg)
+{
+  if (!domain->box_exist)
+    error->all(FLERR, "Read_mesh command before the simulation box is defined: create the box "
+               "first (region and create_box)");
+  if (!atom->peri_flag || !atom->vfrac_flag || !atom->rmass_flag || !atom->x0)
+    error->all(FLERR, "Read_mesh requires atom_style peri (per-atom volume, density and "
+               "reference position): write atom_style peri before the box is created");
+  if (atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "Read_mesh requires an atom map (triangles are stored by atom ID): write "
+               "atom_modify map array (or hash) before the box is created");
+  if (domain->dimension != 3) error->all(FLERR, "Read_mesh requires a 3d simulation");
+
+  const Options opt = parse(narg, arg, lmp);
+
+  // the mesh fix of a restart file comes back here; new atoms would get the per-atom restart
+  // data of fixes defined later wrong (as for create_atoms)
+
+  FixNosbMesh *fix = FixNosbMesh::find(lmp);
+  if (modify->nfix_restart_peratom)
+    error->all(FLERR,
+               "Read_mesh after read_restart: the restart file holds per-atom data of fixes, "
+               "which they take from it when defined or at the first run; put 'run 0' before "
+               "read_mesh (as for create_atoms){}",
+               fix ? ", and re-specify 'fix NOSB_MESH all nosb/mesh' right after read_restart "
+                     "so that the meshes of the restart file are kept"
+                   : "");
+
+  int igroup = 0;
+  if (!opt.group.empty()) {
+    igroup = group->find_or_create(opt.group.c_str());
+    if (group->dynamic[igroup])
+      error->all(FLERR, "Read_mesh: group {} is dynamic; give a static group", opt.group);
+  }
+  const int groupbit = group->bitmask[igroup];
+
+  const PeriSISSM::TriangleMesh mesh = read_mesh_file(opt.file, lmp);
+  const int nvertex = (int) mesh.vertices.size();
+  const int ntriangle = (int) mesh.triangles.size();
+
+  // place the vertices (all ranks the same), areas
+
+  std::vector<std::array<double, 3>> x(nvertex);
+  for (int k = 0; k < nvertex; k++) PeriSISSM::place(opt.place, mesh.vertices[k].data(), x[k].data());
+  const std::vector<double> area = PeriSISSM::vertex_areas(x, mesh.triangles);
+  double total_area = 0.0;
+  for (const auto &t : mesh.triangles)
+    total_area += PeriSISSM::triangle_area(x[t[0]].data(), x[t[1]].data(), x[t[2]].data());
+
+  // where each vertex goes: wrapped across periodic boundaries, an error outside a fixed one;
+  // beyond a shrink-wrapped boundary it belongs to the sub-domain at that face until the box
+  // has grown
+
+  const int triclinic = domain->triclinic;
+  const double *sublo = triclinic ? domain->sublo_lamda : domain->sublo;
+  const double *subhi = triclinic ? domain->subhi_lamda : domain->subhi;
+  std::vector<int> mine;
+  int grows = 0;
+  for (int k = 0; k < nvertex; k++) {
+    domain->remap(x[k].data());
+    double c[3];
+    if (triclinic)
+      domain->x2lamda(x[k].data(), c);
+    else
+      for (int d = 0; d < 3; d++) c[d] = x[k][d];
+    for (int d = 0; d < 3; d++) {
+      const double lo = triclinic ? 0.0 : domain->boxlo[d];
+      const double hi = triclinic ? 1.0 : domain->boxhi[d];
+      if (domain->periodicity[d]) {
+        if (c[d] < lo || c[d] >= hi) c[d] = lo;    // round-off of the wrap
+        continue;
+      }
+      const int side = (c[d] < lo) ? 0 : (c[d] >= hi) ? 1 : -1;
+      if (side < 0) continue;
+      if (domain->boundary[d][side] == 1)
+        error->all(FLERR,
+                   "Read_mesh: vertex {} of {} (line {}) is placed at ({:.8g}, {:.8g}, {:.8g}), "
+                   "outside the box in {}{} (boundary f: the box is {} to {}{}): enlarge the "
+                   "box, or move the mesh with offset, scale or rotate",
+                   k + 1, opt.file, mesh.vertex_line[k], x[k][0], x[k][1], x[k][2], "xyz"[d],
+                   triclinic ? " (fractional coordinate of the triclinic box)" : "",
+                   lo, hi, side ? ", its upper face excluded" : "");
+      c[d] = side ? std::nextafter(hi, lo) : lo;
+      grows = 1;
+    }
+    if (c[0] >= sublo[0] && c[0] < subhi[0] && c[1] >= sublo[1] && c[1] < subhi[1] &&
+        c[2] >= sublo[2] && c[2] < subhi[2])
+      mine.push_back(k);
+  }
+
+  // atom IDs after the largest one
+
+  tagint maxtag = 0, maxtag_all;
+  for (int i = 0; i < atom->nlocal; i++) maxtag = MAX(maxtag, atom->tag[i]);
+  MPI_Allreduce(&maxtag, &maxtag_all, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  if ((double) maxtag_all + nvertex >= (double) MAXTAGINT)
+    error->all(FLERR, "Read_mesh: too many atom IDs ({} + {} vertices)", maxtag_all, nvertex);
+
+  if (!fix) fix = dynamic_cast<FixNosbMesh *>(
+                modify->add_fix(std::string(FixNosbMesh::DEFAULT_ID) + " all nosb/mesh"));
+  const int meshid = fix->add_mesh(ntriangle);
+
+  // create the atoms (as create_atoms: ghosts and the map are cleared first, since new atoms
+  // overwrite ghost rows)
+
+  if (atom->map_style != Atom::MAP_NONE) atom->map_clear();
+  atom->nghost = 0;
+  atom->avec->clear_bonus();
+
+  const bigint natoms_previous = atom->natoms;
+  const int nlocal_previous = atom->nlocal;
+  for (int k : mine) {
+    atom->avec->create_atom(opt.type, x[k].data());
+    const int i = atom->nlocal - 1;
+    atom->tag[i] = maxtag_all + 1 + k;
+    atom->mask[i] |= groupbit;
+    atom->vfrac[i] = opt.thickness * area[k];
+    atom->rmass[i] = opt.density;
+    for (int d = 0; d < 3; d++) atom->x0[i][d] = atom->x[i][d];
+  }
+  atom->data_fix_compute_variable(nlocal_previous, atom->nlocal);
+
+  const auto at = PeriSISSM::vertex_triangles(nvertex, mesh.triangles);
+  tagint others[FixNosbMesh::MAXTRI][2];
+  for (int n = 0; n < (int) mine.size(); n++) {
+    const int k = mine[n];
+    int ntri = 0;
+    for (const auto &corner : at[k]) {
+      const auto &t = mesh.triangles[corner[0]];
+      others[ntri][0] = maxtag_all + 1 + t[(corner[1] + 1) % 3];
+      others[ntri][1] = maxtag_all + 1 + t[(corner[1] + 2) % 3];
+      ntri++;
+    }
+    fix->set_vertex(nlocal_previous + n, meshid, opt.thickness, ntri, others);
+  }
+
+  // bookkeeping as create_atoms
+
+  bigint nblocal = atom->nlocal;
+  MPI_Allreduce(&nblocal, &atom->natoms, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (atom->natoms != natoms_previous + nvertex)
+    error->all(FLERR, "Read_mesh: {} of the {} vertices were created (a vertex on no or on two "
+               "sub-domains)", atom->natoms - natoms_previous, nvertex);
+  atom->tag_check();
+
+  if (grows) {
+    if (triclinic) domain->x2lamda(atom->nlocal);
+    domain->reset_box();
+    Irregular irregular(lmp);
+    irregular.migrate_atoms(1);
+    if (triclinic) domain->lamda2x(atom->nlocal);
+  }
+
+  if (atom->map_style != Atom::MAP_NONE) {
+    atom->map_init();
+    atom->map_set();
+  }
+
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "Read mesh {}: {} vertices, {} triangles, area {:.8g}, thickness {:.8g}, mesh "
+                   "id {}\n  atom IDs {} to {}, type {}{}\n",
+                   opt.file, nvertex, ntriangle, total_area, opt.thickness, meshid,
+                   maxtag_all + 1, maxtag_all + nvertex, opt.type,
+                   opt.group.empty() ? "" : ", group " + opt.group);
+}
