@@ -11,6 +11,7 @@ namespace PeriSISSM {
 // What the particles are.
 struct Particles {
   int nlocal = 0;                   // owned particles (rows 0 .. nlocal-1)
+  int nall = 0;                     // owned and ghost rows (needed by membrane decks only)
   const double *x = nullptr;        // current positions
   const double *x0 = nullptr;       // reference positions
   const double *volume = nullptr;   // V_i
@@ -32,6 +33,8 @@ struct ParticleFields {
   double *w = nullptr;          // energy density of each owned particle (complete only with energy)
   bool energy = true;           // false: w lacks the stabilization energy (not summed: faster)
   double *smin_new = nullptr;   // scratch, one per owned particle
+  double *normal = nullptr;     // scratch, 3 per particle (owned and ghost): current normals of
+                                // membrane particles; needed only when the model has membranes
 };
 
 // One per-particle field: width doubles per particle, contiguous rows.

@@ -18,7 +18,7 @@ void evaluate_bond_terms(const Model &model, const Particles &p, const Families 
   const HaloField state[2] = {{fields.g, ParticleFields::NG}, {fields.k, ParticleFields::NK}};
   if (model.any_stabilization()) {
     halo.forward(state, blocks ? 2 : 1);
-    stabilization_pass(p, fam, box, fields, virial, fields.energy);
+    stabilization_pass(model, p, fam, box, fields, virial, fields.energy);
   } else if (blocks) {
     halo.forward(state + 1, 1);
   }

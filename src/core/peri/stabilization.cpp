@@ -2,7 +2,11 @@
 
 #include "peri/stabilization.h"
 
+#include "membrane/membrane.h"
 #include "peri/bond_rows.h"
+#include "peri/model.h"
+
+#include <cmath>
 
 #include <type_traits>
 
@@ -25,7 +29,60 @@ namespace {
 // The loop over the bonds of each particle forms z and the direct force, and stores u = 2 a_i
 // Cbar omega z with xi; the 3x3 sum Q of u (x) xi follows from those rows (bond_rows.h). The
 // energy is summed only when asked for (EFLAG), which keeps the loop at three accumulators.
-template <int EFLAG, int EVFLAG, int PBC>
+// current unit normal of every membrane particle with an F (owned and ghost rows):
+// n = F t1 x F t2 / |F t1 x F t2|, (t1, t2) the tangent frame of its reference normal; zero for
+// the others and where the image of the plane has collapsed
+void current_normals(const Model &model, const Particles &p, const Families &fam,
+                     ParticleFields &fields)
+{
+  constexpr int NG = ParticleFields::NG;
+  for (int r = 0; r < p.nall; r++) {
+    double *n = fields.normal + 3 * r;
+    n[0] = n[1] = n[2] = 0.0;
+    const double *g = fields.g + NG * r;
+    if (!model.membrane(p.type[r]) || !(g[ParticleFields::G_REG] > 0.0)) continue;
+    double t1[3], t2[3], a1[3], a2[3];
+    tangent_frame(fam.normal[r], t1, t2);
+    for (int k = 0; k < 3; k++) {
+      a1[k] = g[3 * k] * t1[0] + g[3 * k + 1] * t1[1] + g[3 * k + 2] * t1[2];
+      a2[k] = g[3 * k] * t2[0] + g[3 * k + 1] * t2[1] + g[3 * k + 2] * t2[2];
+    }
+    const double c[3] = {a1[1] * a2[2] - a1[2] * a2[1], a1[2] * a2[0] - a1[0] * a2[2],
+                         a1[0] * a2[1] - a1[1] * a2[0]};
+    const double l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    const double scale = std::sqrt(a1[0] * a1[0] + a1[1] * a1[1] + a1[2] * a1[2]) *
+        std::sqrt(a2[0] * a2[0] + a2[1] * a2[1] + a2[2] * a2[2]);
+    if (!(l > 1.0e-14 * scale)) continue;
+    for (int k = 0; k < 3; k++) n[k] = c[k] / l;
+  }
+}
+
+// G = (a2 x w) (x) t1 + (w x a1) (x) t2 (stabilization.h): the derivative of the particle's
+// stabilization energy density through its normal, as a stress-like 3x3 (row-major) added to Q
+inline void normal_term(const double *F, const double *n0, const double *nrm, const double gn[3],
+                        double G[9])
+{
+  double t1[3], t2[3], a1[3], a2[3];
+  tangent_frame(n0, t1, t2);
+  for (int k = 0; k < 3; k++) {
+    a1[k] = F[3 * k] * t1[0] + F[3 * k + 1] * t1[1] + F[3 * k + 2] * t1[2];
+    a2[k] = F[3 * k] * t2[0] + F[3 * k + 1] * t2[1] + F[3 * k + 2] * t2[2];
+  }
+  const double c[3] = {a1[1] * a2[2] - a1[2] * a2[1], a1[2] * a2[0] - a1[0] * a2[2],
+                       a1[0] * a2[1] - a1[1] * a2[0]};
+  const double l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  const double along = gn[0] * nrm[0] + gn[1] * nrm[1] + gn[2] * nrm[2];
+  double w[3];
+  for (int k = 0; k < 3; k++) w[k] = (gn[k] - along * nrm[k]) / l;
+  const double u[3] = {a2[1] * w[2] - a2[2] * w[1], a2[2] * w[0] - a2[0] * w[2],
+                       a2[0] * w[1] - a2[1] * w[0]};
+  const double v[3] = {w[1] * a1[2] - w[2] * a1[1], w[2] * a1[0] - w[0] * a1[2],
+                       w[0] * a1[1] - w[1] * a1[0]};
+  for (int r = 0; r < 3; r++)
+    for (int c2 = 0; c2 < 3; c2++) G[3 * r + c2] = u[r] * t1[c2] + v[r] * t2[c2];
+}
+
+template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE>
 void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
           ParticleFields &fields, const Virial &virial)
 {
@@ -51,6 +108,9 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
     double fx = 0.0, fy = 0.0, fz = 0.0, ws = 0.0;
     BondVirial vir;
     rows.clear();
+    const double *ni = MEMBRANE ? fields.normal + 3 * i : nullptr;
+    const bool hasni = MEMBRANE && (ni[0] != 0.0 || ni[1] != 0.0 || ni[2] != 0.0);
+    double gn[3] = {0.0, 0.0, 0.0};    // membranes: dE/dn_i per unit volume
 
     for (int b = 0; b < n; b++) {
       const int j = jl[b];
@@ -80,6 +140,34 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
         continue;
       }
       const double cw = 0.5 * (ci + gj[ParticleFields::G_C]) * om[b];
+      if (MEMBRANE) {
+        // the part of z in the tangent planes of the two ends (an end without a normal takes
+        // the other's)
+        const double *nj = fields.normal + 3 * j;
+        const bool hasnj = nj[0] != 0.0 || nj[1] != 0.0 || nj[2] != 0.0;
+        if (hasni || hasnj) {
+          const double *na = hasni ? ni : nj, *nb = hasnj ? nj : ni;
+          const double da = na[0] * z0 + na[1] * z1 + na[2] * z2;
+          const double db = nb[0] * z0 + nb[1] * z1 + nb[2] * z2;
+          if (hasni) {
+            const double s = -0.5 * cw * (hasnj ? da : 2.0 * da);
+            gn[0] += s * z0;
+            gn[1] += s * z1;
+            gn[2] += s * z2;
+          }
+          const double p0 = z0 - 0.5 * (da * na[0] + db * nb[0]);
+          const double p1 = z1 - 0.5 * (da * na[1] + db * nb[1]);
+          const double p2 = z2 - 0.5 * (da * na[2] + db * nb[2]);
+          const double t0 = cw * p0, t1 = cw * p1, t2 = cw * p2;
+          fx += t0;
+          fy += t1;
+          fz += t2;
+          if (EFLAG) ws += t0 * z0 + t1 * z1 + t2 * z2;
+          rows.push(qa * t0, qa * t1, qa * t2, x0, x1, x2);
+          if (EVFLAG) vir.add(e0, e1, e2, t0, t1, t2);
+          continue;
+        }
+      }
       const double t0 = cw * z0, t1 = cw * z1, t2 = cw * z2;
       fx += t0;
       fy += t1;
@@ -105,24 +193,39 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
       for (int c = 0; c < 3; c++)
         h[3 * r + c] -=
             0.5 * (q[3 * r] * k[c] + q[3 * r + 1] * k[3 + c] + q[3 * r + 2] * k[6 + c]);
+    if (MEMBRANE && hasni) {
+      double G[9];
+      normal_term(Fi, fam.normal[i], ni, gn, G);
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+          h[3 * r + c] += G[3 * r] * k[c] + G[3 * r + 1] * k[3 + c] + G[3 * r + 2] * k[6 + c];
+    }
   }
 }
 
 }  // namespace
 
-void stabilization_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-                        ParticleFields &fields, const Virial &virial, bool energy)
+void stabilization_pass(const Model &model, const Particles &p, const Families &fam,
+                        const ReferenceBox &box, ParticleFields &fields, const Virial &virial,
+                        bool energy)
 {
-  auto run = [&](auto eflag) {
-    constexpr int E = decltype(eflag)::value;
+  using I0 = std::integral_constant<int, 0>;
+  using I1 = std::integral_constant<int, 1>;
+  auto run = [&](auto eflag, auto membrane) {
+    constexpr int E = decltype(eflag)::value, M = decltype(membrane)::value;
     const bool pbc = box.any(), ev = virial.any();
     if (pbc)
-      ev ? pass<E, 1, 1>(p, fam, box, fields, virial) : pass<E, 0, 1>(p, fam, box, fields, virial);
+      ev ? pass<E, 1, 1, M>(p, fam, box, fields, virial)
+         : pass<E, 0, 1, M>(p, fam, box, fields, virial);
     else
-      ev ? pass<E, 1, 0>(p, fam, box, fields, virial) : pass<E, 0, 0>(p, fam, box, fields, virial);
+      ev ? pass<E, 1, 0, M>(p, fam, box, fields, virial)
+         : pass<E, 0, 0, M>(p, fam, box, fields, virial);
   };
-  if (energy) run(std::integral_constant<int, 1>());
-  else run(std::integral_constant<int, 0>());
+  // membranes only in decks that have them (the volume decks' loop is unchanged)
+  const bool membranes = fam.normal && fields.normal && model.any_membrane();
+  if (membranes) current_normals(model, p, fam, fields);
+  if (energy) membranes ? run(I1(), I1()) : run(I1(), I0());
+  else membranes ? run(I0(), I1()) : run(I0(), I0());
 }
 
 }  // namespace PeriSISSM

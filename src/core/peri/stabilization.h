@@ -30,6 +30,8 @@
 
 namespace PeriSISSM {
 
+class Model;
+
 // Stabilization modulus C_i: Cs times the bond-based (PMB) micromodulus per unit bond length,
 // 18 K / (pi delta^5) (influence function w = 1), scaled by the particle's own shape tensor
 // relative to a full family,
@@ -44,12 +46,24 @@ namespace PeriSISSM {
 // Outputs: C_i (stress / length^5).
 double stabilization_modulus(double Cs, double K, const double Kinv[9]);
 
+// Membranes: a bond between two membrane particles counts only the part of z in the current
+// tangent planes of its ends, with the energy (Cbar / 4) omega V_i z^T (T_i + T_j) z, T = I -
+// n n^T and n = F t1 x F t2 / |F t1 x F t2| the particle's current normal (membrane/membrane.h);
+// its out-of-plane part would be a bending stiffness that depends on the mesh. Forces stay the
+// exact gradient: the direct force is Cbar omega (T_i + T_j) z / 2, Q_i uses that projected z,
+// and the dependence of n_i on F_i adds G_i = (a2 x w) (x) t1 + (w x a1) (x) t2 to Q_i, with
+// a_k = F_i t_k, w = (I - n n^T) g / |a1 x a2| and g = dE/dn_i = -sum_j (Cbar / 2) omega (n_i .
+// z) z (per unit volume). An end whose normal is not defined (singular K) takes the other
+// end's.
+
 // The stabilization pass over the owned particles: needs F, C and the regular flag of every
-// particle and its ghosts (fields.g). Adds the direct force density to p.f, Q_i K_i^-1 to
-// fields.h, the virial of the direct force (half of each bond to each end), and, when energy is
-// true, the energy density to fields.w (left alone otherwise).
-void stabilization_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-                        ParticleFields &fields, const Virial &virial, bool energy);
+// particle and its ghosts (fields.g), and in decks with membranes their reference normals
+// (fam.normal, owned and ghost rows) and p.nall. Adds the direct force density to p.f,
+// Q_i K_i^-1 to fields.h, the virial of the direct force (half of each bond to each end), and,
+// when energy is true, the energy density to fields.w (left alone otherwise).
+void stabilization_pass(const Model &model, const Particles &p, const Families &fam,
+                        const ReferenceBox &box, ParticleFields &fields, const Virial &virial,
+                        bool energy);
 
 }  // namespace PeriSISSM
 

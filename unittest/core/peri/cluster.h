@@ -155,9 +155,10 @@ class Cluster : public PeriSISSM::Halo {
     Result out;
     std::vector<double> f(3 * nall, 0.0), g(nall * PeriSISSM::ParticleFields::NG, 0.0),
         h(9 * nall, 0.0), kk(nall * PeriSISSM::ParticleFields::NK, 0.0), w(nall, 0.0),
-        sn(nall, 0.0);
+        sn(nall, 0.0), nrm(3 * nall, 0.0);
     PeriSISSM::Particles p;
     p.nlocal = nlocal;
+    p.nall = nall;
     p.x = x.data();
     p.x0 = ref.data();
     p.volume = volume.data();
@@ -170,6 +171,7 @@ class Cluster : public PeriSISSM::Halo {
     fields.k = kk.data();
     fields.w = w.data();
     fields.smin_new = sn.data();
+    fields.normal = nrm.data();
     PeriSISSM::Virial vir;
     vir.global = out.virial;
     std::vector<int> broke;
