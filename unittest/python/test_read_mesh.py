@@ -268,15 +268,18 @@ def test_one_and_two_ranks_give_the_same_per_atom_data(tmp_path):
     # two meshes, one rotated so that its triangles cross the sub-domain boundary obliquely
     reads = "\n".join([read_mesh_line(extra="offset -0.1 0.3 0.1"),
                        read_mesh_line(kind=1, t=0.02, extra="rotate 30 1 2 3 offset 0.2 0.1 -0.4")])
-    frames = []
+    frames, logs = [], []
     for np_ in (1, 2):
         run = run_deck(deck(reads), tmp_path / f"np{np_}", nprocs=np_,
                        files={"grid.obj": grid_obj(height=lambda i, j: 0.05 * i * j)})
         if np_ == 2:
             assert "with 2 MPI tasks" in run.log
         frames.append(frame(tmp_path / f"np{np_}"))
+        logs.append([ln for ln in run.log.splitlines()
+                     if ln.startswith(("Read mesh", "  atom IDs"))])
     for col in COLUMNS:
         assert list(frames[0][col]) == list(frames[1][col]), col
+    assert len(logs[0]) == 4 and logs[0] == logs[1]
     assert any(frames[0]["f_NOSB_MESH[4]"] != 0.0)    # the normals are not all trivial
 
 
@@ -379,6 +382,21 @@ def test_read_mesh_after_read_restart_needs_a_run_first(tmp_path):
     # the message says what to do, and (the mesh fix of the file was found) how to keep it
     assert any("run 0" in e and "fix NOSB_MESH all nosb/mesh" in e for e in run.errors), run.errors
 
+    # a restart file with per-atom fix data (peri/nosb's bond families) but no mesh: the same
+    # error, without the advice about the mesh fix
+    nomesh = tmp_path / "nomesh"
+    run_deck("\n".join(["units si", "atom_style peri", "atom_modify map array",
+                        "region box block 0 1 0 1 0 1", "create_box 1 box",
+                        "create_atoms 1 single 0.5 0.5 0.5", "pair_style peri/nosb",
+                        "pair_coeff * * linear 1.0e9 0.6e9 0.1 0.5 0.25", "run 0",
+                        "write_restart nomesh.restart", ""]), nomesh)
+    (nomesh / "grid.obj").write_text(grid_obj())
+    run = run_deck("read_restart    nomesh.restart\n" +
+                   read_mesh_line(kind=1, extra="scale 0.1 offset 0.2 0.2 0.2") + "\n", nomesh,
+                   check=False)
+    assert any("run 0" in e for e in run.errors), run.errors
+    assert not any("NOSB_MESH" in e for e in run.errors), run.errors
+
 
 def test_write_data_and_read_data_round_trip(tmp_path):
     first = tmp_path / "first"
@@ -469,6 +487,23 @@ def test_deleted_vertex_drops_its_triangles(tmp_path):
     # still a mesh atom, without triangles and so without a normal
     assert f["f_NOSB_MESH[1]"][0] == 1 and normal(f, 0) == [0.0, 0.0, 0.0]
     assert all(normal(f, k) == [0.0, 0.0, 1.0] for k in range(1, 19))
+
+
+def test_reused_id_of_a_deleted_vertex_is_no_vertex(tmp_path):
+    # the corner (4,3) has the largest ID (20): deleted, create_atoms gives 20 to a new atom,
+    # which is no vertex of the mesh; the two triangles at the corner are dropped
+    after = ("group           gone id 20\n"
+             "delete_atoms    group gone compress no\n"
+             "create_atoms    1 single 1.5 1.5 0.0")
+    run = run_deck(deck(read_mesh_line(), after=after), tmp_path,
+                   files={"grid.obj": grid_obj()})
+    assert any("2 mesh triangles lost a vertex" in w for w in run.warnings), run.warnings
+    f = frame(tmp_path)
+    assert f["id"][19] == 20 and f["x"][19] == 1.5
+    assert [f[f"f_NOSB_MESH[{c}]"][19] for c in range(1, 7)] == [0] * 6
+    # (3,3) and (4,2) lose one each, (3,2) loses both of its triangles with the corner
+    assert (f["f_NOSB_MESH[3]"][18], f["f_NOSB_MESH[3]"][14], f["f_NOSB_MESH[3]"][13]) == \
+        (2, 2, 4)
 
 
 def test_renumbered_atoms_are_an_error(tmp_path):
