@@ -232,7 +232,8 @@ void ReadMesh::command(int narg, char **arg)
   // place the vertices (all ranks the same), areas
 
   std::vector<std::array<double, 3>> x(nvertex);
-  for (int k = 0; k < nvertex; k++) PeriSISSM::place(opt.place, mesh.vertices[k].data(), x[k].data());
+  for (int k = 0; k < nvertex; k++)
+    PeriSISSM::place(opt.place, mesh.vertices[k].data(), x[k].data());
   const std::vector<double> area = PeriSISSM::vertex_areas(x, mesh.triangles);
   double total_area = 0.0;
   for (const auto &t : mesh.triangles)
@@ -333,6 +334,13 @@ void ReadMesh::command(int narg, char **arg)
     error->all(FLERR, "Read_mesh: {} of the {} vertices were created (a vertex on no or on two "
                "sub-domains)", atom->natoms - natoms_previous, nvertex);
   atom->tag_check();
+  if (atom->map_style != Atom::MAP_NONE) {
+    atom->map_init();
+    atom->map_set();
+  }
+
+  // a shrink-wrapped box grows around vertices beyond it, and the atoms move to their
+  // sub-domains (as read_data does)
 
   if (grows) {
     if (triclinic) domain->x2lamda(atom->nlocal);
@@ -340,11 +348,10 @@ void ReadMesh::command(int narg, char **arg)
     Irregular irregular(lmp);
     irregular.migrate_atoms(1);
     if (triclinic) domain->lamda2x(atom->nlocal);
-  }
-
-  if (atom->map_style != Atom::MAP_NONE) {
-    atom->map_init();
-    atom->map_set();
+    if (atom->map_style != Atom::MAP_NONE) {
+      atom->map_init();
+      atom->map_set();
+    }
   }
 
   if (comm->me == 0)

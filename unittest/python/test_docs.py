@@ -51,7 +51,7 @@ def html(tmp_path_factory):
 
 
 def test_every_page_is_built(html):
-    for page in ["index", "pair_peri_nosb", "fix_sissm", "compute_nosb_atom", "theory",
+    for page in ["index", "pair_peri_nosb", "fix_sissm", "compute_nosb_atom", "read_mesh", "theory",
                  "reports/error-vs-time", "reports/stability"]:
         assert (html / f"{page}.html").is_file(), page
 

@@ -77,7 +77,8 @@ void check_mesh(const TriangleMesh &mesh, const std::string &filename, int maxtr
   std::unordered_map<std::uint64_t, EdgeUse> edges;
   edges.reserve(3 * (size_t) ntriangle);
   auto key = [nvertex](int a, int b) {
-    return (std::uint64_t) std::min(a, b) * (std::uint64_t) nvertex + (std::uint64_t) std::max(a, b);
+    const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
+    return lo * (std::uint64_t) nvertex + hi;
   };
   for (int t = 0; t < ntriangle; t++) {
     const auto &tri = mesh.triangles[t];
