@@ -23,6 +23,8 @@
 
 #include "fix_nosb_family.h"
 
+#include "fix_nosb_mesh.h"
+
 #include "peri/model.h"
 #include "peri/stable_step.h"
 
@@ -178,6 +180,12 @@ void FixNosbFamily::build_families()
 
   neighbor->build_one(list);
   const int inum = list->inum;
+
+  // mesh vertices are bonded only within their own mesh (separate layers, a cloth and the
+  // body it lies on, are never bonded); membranes take their weights from their thickness
+  FixNosbMesh *meshfix = FixNosbMesh::find(lmp);
+  const int *mesh = meshfix ? meshfix->mesh : nullptr;
+  const double *thick = meshfix ? meshfix->thickness : nullptr;
   int *ilist = list->ilist;
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
@@ -191,6 +199,7 @@ void FixNosbFamily::build_families()
     int *jlist = firstneigh[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
+      if (mesh && mesh[i] != mesh[j]) continue;
       const double dx = x[j][0] - x[i][0];
       const double dy = x[j][1] - x[i][1];
       const double dz = x[j][2] - x[i][2];
@@ -234,6 +243,10 @@ void FixNosbFamily::build_families()
     x0[i][2] = x[i][2];
   }
 
+  // reference normals of the membranes, from the mesh in the reference configuration
+  if (meshfix && model->any_membrane()) meshfix->set_reference_normals();
+  const PeriSISSM::Families fview = view();
+
   bigint nbonds = 0, nsingular = 0;
   for (int i = 0; i < nlocal; i++) {
     const int itype = type[i];
@@ -247,14 +260,16 @@ void FixNosbFamily::build_families()
       if (r == 0.0)
         error->one(FLERR, "Pair peri/nosb: atoms {} and {} are at the same position", tag[i],
                    tag[j]);
-      omega[i][b] = model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j]);
+      omega[i][b] = thick ? model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j],
+                                               thick[i], thick[j])
+                          : model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j]);
       partner[i][b] = fam[i][b].first;
       jlocal[i][b] = j;
       vinit[i] += omega[i][b];
     }
     lamref[i] = 0.0;
     owntag[i] = tag[i];
-    PeriSISSM::update_shape(view(), x0[0], box, i);
+    PeriSISSM::update_shape(fview, x0[0], box, i, model->reference_normal(fview, itype, i));
     nbonds += npartner[i];
     if (!kregular[i]) nsingular++;
   }
@@ -293,6 +308,10 @@ PeriSISSM::Families FixNosbFamily::view()
   fam.kinv = kinv;
   fam.kregular = kregular;
   fam.lamref = lamref;
+  if (model && model->any_membrane()) {
+    FixNosbMesh *meshfix = FixNosbMesh::find(lmp);
+    if (meshfix) fam.normal = meshfix->normal0;
+  }
   return fam;
 }
 
@@ -370,7 +389,10 @@ void FixNosbFamily::refresh_local_indices()
   MPI_Allreduce(&nmissing, &nmissing_all, 1, MPI_INT, MPI_SUM, world);
   if (nmissing_all) resolve_missing(missing);
 
-  for (int i : reshape) PeriSISSM::update_shape(view(), atom->x0[0], box, i);
+  const PeriSISSM::Families fview = view();
+  for (int i : reshape)
+    PeriSISSM::update_shape(fview, atom->x0[0], box, i,
+                            model->reference_normal(fview, atom->type[i], i));
   reshape.clear();
 }
 

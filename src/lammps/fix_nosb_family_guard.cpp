@@ -54,7 +54,8 @@ void FixNosbFamily::stable_time_steps(double *dt)
     double s = 0.0;
     if (built && kregular[i])
       s = PeriSISSM::stable_step_stiffness(model->material(type[i]), kinv[i],
-                                           model->stabilization_modulus(type[i], kinv[i]));
+                                           model->stabilization_modulus(type[i], kinv[i]),
+                                           model->membrane(type[i]));
     sdiag[i] = s;
   }
   comm->forward_comm(this);

@@ -77,7 +77,8 @@ FixNosbMesh::FixNosbMesh(LAMMPS *lmp, int narg, char **arg) :
   size_peratom_cols = NOUTPUT;
   peratom_freq = 1;
   maxexchange = NATOMDATA + 2 * MAXTRI;
-  comm_border = 3 + 2 * MAXTRI;
+  comm_border = 6 + 2 * MAXTRI;
+  comm_forward = 3;
   wd_header = 1;
   wd_section = 1;
 
@@ -247,6 +248,8 @@ void FixNosbMesh::set_reference_normals()
 {
   vertex_normals(atom->x, normal0);
   for (int i = 0; i < atom->nlocal; i++) refresh_output(i);
+  // the ghosts' copies now (border communication keeps them from the next one on)
+  comm->forward_comm(this);
 }
 
 /* ----------------------------------------------------------------------
@@ -273,6 +276,7 @@ void FixNosbMesh::normals_where_missing()
     refresh_output(i);
   }
   memory->destroy(n);
+  comm->forward_comm(this);
 }
 
 /* ----------------------------------------------------------------------
@@ -548,6 +552,9 @@ int FixNosbMesh::pack_border(int n, int *list, double *buf)
     buf[m++] = mesh[j];
     if (!mesh[j]) continue;
     buf[m++] = thickness[j];
+    buf[m++] = normal0[j][0];
+    buf[m++] = normal0[j][1];
+    buf[m++] = normal0[j][2];
     buf[m++] = ntri[j];
     for (int k = 0; k < ntri[j]; k++) {
       buf[m++] = ubuf(tri[j][k][0]).d;
@@ -566,10 +573,14 @@ int FixNosbMesh::unpack_border(int n, int first, double *buf)
     mesh[i] = static_cast<int>(buf[m++]);
     if (!mesh[i]) {
       thickness[i] = 0.0;
+      normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
       ntri[i] = 0;
       continue;
     }
     thickness[i] = buf[m++];
+    normal0[i][0] = buf[m++];
+    normal0[i][1] = buf[m++];
+    normal0[i][2] = buf[m++];
     ntri[i] = static_cast<int>(buf[m++]);
     for (int k = 0; k < ntri[i]; k++) {
       tri[i][k][0] = (tagint) ubuf(buf[m++]).i;
@@ -834,4 +845,31 @@ void FixNosbMesh::read_data_section(char *keyword, int n, char *buf, tagint id_o
   ntriangles += n;
   data_nread += n;
   if (data_nread == data_ntriangles) data_header = 0;
+}
+
+/* ----------------------------------------------------------------------
+   forward communication of the reference normals (set_reference_normals)
+------------------------------------------------------------------------- */
+
+int FixNosbMesh::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                   int * /*pbc*/)
+{
+  int m = 0;
+  for (int l = 0; l < n; l++) {
+    const int j = list[l];
+    buf[m++] = normal0[j][0];
+    buf[m++] = normal0[j][1];
+    buf[m++] = normal0[j][2];
+  }
+  return m;
+}
+
+void FixNosbMesh::unpack_forward_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    normal0[i][0] = buf[m++];
+    normal0[i][1] = buf[m++];
+    normal0[i][2] = buf[m++];
+  }
 }

@@ -44,6 +44,8 @@ class FixNosbMesh : public Fix {
   int unpack_exchange(int, double *) override;
   int pack_border(int, int *, double *) override;
   int unpack_border(int, int, double *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
   int pack_restart(int, double *) override;
@@ -92,7 +94,7 @@ class FixNosbMesh : public Fix {
   tagint ***tri;       // tri[i][k][0], tri[i][k][1]: IDs of the other two vertices of triangle
                        //   k of atom i, in the triangle's orientation: (i, tri[i][k][0],
                        //   tri[i][k][1]) is the file's vertex order rotated to start at i
-  double **normal0;    // reference unit normal (owned rows only); 0 until set
+  double **normal0;    // reference unit normal (owned and ghost rows); 0 until set
 
  protected:
   tagint *owntag;      // the atom's ID when its triangles were stored (detects renumbering)

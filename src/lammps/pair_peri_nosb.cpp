@@ -36,6 +36,7 @@
 #include "pair_peri_nosb.h"
 
 #include "fix_nosb_family.h"
+#include "fix_nosb_mesh.h"
 
 #include "materials/material.h"
 #include "materials/material_file.h"
@@ -79,14 +80,14 @@ static constexpr double DEFAULT_CS = 2.0;
 
 PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     Pair(lmp), family(nullptr), modelid(nullptr), bulk(nullptr), shear(nullptr), cut(nullptr),
-    s00(nullptr), alpha(nullptr), cs(nullptr), breakflag(nullptr), contactflag(nullptr),
+    s00(nullptr), alpha(nullptr), cs(nullptr), breakflag(nullptr), contactflag(nullptr), membraneflag(nullptr),
     kcontact(nullptr), g0(nullptr), g0_s00(nullptr), model_(new PeriSISSM::Model),
     any_break(0), any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
     contact_crossings(0), hmax(0.0), contact_first(nullptr), contact_neigh(nullptr),
     contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
     track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
     state_nlocal(-1), nmax(0),
-    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr),
+    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr),
     comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
@@ -107,6 +108,7 @@ PairPeriNosb::~PairPeriNosb()
   memory->destroy(kstate);
   memory->destroy(wdens);
   memory->destroy(s0_new);
+  memory->destroy(cnormal);
   memory->destroy(contact_first);
   memory->destroy(contact_neigh);
   memory->destroy(xneigh);
@@ -124,6 +126,7 @@ PairPeriNosb::~PairPeriNosb()
     memory->destroy(cs);
     memory->destroy(breakflag);
     memory->destroy(contactflag);
+    memory->destroy(membraneflag);
     memory->destroy(kcontact);
     memory->destroy(g0);
     memory->destroy(g0_s00);
@@ -149,6 +152,7 @@ void PairPeriNosb::allocate()
   memory->create(cs, n, n, "pair:cs");
   memory->create(breakflag, n, n, "pair:breakflag");
   memory->create(contactflag, n, n, "pair:contactflag");
+  memory->create(membraneflag, n, n, "pair:membraneflag");
   memory->create(kcontact, n, n, "pair:kcontact");
   memory->create(g0, n, n, "pair:g0");
   memory->create(g0_s00, n, n, "pair:g0_s00");
@@ -257,16 +261,22 @@ void PairPeriNosb::coeff(int narg, char **argin)
   const double s00_one = s00_null ? 0.0 : coeff_number("s00", arg[6], error);
   const double alpha_one = coeff_number("alpha", arg[7], error);
 
+  // the membrane model xu has one modulus, s0, in the place of K; its G is not used
+  const bool xu = strcmp(arg[2], "xu") == 0;
+  if (xu && k_one <= 0.0)
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: xu modulus s0 must be > 0, got {}",
+               arg[3]);
   if (k_one <= 0.0)
     error->all(FLERR, "Illegal pair_coeff peri/nosb command: bulk modulus K must be > 0, got {}",
                arg[3]);
-  if (g_one <= 0.0)
+  if (!xu && g_one <= 0.0)
     error->all(FLERR,
                "Illegal pair_coeff peri/nosb command: shear modulus G must be > 0, got {}",
                arg[4]);
   const double nu = (3.0 * k_one - 2.0 * g_one) / (2.0 * (3.0 * k_one + g_one));
   const auto lame = PeriSISSM::lame_from_bulk_shear(k_one, g_one);
-  if (!(nu > -1.0 && nu < 0.5) || !PeriSISSM::lame_parameters_admissible(lame.mu, lame.lambda))
+  if (!xu &&
+      (!(nu > -1.0 && nu < 0.5) || !PeriSISSM::lame_parameters_admissible(lame.mu, lame.lambda)))
     error->all(FLERR,
                "Illegal pair_coeff peri/nosb command: K = {} and G = {} give Poisson's ratio {} "
                "outside (-1, 0.5)",
@@ -277,7 +287,7 @@ void PairPeriNosb::coeff(int narg, char **argin)
 
   double cs_one = DEFAULT_CS;
   double g0_one = 0.0;
-  int break_one = 1, contact_one = 1;
+  int break_one = 1, contact_one = 1, membrane_one = 0;
   int iarg = 8;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "stabilize") == 0) {
@@ -296,6 +306,10 @@ void PairPeriNosb::coeff(int narg, char **argin)
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb contact", error);
       contact_one = coeff_flag("contact", arg[iarg + 1], error);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "membrane") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb membrane", error);
+      membrane_one = coeff_flag("membrane", arg[iarg + 1], error);
+      iarg += 2;
     } else if (strcmp(arg[iarg], "G0") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb G0", error);
       g0_one = coeff_number("G0", arg[iarg + 1], error);
@@ -306,7 +320,7 @@ void PairPeriNosb::coeff(int narg, char **argin)
     } else {
       error->all(FLERR,
                  "Illegal pair_coeff peri/nosb command: unknown keyword '{}' (allowed: "
-                 "stabilize, break, contact, G0)",
+                 "stabilize, break, contact, membrane, G0)",
                  arg[iarg]);
     }
   }
@@ -352,6 +366,7 @@ void PairPeriNosb::coeff(int narg, char **argin)
       cs[i][j] = cs_one;
       breakflag[i][j] = break_one;
       contactflag[i][j] = contact_one;
+      membraneflag[i][j] = membrane_one;
       setflag[i][j] = 1;
       count++;
     }
@@ -468,6 +483,7 @@ void PairPeriNosb::init_style()
       cs[i][j] = 0.0;    // not used: stabilization is per particle
       breakflag[i][j] = breakflag[i][i] || breakflag[j][j];
       contactflag[i][j] = contactflag[i][i] || contactflag[j][j];
+      membraneflag[i][j] = 0;    // not used: a type property
     }
   }
 
@@ -485,6 +501,7 @@ void PairPeriNosb::init_style()
       cs[j][i] = cs[i][j];
       breakflag[j][i] = breakflag[i][j];
       contactflag[j][i] = contactflag[i][j];
+      membraneflag[j][i] = membraneflag[i][j];
       const double d2 = cut[i][j] * cut[i][j];
       kcontact[i][j] = kcontact[j][i] = 15.0 * 18.0 * bulk[i][j] / (MY_PI * d2 * d2);
       if (breakflag[i][j]) any_break = 1;
@@ -492,6 +509,7 @@ void PairPeriNosb::init_style()
     }
   }
   configure_model();
+  check_membranes();
 
   // every bond partner must have one image within reach: a periodic box at least two horizons
   // wide in each periodic direction (checked here at every run, since change_box can shrink
@@ -546,6 +564,40 @@ void PairPeriNosb::init_style()
                    "again from the first step of the next run\n");
 }
 
+/* ----------------------------------------------------------------------
+   membrane types: their atoms must be vertices of a mesh read with read_mesh (the membrane
+   correspondence needs the mesh's normals and thickness)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::check_membranes()
+{
+  // (asked for in every deck: after read_restart, find() re-creates the mesh fix from the
+  // file's data before LAMMPS discards it)
+  FixNosbMesh *mesh = FixNosbMesh::find(lmp);
+  if (!model_->any_membrane()) return;
+  tagint bad = 0;
+  int badtype = 0;
+  for (int i = 0; i < atom->nlocal && !bad; i++) {
+    if (!model_->membrane(atom->type[i])) continue;
+    if (!mesh || mesh->mesh[i] == 0) {
+      bad = atom->tag[i];
+      badtype = atom->type[i];
+    }
+  }
+  tagint anybad = 0;
+  MPI_Allreduce(&bad, &anybad, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  if (anybad) {
+    if (bad == anybad)
+      error->one(FLERR,
+                 "Pair peri/nosb: atom {} is of type {}, a membrane type (pair_coeff ... "
+                 "membrane yes), but not a vertex of a mesh read with read_mesh: membrane "
+                 "particles are made by read_mesh",
+                 bad, badtype);
+    MPI_Barrier(world);
+    error->all(FLERR, "Pair peri/nosb: an atom of a membrane type is not a mesh vertex");
+  }
+}
+
 /* ---------------------------------------------------------------------- */
 
 double PairPeriNosb::init_one(int i, int j)
@@ -564,10 +616,17 @@ void PairPeriNosb::configure_model()
   const int n = atom->ntypes;
   model_->set_ntypes(n);
   for (int i = 1; i <= n; i++) {
-    const auto lame = PeriSISSM::lame_from_bulk_shear(bulk[i][i], shear[i][i]);
-    model_->set_type(
-        i, PeriSISSM::make_material(PeriSISSM::material_names()[modelid[i][i]], lame.mu, lame.lambda),
-        cs[i][i], bulk[i][i]);
+    const std::string &name = PeriSISSM::material_names()[modelid[i][i]];
+    if (name == "xu") {
+      // one modulus s0 (in K's place): mu = s0, lambda = 0, so its bulk modulus is 2 s0 / 3
+      model_->set_type(i, PeriSISSM::make_material(name, bulk[i][i], 0.0), cs[i][i],
+                       2.0 * bulk[i][i] / 3.0);
+    } else {
+      const auto lame = PeriSISSM::lame_from_bulk_shear(bulk[i][i], shear[i][i]);
+      model_->set_type(i, PeriSISSM::make_material(name, lame.mu, lame.lambda), cs[i][i],
+                       bulk[i][i]);
+    }
+    model_->set_membrane(i, membraneflag[i][i] != 0);
     for (int j = i; j <= n; j++) model_->set_pair(i, j, cut[i][j], contactflag[i][j], kcontact[i][j]);
   }
   model_->breaking().configure(
@@ -579,6 +638,8 @@ void PairPeriNosb::configure_model()
 
 void PairPeriNosb::grow_peratom()
 {
+  if (model_->any_membrane() && !cnormal && nmax > 0)
+    memory->create(cnormal, 3 * nmax, "pair:cnormal");
   if (atom->nmax <= nmax) return;
   using PeriSISSM::ParticleFields;
   nmax = atom->nmax;
@@ -587,11 +648,13 @@ void PairPeriNosb::grow_peratom()
   memory->destroy(kstate);
   memory->destroy(wdens);
   memory->destroy(s0_new);
+  memory->destroy(cnormal);
   memory->create(kstate, nmax * ParticleFields::NK, "pair:kstate");
   memory->create(gstate, nmax * ParticleFields::NG, "pair:gstate");
   memory->create(hstate, nmax * 9, "pair:hstate");
   memory->create(wdens, nmax, "pair:wdens");
   memory->create(s0_new, nmax, "pair:s0_new");
+  if (model_->any_membrane()) memory->create(cnormal, 3 * nmax, "pair:cnormal");
 }
 
 /* ----------------------------------------------------------------------
@@ -602,6 +665,7 @@ PeriSISSM::Particles PairPeriNosb::particles() const
 {
   PeriSISSM::Particles p;
   p.nlocal = atom->nlocal;
+  p.nall = atom->nlocal + atom->nghost;
   p.x = atom->x[0];
   p.x0 = atom->x0[0];
   p.volume = atom->vfrac;
@@ -658,6 +722,7 @@ void PairPeriNosb::compute(int eflag, int vflag)
   fields.w = wdens;
   fields.energy = eflag_either;
   fields.smin_new = s0_new;
+  fields.normal = cnormal;
   PeriSISSM::Virial vir;
   if (vflag_either) {
     if (vflag_global) vir.global = virial;
@@ -812,6 +877,7 @@ void PairPeriNosb::write_restart(FILE *fp)
         fwrite(name.c_str(), sizeof(char), len, fp);
         fwrite(&breakflag[i][j], sizeof(int), 1, fp);
         fwrite(&contactflag[i][j], sizeof(int), 1, fp);
+        fwrite(&membraneflag[i][j], sizeof(int), 1, fp);
         fwrite(&bulk[i][j], sizeof(double), 1, fp);
         fwrite(&shear[i][j], sizeof(double), 1, fp);
         fwrite(&cut[i][j], sizeof(double), 1, fp);
@@ -852,15 +918,15 @@ void PairPeriNosb::read_restart(FILE *fp)
       if (len < 1 || len > 256)
         error->all(FLERR, "Pair peri/nosb: restart file is corrupt (model name of {} chars)", len);
       std::vector<char> name(len);
-      int iv[2];
+      int iv[3];
       double dv[6];
       if (me == 0) {
         utils::sfread(FLERR, name.data(), sizeof(char), len, fp, nullptr, error);
-        utils::sfread(FLERR, iv, sizeof(int), 2, fp, nullptr, error);
+        utils::sfread(FLERR, iv, sizeof(int), 3, fp, nullptr, error);
         utils::sfread(FLERR, dv, sizeof(double), 6, fp, nullptr, error);
       }
       MPI_Bcast(name.data(), len, MPI_CHAR, 0, world);
-      MPI_Bcast(iv, 2, MPI_INT, 0, world);
+      MPI_Bcast(iv, 3, MPI_INT, 0, world);
       MPI_Bcast(dv, 6, MPI_DOUBLE, 0, world);
       name[len - 1] = '\0';
       const auto &names = PeriSISSM::material_names();
@@ -873,6 +939,7 @@ void PairPeriNosb::read_restart(FILE *fp)
       modelid[i][j] = (int) (found - names.begin());
       breakflag[i][j] = iv[0];
       contactflag[i][j] = iv[1];
+      membraneflag[i][j] = iv[2];
       bulk[i][j] = dv[0];
       shear[i][j] = dv[1];
       cut[i][j] = dv[2];
@@ -891,6 +958,6 @@ double PairPeriNosb::memory_usage()
   double bytes = (double) nmax * (ParticleFields::NG + ParticleFields::NK + 9 + 2) * sizeof(double);
   bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
   const double n = atom->ntypes + 1;
-  bytes += n * n * (11.0 * sizeof(double) + 4.0 * sizeof(int));
+  bytes += n * n * (11.0 * sizeof(double) + 5.0 * sizeof(int));
   return bytes;
 }

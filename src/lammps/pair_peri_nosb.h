@@ -77,6 +77,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   int **modelid;            // index into PeriSISSM::material_names()
   double **bulk, **shear, **cut, **s00, **alpha, **cs;
   int **breakflag, **contactflag;
+  int **membraneflag;       // membrane keyword (a type property: pair_coeff I I)
   double **kcontact;        // short-range contact stiffness 15 * 18 K / (pi delta^4)
   double **g0;              // G0 keyword (critical energy release rate), 0 = s00 given
   double **g0_s00;          // s00 that G0 gave at the last init (to log it once)
@@ -106,7 +107,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   bool contact_reachable(double moved) const;
   double contact_horizon() const;
   int state_nlocal;         // nlocal when compute() last filled the per-atom state
-  enum { RESTART_VERSION = 2 };
+  enum { RESTART_VERSION = 3 };
 
   // per-atom results of the last compute() (owned atoms; ghosts as communicated), rows of
   // PeriSISSM::ParticleFields
@@ -116,6 +117,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   double *kstate;           // implicit stiffness and C (fix sissm)
   double *wdens;            // energy density
   double *s0_new;
+  double *cnormal;          // current normals of membrane particles (decks with membranes only)
   std::vector<int> broke;   // atoms that lost bonds in the last compute()
   const PeriSISSM::HaloField *comm_fields;    // the fields forward_comm sends
   int comm_nfields;
@@ -125,6 +127,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   void check_material_density();
   void s00_from_fracture_energy();
   void configure_model();
+  void check_membranes();
   PeriSISSM::Particles particles() const;
   void grow_peratom();
   void compute_contact(int, int);
