@@ -87,7 +87,7 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
     track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
     state_nlocal(-1), nmax(0),
-    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr),
+    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), any_bend(0), meshfix(nullptr),
     comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
@@ -286,7 +286,7 @@ void PairPeriNosb::coeff(int narg, char **argin)
                arg[5]);
 
   double cs_one = DEFAULT_CS;
-  double g0_one = 0.0;
+  double g0_one = 0.0, bend_one = 0.0;
   int break_one = 1, contact_one = 1, membrane_one = 0;
   int iarg = 8;
   while (iarg < narg) {
@@ -310,6 +310,19 @@ void PairPeriNosb::coeff(int narg, char **argin)
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb membrane", error);
       membrane_one = coeff_flag("membrane", arg[iarg + 1], error);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "bend") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb bend", error);
+      if (strcmp(arg[iarg + 1], "auto") == 0) bend_one = -1.0;
+      else if (strcmp(arg[iarg + 1], "no") == 0) bend_one = 0.0;
+      else {
+        bend_one = coeff_number("bend D", arg[iarg + 1], error);
+        if (bend_one <= 0.0)
+          error->all(FLERR,
+                     "Illegal pair_coeff peri/nosb command: bend D must be > 0 (or auto, or no), "
+                     "got {}",
+                     arg[iarg + 1]);
+      }
+      iarg += 2;
     } else if (strcmp(arg[iarg], "G0") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb G0", error);
       g0_one = coeff_number("G0", arg[iarg + 1], error);
@@ -320,10 +333,16 @@ void PairPeriNosb::coeff(int narg, char **argin)
     } else {
       error->all(FLERR,
                  "Illegal pair_coeff peri/nosb command: unknown keyword '{}' (allowed: "
-                 "stabilize, break, contact, membrane, G0)",
+                 "stabilize, break, contact, membrane, bend, G0)",
                  arg[iarg]);
     }
   }
+
+  if (bend_one != 0.0 && !membrane_one)
+    error->all(FLERR,
+               "Illegal pair_coeff peri/nosb command: bend is a term of membranes (add "
+               "'membrane yes' to the line of type {})",
+               arg[0]);
 
   // s00 = NULL without the G0 keyword: the material file's G0, if it gives one
   if (s00_null && g0_one == 0.0 && file_g0 > 0.0 && break_one) g0_one = file_g0;
@@ -375,12 +394,15 @@ void PairPeriNosb::coeff(int narg, char **argin)
     error->all(FLERR, "Incorrect args for pair_coeff peri/nosb command: no type pair in {} {}",
                arg[0], arg[1]);
 
-  // the density of the file's entry, checked against the atoms of the type at init
+  // the density of the file's entry, checked against the atoms of the type at init; the
+  // bending modulus (a type property)
   material_density.resize(atom->ntypes + 1, 0.0);
   material_name.resize(atom->ntypes + 1);
+  bend.resize(atom->ntypes + 1, 0.0);
   for (int i = std::max(ilo, jlo); i <= std::min(ihi, jhi); i++) {
     material_density[i] = file_density;
     material_name[i] = file_material;
+    bend[i] = bend_one;
   }
 }
 
@@ -574,6 +596,21 @@ void PairPeriNosb::check_membranes()
   // (asked for in every deck: after read_restart, find() re-creates the mesh fix from the
   // file's data before LAMMPS discards it)
   FixNosbMesh *mesh = FixNosbMesh::find(lmp);
+  meshfix = mesh;
+  const int n = atom->ntypes;
+  bend.resize(n + 1, 0.0);
+  bend_auto_factor.assign(n + 1, 0.0);
+  any_bend = 0;
+  for (int t = 1; t <= n; t++) {
+    if (bend[t] == 0.0) continue;
+    any_bend = 1;
+    // E and nu of the type's material (xu: E = 2 s0, nu = 0)
+    const bool xu = PeriSISSM::material_names()[modelid[t][t]] == "xu";
+    const double K = bulk[t][t], G = shear[t][t];
+    const double E = xu ? 2.0 * K : 9.0 * K * G / (3.0 * K + G);
+    const double nu = xu ? 0.0 : (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G));
+    bend_auto_factor[t] = E / (12.0 * (1.0 - nu * nu));
+  }
   if (!model_->any_membrane()) return;
   tagint bad = 0;
   int badtype = 0;
@@ -733,6 +770,7 @@ void PairPeriNosb::compute(int eflag, int vflag)
   PeriSISSM::evaluate_bond_terms(*model_, p, family->view(), family->box, mode, block_rows,
                                  fields, halo, vir, broke);
   family->forget_broken(broke);
+  if (any_bend && meshfix) compute_bending();
 
   if (eflag_either) {
     const int nlocal = atom->nlocal;
@@ -887,6 +925,8 @@ void PairPeriNosb::write_restart(FILE *fp)
       }
     }
   }
+  bend.resize(atom->ntypes + 1, 0.0);
+  fwrite(bend.data() + 1, sizeof(double), atom->ntypes, fp);
 }
 
 /* ----------------------------------------------------------------------
@@ -948,6 +988,9 @@ void PairPeriNosb::read_restart(FILE *fp)
       cs[i][j] = dv[5];
     }
   }
+  bend.assign(atom->ntypes + 1, 0.0);
+  if (me == 0) utils::sfread(FLERR, bend.data() + 1, sizeof(double), atom->ntypes, fp, nullptr, error);
+  MPI_Bcast(bend.data() + 1, atom->ntypes, MPI_DOUBLE, 0, world);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -85,6 +85,11 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   // per type: density and name of the material file entry of pair_coeff I I (0: numbers given)
   std::vector<double> material_density;
   std::vector<std::string> material_name;
+  // per type: bending modulus of pair_coeff I I ... bend (0 = none, -1 = auto), and for auto
+  // E / (12 (1 - nu^2)) of its material (set at init; D = that times the thickness cubed)
+  std::vector<double> bend, bend_auto_factor;
+  int any_bend;
+  class FixNosbMesh *meshfix;    // the meshes (read_mesh), null if none
   // summary flags
   int any_break, any_contact;
   int external_breaking;    // 1: compute() does not break bonds (inside an implicit step)
@@ -131,6 +136,8 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   PeriSISSM::Particles particles() const;
   void grow_peratom();
   void compute_contact(int, int);
+  void compute_bending();
+  double bending_modulus(int i) const;
   void build_contact_list(double margin);
   void neighbor_rebuilt();
   bool bonded(int i, tagint jtag) const;

@@ -117,3 +117,110 @@ def test_xu_needs_positive_s0(tmp_path):
     run = run_deck(STRIP, tmp_path, check=False, variables={"mesh": mesh, "model": "xu",
                                                             "E": -1.0, "steps": 0})
     assert any("xu modulus s0 must be > 0" in e for e in run.errors), run.errors
+
+
+# ---- bending (pair_coeff ... bend) ----
+
+CYLINDER = Path(__file__).parent / "decks" / "membrane_cylinder.lmp"
+
+
+def hinge_energy_sum(vertices, faces, positions, D):
+    """Independent sum of the hinge energies D |e0|^2 / (2 A0) theta^2 over the interior edges
+    (doc/theory.rst, "Bending"), with theta the dihedral angle of the deformed mesh."""
+    import math
+    third = {}
+    for t in faces:
+        for k in range(3):
+            third[(t[k], t[(k + 1) % 3])] = t[(k + 2) % 3]
+
+    def sub(a, b):
+        return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+
+    def cross(a, b):
+        return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+    def dot(a, b):
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+    total = 0.0
+    for (a, b), c in third.items():
+        if a > b or (b, a) not in third:
+            continue
+        d = third[(b, a)]
+        X = vertices
+        e = sub(X[b], X[a])
+        area = 0.5 * (math.sqrt(dot(cross(e, sub(X[c], X[a])), cross(e, sub(X[c], X[a])))) +
+                      math.sqrt(dot(cross(sub(X[d], X[a]), e), cross(sub(X[d], X[a]), e))))
+        Y = positions
+        e = sub(Y[b], Y[a])
+        na, nb = cross(e, sub(Y[c], Y[a])), cross(sub(Y[d], Y[a]), e)
+        theta = math.atan2(dot(cross(na, nb), e) / math.sqrt(dot(e, e)), dot(na, nb))
+        total += 0.5 * D * dot(sub(X[b], X[a]), sub(X[b], X[a])) / area * theta * theta
+    return total
+
+
+def cylinder(tmp_path, **variables):
+    vertices, faces = make_sheet.rectangle(0.3, 0.3, 0.01, "alternate", 0.0, 1)
+    path = Path(tmp_path) / "plate.obj"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    make_sheet.write_obj(path, vertices, faces, ["plate"])
+    run = run_deck(CYLINDER, tmp_path, variables={"mesh": path, **variables})
+    return vertices, faces, {k: v[-1] for k, v in run.thermo[-1].items()}
+
+
+# The bending energy LAMMPS reports for a plate bent into a cylinder (the energy with bend auto
+# minus the same run's without bending) is the sum of the hinge energies computed here
+# independently (D = E t^3 / 12 with bend auto and nu = 0), to round-off (1e-9 relative); the
+# same after a rigid rotation (the term is rotation invariant). It is about 3% below D kappa^2 / 2
+# times the area: the rim's triangles have fewer hinges (the deficit falls like 1 / n, n = 30
+# cells). The membrane energy of the isometric bending is small but not zero (the bonds' chords
+# across the curved sheet are shorter than the arcs: strain ~ (kappa delta)^2 / 24; measured
+# 5e-4 of the bending energy here).
+@pytest.mark.parametrize("direction", ["x", "y"])
+def test_bending_energy_of_a_cylinder(tmp_path, direction):
+    import math
+    kappa, E_, t = 2.0, 1.0e8, 0.02
+    D = E_ * t ** 3 / 12.0
+    vertices, faces, out = cylinder(tmp_path / "a", dir=direction, kappa=kappa,
+                                    extra="bend auto stabilize 0")
+    _, _, flat = cylinder(tmp_path / "n", dir=direction, kappa=kappa, extra="stabilize 0")
+    k = "xy".index(direction)
+    positions = []
+    for v in vertices:
+        p = list(v)
+        p[k] = math.sin(kappa * v[k]) / kappa
+        p[2] = (1.0 - math.cos(kappa * v[k])) / kappa
+        positions.append(p)
+    expected = hinge_energy_sum(vertices, faces, positions, D)
+    bending = out["c_energy"] - flat["c_energy"]
+    assert abs(bending / expected - 1.0) < 1e-9, (bending, expected)
+    assert 0.95 < expected / (D * kappa ** 2 / 2 * 0.09) < 0.99
+    assert 0 < flat["c_energy"] < 1e-3 * bending
+    _, _, turned = cylinder(tmp_path / "b", dir=direction, kappa=kappa, turn=70.0,
+                            extra="bend auto stabilize 0")
+    assert abs(turned["c_energy"] / out["c_energy"] - 1.0) < 1e-10
+
+
+def test_bending_force_is_the_energy_gradient(tmp_path):
+    """The z force on an interior vertex of the bent plate (all terms: membrane, stabilization,
+    bending) against central differences of the energy (step 1e-7 m on a 1 cm mesh: truncation
+    ~1e-14 relative, round-off ~1e-16 |E| / 1e-7 ~ 1e-8 N): to 1e-5 relative."""
+    probe = 16 * 31 + 14    # an interior vertex (row 16, column 14 of the 31 x 31 grid)
+    common = {"dir": "y", "kappa": 2.0, "extra": "bend auto", "probe": probe}
+    _, _, at = cylinder(tmp_path / "0", **common)
+    h = 1.0e-7
+    _, _, up = cylinder(tmp_path / "p", step=h, **common)
+    _, _, down = cylinder(tmp_path / "m", step=-h, **common)
+    fd = -(up["c_energy"] - down["c_energy"]) / (2 * h)
+    assert abs(at["v_fz"]) > 1e-3
+    assert abs(at["v_fz"] - fd) < 1e-5 * abs(at["v_fz"]), (at["v_fz"], fd)
+
+
+def test_bend_needs_a_membrane(tmp_path):
+    mesh = strip_mesh(tmp_path)
+    run = run_deck(STRIP, tmp_path, check=False, variables={
+        "mesh": mesh, "steps": 0, "extra": "bend auto"})
+    assert run.ok
+    deck = (STRIP.read_text().replace("membrane yes ${extra}", "bend 1.0"))
+    run = run_deck(deck, tmp_path / "bad", check=False, variables={"mesh": mesh, "steps": 0})
+    assert any("bend is a term of membranes" in e for e in run.errors), run.errors
