@@ -2,6 +2,7 @@
 """Make a triangle-mesh sheet (a rectangle or a disc in the plane z = 0) as a Wavefront OBJ file.
 
     python3 tools/make_sheet.py rectangle 1.0 0.5 --spacing 0.05 -o sheet.obj
+    python3 tools/make_sheet.py rectangle 1.0 0.5 --spacing 0.05 --pattern equilateral -o cloth.obj
     python3 tools/make_sheet.py disc 0.5 --spacing 0.02 --jitter 0.2 --seed 3 -o disc.obj
 
 The file holds `v x y z` and `f a b c` lines (1-based vertex indices), the form `read_mesh`
@@ -10,13 +11,31 @@ listed counter-clockwise seen from +z, so its normal by the right-hand rule is +
 on standard output sums the mesh up: vertices, faces, total area, shortest and longest edge,
 smallest angle.
 
-rectangle LX LY: a grid of nx = round(LX/a) + 1 by ny = round(LY/a) + 1 vertices (a the
---spacing; Python's round, halves to even; at least one cell each way), so the spacings are
-dx = LX/(nx-1), dy = LY/(ny-1) and the sheet has exactly the size asked for. Each cell is cut
-into two right triangles: --pattern alternate (the default) flips the diagonal from cell to cell
-like a chequerboard, so the diagonals criss-cross (a union-jack pattern: every other interior
-vertex joins 8 edges, the rest 4) and no diagonal direction is preferred; --pattern right cuts
-every cell from its lower-left to its upper-right corner.
+rectangle LX LY (--pattern alternate or right; equilateral below): a grid of
+nx = round(LX/a) + 1 by ny = round(LY/a) + 1 vertices (a the --spacing; Python's round, halves
+to even; at least one cell each way), so the spacings are dx = LX/(nx-1), dy = LY/(ny-1) and
+the sheet has exactly the size asked for. Each cell is cut into two right triangles:
+--pattern alternate (the default) flips the diagonal from cell to cell like a chequerboard, so
+the diagonals criss-cross (a union-jack pattern: every other interior vertex joins 8 edges, the
+rest 4) and no diagonal direction is preferred; --pattern right cuts every cell from its
+lower-left to its upper-right corner.
+
+--pattern equilateral: rows of vertices parallel to x, ny = round(LY/h) + 1 of them with
+h = a sqrt(3)/2 (so dy = LY/(ny-1)), every odd row (counting from 0 at the bottom) shifted by
+dx/2; nx = round(LX/a) + 1 and dx = LX/(nx-1) as above. An even row holds the nx vertices
+x0 + i dx (x0 = -LX/2); an odd row holds nx + 1: its interior vertices at x0 + dx/2 + k dx and
+its ends exactly on the left and right edges. Between two rows lie 2(nx-1) - 1 equilateral
+triangles (every interior vertex joins 6 edges, along 0 and about +-60 degrees) and at each end
+a right-angled half (legs dx/2 and dy), 2(nx-1) + 1 in all: with mx = nx-1, my = ny-1 cells,
+(mx+1)(my+1) + floor((my+1)/2) vertices and (2mx+1) my triangles. Equilateral only up to the
+rounding: with q = 2 dy / (sqrt(3) dx) (1 when a fits both ways), the full triangles have
+base angles atan(sqrt(3) q) and apex 180 - 2 atan(sqrt(3) q) degrees, the halves 90,
+atan(sqrt(3) q) and atan(1/(sqrt(3) q)); the smallest angle of the sheet is
+min(atan(1/(sqrt(3) q)), atan(sqrt(3) q)) (30 degrees at q = 1, in a half). Since dx/a and
+dy/h lie within 1/(2mx) and 1/(2my) of 1, mx, my >= 10 keep every full triangle's angles
+within 5.1 degrees of 60 and the smallest angle within 2.6 degrees of 30. This is the pattern
+for bending: the discrete-shells hinge energy is isotropic on equilateral triangles only (on
+the right-triangle patterns it is 1.5 times stiffer about the diagonals).
 
 disc R: the centre and n = round(R/a) rings (at least one), ring k at radius k h with h = R/n
 (so the outer ring lies on the circle) holding 6k equally spaced vertices, the first at angle
@@ -35,8 +54,15 @@ moves along the circle by an arc of at most f sx. Why no triangle can invert: th
 that end up on one line all lie within the largest displacement d of that line, so the
 triangle fitted in a strip of width 2d and its smallest altitude was at most 2d. The
 rectangle's triangles, seen in units of (dx, dy), have smallest altitude 1/sqrt(2) = 0.707
-against offsets of at most f; the disc's have at least 0.7232 h against offsets of at most
-f h. So any f below 0.35 is safe; the tool accepts f < 0.3 and checks every triangle anyway.
+(right triangles) or 2/sqrt(5) = 0.894 (the equilateral pattern's full triangles, (0, 0),
+(1, 0), (1/2, 1) in these units) against offsets of at most f; the disc's have at least
+0.7232 h against offsets of at most f h. So any f below 0.35 is safe. The equilateral
+pattern's halves at the left and right edges (smallest altitude 1/sqrt(5) = 0.447 in these
+units) are safe by another argument: two of their vertices stay on the edge line and in order
+(dy apart, each moving by at most f dy along it), the third starts dx/2 from that line and
+moves by at most f dx across it; twice the area is the product of the two distances,
+(1/2 - f) dx (1 - 2f) dy at least, positive for any f < 1/2. The tool accepts f < 0.3 and
+checks every triangle anyway.
 
 Functions for scripts and tests (vertices as (x, y, z) tuples, faces as 0-based (i, j, k)):
 rectangle(), disc(), write_obj(), read_obj(), check_triangles(), mesh_stats().
@@ -49,7 +75,7 @@ import random
 import shlex
 import sys
 
-PATTERNS = ("alternate", "right")
+PATTERNS = ("alternate", "right", "equilateral")
 MAX_JITTER = 0.3
 
 
@@ -82,10 +108,15 @@ def rectangle(Lx: float, Ly: float, a: float, pattern: str = "alternate",
               jitter: float = 0.0, seed: int = 1, center=(0.0, 0.0, 0.0)):
     """A rectangular sheet Lx (along x) by Ly (along y) centred at `center`.
 
-    Inputs:  Lx, Ly > 0 the size; a > 0 the target spacing; pattern "alternate" or "right";
-             jitter f in [0, 0.3) and seed of the irregular version; center (x, y, z).
-    Outputs: (vertices, faces): nx*ny vertices row by row (x fastest, from the corner at
-             -Lx/2, -Ly/2), 2(nx-1)(ny-1) counter-clockwise triangles (0-based).
+    Inputs:  Lx, Ly > 0 the size; a > 0 the target spacing; pattern "alternate", "right" or
+             "equilateral"; jitter f in [0, 0.3) and seed of the irregular version;
+             center (x, y, z).
+    Outputs: (vertices, faces), row by row from the bottom (y = -Ly/2), x fastest within a row.
+             alternate, right: mx = round(Lx/a), my = round(Ly/a) cells (at least 1),
+             (mx+1)(my+1) vertices, 2 mx my counter-clockwise triangles (0-based).
+             equilateral: mx = round(Lx/a), my = round(Ly/(a sqrt(3)/2)) (at least 1), even
+             rows of mx+1 vertices, odd rows of mx+2 (shifted by dx/2, ends on the edges):
+             (mx+1)(my+1) + (my+1)//2 vertices, (2mx+1) my counter-clockwise triangles.
     Raises ValueError on a bad argument or (never expected) an inverted triangle.
     """
     for name, value in (("width Lx", Lx), ("height Ly", Ly)):
@@ -94,18 +125,25 @@ def rectangle(Lx: float, Ly: float, a: float, pattern: str = "alternate",
     _check_common("rectangle", a, jitter)
     _require(pattern in PATTERNS, f"make_sheet rectangle: --pattern must be one of "
              f"{', '.join(PATTERNS)} (got '{pattern}')")
-    mx, my = max(1, round(Lx / a)), max(1, round(Ly / a))
-    nx = mx + 1
-    # i/mx - 0.5 is exactly -0.5 and 0.5 at the ends: the edges lie at +-Lx/2, +-Ly/2 exactly
-    points = [[Lx * (i / mx - 0.5), Ly * (j / my - 0.5)]
-              for j in range(my + 1) for i in range(mx + 1)]
+    equilateral = pattern == "equilateral"
+    row_height = a * math.sqrt(3.0) / 2.0 if equilateral else a
+    mx, my = max(1, round(Lx / a)), max(1, round(Ly / row_height))
+    # each row's vertices as fractions t of the width, x = Lx (t - 1/2): t = 0 and 1 give the
+    # edges at -+Lx/2 exactly (as j/my - 1/2 gives -+Ly/2); shifted rows add the two ends
+    grid = [i / mx for i in range(mx + 1)]
+    shifted = [0.0] + [(k + 0.5) / mx for k in range(mx)] + [1.0]
+    rows = [shifted if equilateral and j % 2 else grid for j in range(my + 1)]
+    start = [0]                                 # index of each row's first vertex
+    for row in rows:
+        start.append(start[-1] + len(row))
+    points = [[Lx * (t - 0.5), Ly * (j / my - 0.5)] for j, row in enumerate(rows) for t in row]
     if jitter > 0:
         rng = random.Random(seed)
         sx, sy = jitter * min(a, Lx / mx), jitter * min(a, Ly / my)
-        for j in range(my + 1):
-            for i in range(mx + 1):
-                p = points[j * nx + i]
-                inner_x, inner_y = 0 < i < mx, 0 < j < my
+        for j, row in enumerate(rows):
+            for i, t in enumerate(row):
+                p = points[start[j] + i]
+                inner_x, inner_y = 0 < t < 1, 0 < j < my
                 if inner_x and inner_y:
                     u, v = _in_unit_disc(rng)
                     p[0] += sx * u
@@ -116,16 +154,48 @@ def rectangle(Lx: float, Ly: float, a: float, pattern: str = "alternate",
                     p[1] += sy * (2.0 * rng.random() - 1.0)
     faces = []
     for j in range(my):
+        if equilateral:
+            faces += _equilateral_strip(start[j], start[j + 1], mx, j % 2 == 1)
+            continue
         for i in range(mx):
-            v00 = j * nx + i
-            v10, v01, v11 = v00 + 1, v00 + nx, v00 + nx + 1
+            v00 = start[j] + i
+            v10, v01, v11 = v00 + 1, v00 + mx + 1, v00 + mx + 2
             if pattern == "right" or (i + j) % 2 == 0:       # diagonal v00-v11
                 faces += [(v00, v10, v11), (v00, v11, v01)]
             else:                                            # diagonal v10-v01
                 faces += [(v00, v10, v01), (v10, v11, v01)]
     vertices = _placed(points, center)
-    check_triangles(vertices, faces, f"rectangle {Lx} {Ly} --spacing {a} --jitter {jitter}")
+    check_triangles(vertices, faces, f"rectangle {Lx} {Ly} --spacing {a} --pattern {pattern} "
+                                     f"--jitter {jitter}")
     return vertices, faces
+
+
+def _equilateral_strip(lower: int, upper: int, mx: int, lower_shifted: bool):
+    """The 2mx + 1 counter-clockwise triangles between two rows of the equilateral pattern.
+
+    Inputs:  lower, upper the index of each row's first vertex; mx the cells across; which row
+             is the shifted one (mx + 2 vertices s_0..s_mx+1; the other, u_0..u_mx, has mx + 1).
+    Outputs: the triangles from left to right: the half at the left edge, then alternately
+             one with a side on the unshifted row and one with a side on the shifted row, the
+             half at the right edge.
+    """
+    if not lower_shifted:                       # u below, s above
+        u, s = (lambda i: lower + i), (lambda k: upper + k)
+        faces = [(u(0), s(1), s(0))]
+        for i in range(mx):
+            faces.append((u(i), u(i + 1), s(i + 1)))
+            if i < mx - 1:
+                faces.append((u(i + 1), s(i + 2), s(i + 1)))
+        faces.append((u(mx), s(mx + 1), s(mx)))
+    else:                                       # s below, u above
+        s, u = (lambda k: lower + k), (lambda i: upper + i)
+        faces = [(s(0), s(1), u(0))]
+        for i in range(mx):
+            faces.append((s(i + 1), u(i + 1), u(i)))
+            if i < mx - 1:
+                faces.append((s(i + 1), s(i + 2), u(i + 1)))
+        faces.append((s(mx), s(mx + 1), u(mx)))
+    return faces
 
 
 def disc(R: float, a: float, jitter: float = 0.0, seed: int = 1, center=(0.0, 0.0, 0.0)):
@@ -344,7 +414,9 @@ def main(argv=None):
     rect.add_argument("Lx", type=float, metavar="LX", help="width along x")
     rect.add_argument("Ly", type=float, metavar="LY", help="height along y")
     rect.add_argument("--pattern", choices=PATTERNS, default="alternate",
-                      help="diagonals criss-crossing (alternate, default) or all one way")
+                      help="right triangles with diagonals criss-crossing (alternate, "
+                           "default) or all one way (right), or equilateral triangles in rows "
+                           "of height a sqrt(3)/2 (equilateral: isotropic bending)")
     circle = shapes.add_parser("disc", parents=[common], help="disc of radius R")
     circle.add_argument("R", type=float, help="radius")
     args = ap.parse_args(argv)

@@ -21,16 +21,42 @@ def lmp_built():
 
 
 # (Lx, Ly, a, pattern): square and oblong cells, and a sheet thinner than half the spacing
-# (one cell across)
+# (one cell across); equilateral with an even (6, 8) and odd (7, 1) number of rows of triangles
 RECTANGLES = [(1.0, 0.5, 0.1, "alternate"), (1.0, 0.5, 0.1, "right"),
               (0.7, 0.3, 0.045, "alternate"), (0.7, 0.3, 0.045, "right"),
-              (0.2, 0.04, 0.1, "alternate")]
+              (0.2, 0.04, 0.1, "alternate"),
+              (1.0, 0.5, 0.1, "equilateral"), (0.7, 0.3, 0.045, "equilateral"),
+              (0.5, 0.6, 0.1, "equilateral"), (0.2, 0.04, 0.1, "equilateral")]
 DISCS = [(0.5, 0.05), (1.0, 0.3), (0.1, 0.5)]      # (R, a): n = 10, 3 and 1 (the minimum)
 JITTERS = [0.0, 0.1, 0.29]
 
 
 def cells(length, a):
     return max(1, round(length / a))
+
+
+def rect_cells(Lx, Ly, a, pattern):
+    """(mx, my): cells across and rows of cells (rows of height a sqrt(3)/2 if equilateral)."""
+    return cells(Lx, a), cells(Ly, a * math.sqrt(3) / 2 if pattern == "equilateral" else a)
+
+
+def rect_counts(mx, my, pattern):
+    """(vertices, faces, boundary edges) of a rectangle of mx by my cells."""
+    if pattern == "equilateral":    # odd rows have one vertex more; a top odd row one edge more
+        return (mx + 1) * (my + 1) + (my + 1) // 2, (2 * mx + 1) * my, 2 * (mx + my) + my % 2
+    return (mx + 1) * (my + 1), 2 * mx * my, 2 * (mx + my)
+
+
+def halves(vertices, faces, Lx):
+    """The faces with two vertices on one of the edges x = -+Lx/2, as (face, the two on the
+    edge, the other one): in the equilateral pattern, its right-angled halves."""
+    out = []
+    for face in faces:
+        for edge in (-Lx / 2, Lx / 2):
+            on = [i for i in face if vertices[i][0] == edge]
+            if len(on) == 2:
+                out.append((face, on, next(i for i in face if i not in on)))
+    return out
 
 
 def twice_area(vertices, face):
@@ -115,11 +141,12 @@ def angle_bound(regular, face, d):
 @pytest.mark.parametrize("jitter", JITTERS)
 @pytest.mark.parametrize("Lx, Ly, a, pattern", RECTANGLES)
 def test_rectangle(Lx, Ly, a, pattern, jitter):
-    mx, my = cells(Lx, a), cells(Ly, a)
+    mx, my = rect_cells(Lx, Ly, a, pattern)
+    n_vertices, n_faces, n_boundary = rect_counts(mx, my, pattern)
     vertices, faces = ms.rectangle(Lx, Ly, a, pattern, jitter, seed=7)
-    assert len(vertices) == (mx + 1) * (my + 1)
-    assert len(faces) == 2 * mx * my
-    check_sheet(vertices, faces, 2 * (mx + my))
+    assert len(vertices) == n_vertices
+    assert len(faces) == n_faces
+    check_sheet(vertices, faces, n_boundary)
     area = math.fsum(0.5 * twice_area(vertices, f) for f in faces)
     assert abs(area - Lx * Ly) <= 1e-12 * Lx * Ly
     assert ms.mesh_stats(vertices, faces)["area"] == pytest.approx(Lx * Ly, rel=1e-12, abs=0)
@@ -131,8 +158,10 @@ def test_rectangle(Lx, Ly, a, pattern, jitter):
         assert vertices == regular
         assert all(v[0] in (-Lx / 2, Lx / 2) or v[1] in (-Ly / 2, Ly / 2)
                    for v in vertices[:mx + 1] + vertices[-mx - 1:])
-        # right triangles with legs dx and dy: the smallest angle is atan(short/long)
-        smallest = math.degrees(math.atan(min(dx, dy) / max(dx, dy)))
+        if pattern == "equilateral":    # the halves' legs dx/2, dy; the full ones' base angle
+            smallest = math.degrees(min(math.atan(dx / (2 * dy)), math.atan(2 * dy / dx)))
+        else:   # right triangles with legs dx and dy: the smallest angle is atan(short/long)
+            smallest = math.degrees(math.atan(min(dx, dy) / max(dx, dy)))
         assert ms.mesh_stats(vertices, faces)["min_angle"] == pytest.approx(smallest, rel=1e-9)
         return
     sx, sy = jitter * min(a, dx), jitter * min(a, dy)
@@ -147,21 +176,41 @@ def test_rectangle(Lx, Ly, a, pattern, jitter):
         assert ((x - x0) / sx) ** 2 + ((y - y0) / sy) ** 2 <= 1 + 1e-9
         assert abs(x - x0) <= jitter * a * (1 + 1e-12) and abs(y - y0) <= jitter * a * (1 + 1e-12)
         moved += (x, y) != (x0, y0)
-    assert moved == len(vertices) - 4 if (mx, my) != (1, 1) else moved == 0
+        if not (on_x_edge or on_y_edge):                        # inside: both ways
+            assert x != x0 and y != y0
+    assert moved == len(vertices) - 4 if len(vertices) > 4 else moved == 0
     d = jitter * max(min(a, dx), min(a, dy))
     for face in faces:
         assert min(corner_angles(vertices, face)) >= angle_bound(regular, face, d) - 1e-12
+    if pattern != "equilateral":
+        return
+    least = (0.5 - jitter) * dx * (1 - 2 * jitter) * dy     # the docstring's bound
+    for face, _, _ in halves(regular, faces, Lx):
+        assert twice_area(vertices, face) >= least * (1 - 1e-12)
 
 
 @pytest.mark.parametrize("Lx, Ly, a, pattern", RECTANGLES)
 def test_rectangle_jitter_below_03_cannot_invert(Lx, Ly, a, pattern):
     """The documented guarantee for every seed: seen in units of (dx, dy) the offsets are at
     most f long, and three vertices that end up on one line lie in a strip of width 2f, so a
-    triangle whose smallest altitude (its least width) exceeds 2 x 0.3 cannot flip."""
-    mx, my = cells(Lx, a), cells(Ly, a)
+    triangle whose smallest altitude (its least width) exceeds 2 x 0.3 cannot flip. The
+    equilateral pattern's halves are narrower (1/sqrt(5)) but keep two vertices on an edge
+    line, dy apart, and their third dx/2 from it: offsets below 1/2 cannot flip them."""
+    mx, my = rect_cells(Lx, Ly, a, pattern)
     vertices, faces = ms.rectangle(Lx, Ly, a, pattern)
     unit = [(x / (Lx / mx), y / (Ly / my), 0.0) for x, y, _ in vertices]
-    assert min(smallest_altitude(unit, f) for f in faces) > 2 * ms.MAX_JITTER
+    half = []                                   # the equilateral pattern's halves
+    if pattern == "equilateral":
+        half = halves(vertices, faces, Lx)
+        assert len(half) == 2 * my
+    for face, on, other in half:
+        assert abs(unit[on[0]][1] - unit[on[1]][1]) == pytest.approx(1.0, rel=1e-12)
+        assert abs(abs(unit[other][0]) - mx / 2) == pytest.approx(0.5, rel=1e-12)
+        assert smallest_altitude(unit, face) == pytest.approx(1 / math.sqrt(5), rel=1e-12)
+    full = [f for f in faces if f not in {h[0] for h in half}]
+    assert min(smallest_altitude(unit, f) for f in full) > 2 * ms.MAX_JITTER
+    if pattern == "equilateral":
+        assert min(smallest_altitude(unit, f) for f in full) == pytest.approx(2 / math.sqrt(5))
     for seed in range(1, 6):
         ms.rectangle(Lx, Ly, a, pattern, 0.299, seed)          # checks every triangle
 
@@ -197,6 +246,81 @@ def test_rectangle_patterns():
 
     assert diagonals(alternate) == (16, 16)
     assert diagonals(right) == (32, 0)
+
+
+@pytest.mark.parametrize("rows", [8, 7])
+def test_rectangle_equilateral_when_a_fits(rows):
+    """Lx = 8a, Ly = rows x a sqrt(3)/2: every full triangle equilateral with side a, every
+    half right-angled with legs a/2 and a sqrt(3)/2 (30-60-90); rows alternate between 9
+    vertices at x0 + i a and 10 (x0 + a/2 + k a inside, the ends on the edges); inside, every
+    vertex joins 6 edges; the edges run along 0, 60 and 120 degrees, mx my of them along
+    each diagonal."""
+    a = 0.125
+    h = a * math.sqrt(3) / 2
+    Lx, Ly = 8 * a, rows * h
+    vertices, faces = ms.rectangle(Lx, Ly, a, "equilateral")
+    assert rect_cells(Lx, Ly, a, "equilateral") == (8, rows)
+    x0, i = -Lx / 2, 0
+    for j in range(rows + 1):
+        xs = ([x0 + k * a for k in range(9)] if j % 2 == 0
+              else [x0] + [x0 + a / 2 + k * a for k in range(8)] + [Lx / 2])
+        for x in xs:
+            assert vertices[i][0] == pytest.approx(x, abs=1e-15)
+            assert vertices[i][1] == pytest.approx(-Ly / 2 + j * h, abs=1e-15)
+            i += 1
+        assert vertices[i - len(xs)][0] == -Lx / 2 and vertices[i - 1][0] == Lx / 2
+    assert i == len(vertices)
+    half = {h[0] for h in halves(vertices, faces, Lx)}
+    assert len(half) == 2 * rows
+    for face in faces:
+        angles = sorted(math.degrees(t) for t in corner_angles(vertices, face))
+        if face in half:
+            assert sorted(sides(vertices, face)) == pytest.approx([a / 2, h, a], rel=1e-12)
+            assert angles == pytest.approx([30, 60, 90], abs=1e-9)
+        else:
+            assert sides(vertices, face) == pytest.approx((a, a, a), rel=1e-12)
+            assert angles == pytest.approx([60, 60, 60], abs=1e-9)
+    assert ms.mesh_stats(vertices, faces)["min_angle"] == pytest.approx(30.0, abs=1e-9)
+
+    edges = {(min(e), max(e)) for i, j, k in faces for e in ((i, j), (j, k), (k, i))}
+    degree = [0] * len(vertices)
+    directions = {}
+    for p, q in edges:
+        degree[p] += 1
+        degree[q] += 1
+        (x1, y1, _), (x2, y2, _) = vertices[p], vertices[q]
+        t = round(math.degrees(math.atan2(y2 - y1, x2 - x1)) % 180, 6)
+        directions[t] = directions.get(t, 0) + 1
+    inside = [v for v, (x, y, _) in enumerate(vertices) if abs(x) < Lx / 2 and abs(y) < Ly / 2]
+    assert inside and {degree[v] for v in inside} == {6}
+    assert sorted(directions) == [0.0, 60.0, 90.0, 120.0]
+    assert directions[60.0] == directions[120.0] == 8 * rows
+    assert directions[90.0] == 2 * rows                     # the left and right edges only
+
+
+@pytest.mark.parametrize("Lx_cells, Ly_rows", [(9.5001, 10.4999), (10.4999, 9.5001)])
+def test_rectangle_equilateral_rounding_bound(Lx_cells, Ly_rows):
+    """When a does not fit: 10 cells each way, one way stretched and the other squeezed by
+    almost 5%, the worst the docstring allows for mx, my >= 10. The smallest angle is
+    min(atan(1/(sqrt(3) q)), atan(sqrt(3) q)) with q = 2 dy / (sqrt(3) dx), within 2.6 degrees
+    of 30, and the full triangles' angles stay within 5.1 degrees of 60."""
+    a = 1.0
+    h = a * math.sqrt(3) / 2
+    Lx, Ly = Lx_cells * a, Ly_rows * h
+    assert rect_cells(Lx, Ly, a, "equilateral") == (10, 10)
+    vertices, faces = ms.rectangle(Lx, Ly, a, "equilateral")
+    dx, dy = Lx / 10, Ly / 10
+    q = 2 * dy / (math.sqrt(3) * dx)
+    assert abs(q - 1) > 0.09                                # near the extremes
+    smallest = ms.mesh_stats(vertices, faces)["min_angle"]
+    assert smallest == pytest.approx(math.degrees(min(math.atan(1 / (math.sqrt(3) * q)),
+                                                      math.atan(math.sqrt(3) * q))), rel=1e-9)
+    assert abs(smallest - 30) < 2.6
+    half = {h[0] for h in halves(vertices, faces, Lx)}
+    for face in faces:
+        angles = [math.degrees(t) for t in corner_angles(vertices, face)]
+        if face not in half:
+            assert max(abs(t - 60) for t in angles) < 5.1
 
 
 # ---------------------------------------------------------------- disc
@@ -262,6 +386,7 @@ def test_disc_jitter_below_03_cannot_invert(n):
 
 def test_center_moves_the_sheet():
     for make, args in ((ms.rectangle, (1.0, 0.5, 0.1, "alternate", 0.2, 3)),
+                       (ms.rectangle, (1.0, 0.5, 0.1, "equilateral", 0.2, 3)),
                        (ms.disc, (0.5, 0.1, 0.2, 3))):
         at_origin, faces = make(*args)
         moved, moved_faces = make(*args, center=(1.5, -2.0, 0.25))
@@ -275,6 +400,9 @@ def test_the_seed_decides_the_jitter():
     assert ms.rectangle(1, 1, 0.1, "right", 0.2, 5) == ms.rectangle(1, 1, 0.1, "right", 0.2, 5)
     assert ms.disc(1, 0.1, 0.2, 5) == ms.disc(1, 0.1, 0.2, 5)
     assert ms.rectangle(1, 1, 0.1, "right", 0.2, 5) != ms.rectangle(1, 1, 0.1, "right", 0.2, 6)
+    equilateral = ms.rectangle(1, 1, 0.1, "equilateral", 0.2, 5)
+    assert equilateral == ms.rectangle(1, 1, 0.1, "equilateral", 0.2, 5)
+    assert equilateral[0] != ms.rectangle(1, 1, 0.1, "equilateral", 0.2, 6)[0]
     assert ms.disc(1, 0.1, 0.2, 5)[0] != ms.disc(1, 0.1, 0.2, 6)[0]
     assert ms.disc(1, 0.1, 0.2)[0] == ms.disc(1, 0.1, 0.2, 1)[0]              # default seed 1
 
@@ -283,7 +411,8 @@ def test_the_seed_decides_the_jitter():
     (lambda: ms.rectangle(0, 1, 0.1), ["rectangle", "Lx", "0"]),
     (lambda: ms.rectangle(1, float("nan"), 0.1), ["rectangle", "Ly", "nan"]),
     (lambda: ms.rectangle(1, 1, -0.1), ["--spacing", "-0.1", "> 0"]),
-    (lambda: ms.rectangle(1, 1, 0.1, "left"), ["--pattern", "left", "alternate, right"]),
+    (lambda: ms.rectangle(1, 1, 0.1, "left"), ["--pattern", "left",
+                                                "alternate, right, equilateral"]),
     (lambda: ms.disc(1, 0.1, 0.3), ["disc", "--jitter", "0.3", "0 <= f < 0.3"]),
     (lambda: ms.disc(1, 0.1, -0.01), ["--jitter", "-0.01"]),
     (lambda: ms.disc(-1, 0.1), ["disc", "radius", "-1"]),
@@ -408,11 +537,22 @@ def test_command_line_writes_the_sheet(tmp_path):
     assert "# vertices 45 faces 64" in out.read_text()
     assert ", area 2, edges 0.25 to 0.353553, smallest angle 45 deg" in run.stdout
 
+    # 8 cells across, 6 rows of height 0.25 sqrt(3)/2: 9 x 7 + 3 vertices, 17 x 6 triangles
+    run = run_tool("rectangle", "2", str(6 * 0.25 * math.sqrt(3) / 2), "--spacing", "0.25",
+                   "--pattern", "equilateral", "--center", "1", "0", "0", "-o", str(out))
+    assert run.returncode == 0, run.stderr
+    assert ms.read_obj(out) == ms.rectangle(2.0, 6 * 0.25 * math.sqrt(3) / 2, 0.25,
+                                            "equilateral", center=(1, 0, 0))
+    assert "# vertices 66 faces 102" in out.read_text()
+    assert ", edges 0.125 to 0.25, smallest angle 30 deg" in run.stdout
+
 
 @pytest.mark.parametrize("args, words", [
     (["disc", "1", "--spacing", "0.1", "--jitter", "0.3"], ["--jitter", "0.3", "0 <= f < 0.3"]),
     (["rectangle", "1", "0", "--spacing", "0.1"], ["rectangle", "Ly", "0"]),
     (["rectangle", "1", "1", "--spacing", "0.1", "--pattern", "left"], ["--pattern", "left"]),
+    (["rectangle", "1", "1", "--spacing", "0.1", "--pattern", "equilateral", "--jitter", "0.3"],
+     ["--jitter", "0.3"]),
     (["disc", "1"], ["--spacing", "required"]),
 ])
 def test_command_line_refuses_bad_values(tmp_path, args, words):
