@@ -58,6 +58,11 @@ class ImplicitForces {
   // converged), 0 (it did not), -1 (explicit)
   virtual void check_motion(int converged) = 0;
 
+  // true when some particles are membranes (their out-of-plane motion has no stiffness of its
+  // own, which the coarse level does not yet handle: fix sissm's default preconditioner is then
+  // block)
+  virtual bool has_membranes() const = 0;
+
  protected:
   // not deleted through this interface (its implementations are LAMMPS styles whose
   // destructors may throw)

@@ -637,6 +637,13 @@ void PairPeriNosb::check_membranes()
 
 /* ---------------------------------------------------------------------- */
 
+bool PairPeriNosb::has_membranes() const
+{
+  return model_ && model_->any_membrane();
+}
+
+/* ---------------------------------------------------------------------- */
+
 double PairPeriNosb::init_one(int i, int j)
 {
   if (setflag[i][j] == 0) did_mix = true;

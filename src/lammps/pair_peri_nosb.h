@@ -71,6 +71,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   bool contact_end_of_step(const std::string &cause) override;
   bool group_coupled(int groupbit) override;
   void check_motion(int converged) override;
+  bool has_membranes() const override;
 
  protected:
   // per type pair (as given for i <= j; mixed and mirrored in init_style)
