@@ -144,6 +144,19 @@ inline void implicit_block(const Families &fam, const ParticleFields &fields, in
   }
   const double cdiag = 0.5 * (wsum * ki[6] + a[6]);
   for (int k = 0; k < 6; k++) out[k] = wsum * ki[k] + a[k] + (k < 3 ? cdiag : 0.0);
+  // a membrane's stabilization acts in its tangent plane only (stabilization.h): its share of
+  // the block is cdiag (I - n n^T) with the particle's current normal
+  if (fields.normal) {
+    const double *n = fields.normal + 3 * i;
+    if (n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0) {
+      out[0] -= cdiag * n[0] * n[0];
+      out[1] -= cdiag * n[1] * n[1];
+      out[2] -= cdiag * n[2] * n[2];
+      out[3] -= cdiag * n[0] * n[1];
+      out[4] -= cdiag * n[0] * n[2];
+      out[5] -= cdiag * n[1] * n[2];
+    }
+  }
 }
 
 template <int EVFLAG, int PBC, int BLOCKS>

@@ -36,8 +36,9 @@ void elastic_state_pass(const Model &model, const Particles &p, const Families &
 // the ghosts), and its virial (each end tallies half of (x_i - x_j) (x) V_i f_ij). When block
 // is not null (then fields.k of the ghosts is needed too), also the diagonal blocks
 //   block_i = sum_j omega_ij (H^+_i + H^+_j + (C_i + C_j)/2 I)   (xx yy zz xy xz yz)
-// the elastic term's implicit stiffness plus the stabilization term's (C_i + C_j)/2 omega I,
-// summed while the particle's bonds are in cache.
+// the elastic term's implicit stiffness plus the stabilization term's (C_i + C_j)/2 omega I
+// (for a membrane particle times I - n n^T, n its current normal in fields.normal: its
+// stabilization acts in its tangent plane), summed while the particle's bonds are in cache.
 void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
                         const ParticleFields &fields, const Virial &virial, double **block);
 

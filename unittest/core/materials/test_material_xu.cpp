@@ -19,7 +19,7 @@ using Eigen::Vector3d;
 using PeriSISSM::kXuThreshold;
 using PeriSISSM::XuMaterial;
 
-constexpr double kS0 = 8000.0;  // the talk's tablecloth
+constexpr double kS0 = 8000.0;  // the s0 of the SISSM authors' tablecloth scene
 
 // g(s) = (s^4 - 1)/4 + (s^-2 - 1)/2 and its derivatives as defined (s > 0).
 double g_def(double s) { return 0.25 * (std::pow(s, 4) - 1.0) + 0.5 * (std::pow(s, -2) - 1.0); }
