@@ -4,8 +4,8 @@
 # equilateral triangles), centred at the origin in the plane z = 0.
 #   ./make_meshes.sh        the CI mesh, cloth_ci.obj: 4 cm triangles, 1134 vertices, 2135 faces
 #                           (shipped)
-#   ./make_meshes.sh full   the talk's size, cloth_full.obj: 6.5 mm triangles, 39911 vertices,
-#                           79023 faces (the talk: 40.0K / 79.2K); not shipped (3 MB)
+#   ./make_meshes.sh full   the authors' size, cloth_full.obj: 6.5 mm triangles, 39911 vertices,
+#                           79023 faces (theirs: 40.0K / 79.2K); not shipped (3 MB)
 #   ./make_meshes.sh A      any spacing A (m), cloth_A.obj
 # The deck needs the spacing as -var a (the horizon and the neighbor skin are multiples of it).
 set -e
