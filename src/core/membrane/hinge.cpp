@@ -2,6 +2,8 @@
 
 #include "membrane/hinge.h"
 
+#include "linalg/small_matrix.h"
+
 #include <cmath>
 
 namespace PeriSISSM {
@@ -11,13 +13,6 @@ namespace {
 inline double dot(const double a[3], const double b[3])
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-inline void cross(const double a[3], const double b[3], double c[3])
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
 inline void sub(const double *a, const double *b, double c[3])
@@ -41,14 +36,14 @@ double hinge_angle(const double *x0, const double *x1, const double *x2, const d
   sub(x1, x0, e);
   sub(x2, x0, a);
   sub(x3, x0, b);
-  cross(e, a, na);
-  cross(b, e, nb);
+  cross3(e, a, na);
+  cross3(b, e, nb);
   const double le = std::sqrt(dot(e, e));
   const double la2 = dot(na, na), lb2 = dot(nb, nb);
   if (grad)
     for (int v = 0; v < 4; v++) grad[v][0] = grad[v][1] = grad[v][2] = 0.0;
   if (!(le > 0.0) || !(la2 > 0.0) || !(lb2 > 0.0)) return 0.0;
-  cross(na, nb, m);
+  cross3(na, nb, m);
   const double theta = std::atan2(dot(m, e) / le, dot(na, nb));
   if (grad) {
     double d2[3], d3[3];
@@ -102,8 +97,8 @@ double hinge_stiffness(double D, const double *x0, const double *x1, const doubl
   sub(x1, x0, e);
   sub(x2, x0, a);
   sub(x3, x0, b);
-  cross(e, a, na);
-  cross(b, e, nb);
+  cross3(e, a, na);
+  cross3(b, e, nb);
   const double area = 0.5 * (std::sqrt(dot(na, na)) + std::sqrt(dot(nb, nb)));
   return area > 0.0 ? 0.5 * D * dot(e, e) / area : 0.0;
 }

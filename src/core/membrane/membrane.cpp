@@ -2,6 +2,7 @@
 
 #include "membrane/membrane.h"
 
+#include "linalg/small_matrix.h"
 #include "materials/material.h"
 #include "peri/family.h"
 #include "peri/particle.h"
@@ -20,13 +21,6 @@ using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 inline double dot(const double a[3], const double b[3])
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-inline void cross(const double a[3], const double b[3], double c[3])
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
 // y = A x for row-major A
@@ -72,7 +66,7 @@ void tangent_frame(const double n0[3], double t1[3], double t2[3])
   const double along = n0[axis];
   for (int k = 0; k < 3; k++) t1[k] = (k == axis ? 1.0 : 0.0) - along * n0[k];
   normalize(t1);
-  cross(n0, t1, t2);
+  cross3(n0, t1, t2);
 }
 
 bool invert_membrane_shape_tensor(const double K[9], const double n0[3], double lambda_ref,
@@ -124,7 +118,7 @@ double membrane_state(const Material& material, const double M[9], const double 
   const double l1 = std::sqrt(dot(a1, a1)), l2 = std::sqrt(dot(a2, a2));
   const double lmax = std::max(l1, l2);
   double e1[3], e2[3], n[3];
-  cross(a1, a2, n);
+  cross3(a1, a2, n);
   const double area = std::sqrt(dot(n, n));
   if (lmax > 0.0) {
     const double *longer = l1 >= l2 ? a1 : a2;
@@ -141,7 +135,7 @@ double membrane_state(const Material& material, const double M[9], const double 
     for (int k = 0; k < 3; k++) n[k] = near[k] - along * e1[k];
     normalize(n);
   }
-  cross(n, e1, e2);
+  cross3(n, e1, e2);
   double m00 = dot(e1, a1), m01 = dot(e1, a2), m10 = dot(e2, a1), m11 = dot(e2, a2);
   if (m00 * m11 - m01 * m10 < 0.0) {
     // only in the collapsed case: orient n so that the in-plane map keeps its orientation

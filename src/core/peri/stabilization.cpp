@@ -2,6 +2,7 @@
 
 #include "peri/stabilization.h"
 
+#include "linalg/small_matrix.h"
 #include "membrane/membrane.h"
 #include "peri/bond_rows.h"
 #include "peri/model.h"
@@ -29,9 +30,25 @@ namespace {
 // The loop over the bonds of each particle forms z and the direct force, and stores u = 2 a_i
 // Cbar omega z with xi; the 3x3 sum Q of u (x) xi follows from those rows (bond_rows.h). The
 // energy is summed only when asked for (EFLAG), which keeps the loop at three accumulators.
+// the image of a membrane particle's reference tangent plane under F: a_k = F t_k for the
+// tangent frame (t1, t2) of its reference normal n0, and c = a1 x a2 (the current normal times
+// the area stretch)
+struct PlaneImage {
+  double t1[3], t2[3], a1[3], a2[3], c[3];
+  PlaneImage(const double *F, const double *n0)
+  {
+    tangent_frame(n0, t1, t2);
+    for (int k = 0; k < 3; k++) {
+      a1[k] = F[3 * k] * t1[0] + F[3 * k + 1] * t1[1] + F[3 * k + 2] * t1[2];
+      a2[k] = F[3 * k] * t2[0] + F[3 * k + 1] * t2[1] + F[3 * k + 2] * t2[2];
+    }
+    cross3(a1, a2, c);
+  }
+};
+
 // current unit normal of every membrane particle with an F (owned and ghost rows):
-// n = F t1 x F t2 / |F t1 x F t2|, (t1, t2) the tangent frame of its reference normal; zero for
-// the others and where the image of the plane has collapsed
+// n = F t1 x F t2 / |F t1 x F t2|; zero for the others and where the image of the plane has
+// collapsed
 void current_normals(const Model &model, const Particles &p, const Families &fam,
                      ParticleFields &fields)
 {
@@ -41,14 +58,8 @@ void current_normals(const Model &model, const Particles &p, const Families &fam
     n[0] = n[1] = n[2] = 0.0;
     const double *g = fields.g + NG * r;
     if (!model.membrane(p.type[r]) || !(g[ParticleFields::G_REG] > 0.0)) continue;
-    double t1[3], t2[3], a1[3], a2[3];
-    tangent_frame(fam.normal[r], t1, t2);
-    for (int k = 0; k < 3; k++) {
-      a1[k] = g[3 * k] * t1[0] + g[3 * k + 1] * t1[1] + g[3 * k + 2] * t1[2];
-      a2[k] = g[3 * k] * t2[0] + g[3 * k + 1] * t2[1] + g[3 * k + 2] * t2[2];
-    }
-    const double c[3] = {a1[1] * a2[2] - a1[2] * a2[1], a1[2] * a2[0] - a1[0] * a2[2],
-                         a1[0] * a2[1] - a1[1] * a2[0]};
+    const PlaneImage im(g, fam.normal[r]);
+    const double *c = im.c, *a1 = im.a1, *a2 = im.a2;
     const double l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
     const double scale = std::sqrt(a1[0] * a1[0] + a1[1] * a1[1] + a1[2] * a1[2]) *
         std::sqrt(a2[0] * a2[0] + a2[1] * a2[1] + a2[2] * a2[2]);
@@ -62,24 +73,16 @@ void current_normals(const Model &model, const Particles &p, const Families &fam
 inline void normal_term(const double *F, const double *n0, const double *nrm, const double gn[3],
                         double G[9])
 {
-  double t1[3], t2[3], a1[3], a2[3];
-  tangent_frame(n0, t1, t2);
-  for (int k = 0; k < 3; k++) {
-    a1[k] = F[3 * k] * t1[0] + F[3 * k + 1] * t1[1] + F[3 * k + 2] * t1[2];
-    a2[k] = F[3 * k] * t2[0] + F[3 * k + 1] * t2[1] + F[3 * k + 2] * t2[2];
-  }
-  const double c[3] = {a1[1] * a2[2] - a1[2] * a2[1], a1[2] * a2[0] - a1[0] * a2[2],
-                       a1[0] * a2[1] - a1[1] * a2[0]};
+  const PlaneImage im(F, n0);
+  const double *c = im.c;
   const double l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
   const double along = gn[0] * nrm[0] + gn[1] * nrm[1] + gn[2] * nrm[2];
-  double w[3];
+  double w[3], u[3], v[3];
   for (int k = 0; k < 3; k++) w[k] = (gn[k] - along * nrm[k]) / l;
-  const double u[3] = {a2[1] * w[2] - a2[2] * w[1], a2[2] * w[0] - a2[0] * w[2],
-                       a2[0] * w[1] - a2[1] * w[0]};
-  const double v[3] = {w[1] * a1[2] - w[2] * a1[1], w[2] * a1[0] - w[0] * a1[2],
-                       w[0] * a1[1] - w[1] * a1[0]};
+  cross3(im.a2, w, u);
+  cross3(w, im.a1, v);
   for (int r = 0; r < 3; r++)
-    for (int c2 = 0; c2 < 3; c2++) G[3 * r + c2] = u[r] * t1[c2] + v[r] * t2[c2];
+    for (int c2 = 0; c2 < 3; c2++) G[3 * r + c2] = u[r] * im.t1[c2] + v[r] * im.t2[c2];
 }
 
 template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE>
