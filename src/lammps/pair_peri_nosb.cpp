@@ -88,7 +88,7 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
     state_nlocal(-1), nmax(0),
     gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), any_bend(0), meshfix(nullptr),
-    comm_fields(nullptr), comm_nfields(0)
+    hinges_stale(1), comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;    // forces are densities: f.r is not the virial
@@ -532,6 +532,7 @@ void PairPeriNosb::init_style()
   }
   configure_model();
   check_membranes();
+  hinges_stale = 1;    // bending moduli, types or meshes may have changed since the last run
 
   // every bond partner must have one image within reach: a periodic box at least two horizons
   // wide in each periodic direction (checked here at every run, since change_box can shrink
@@ -1007,6 +1008,7 @@ double PairPeriNosb::memory_usage()
   using PeriSISSM::ParticleFields;
   double bytes = (double) nmax * (ParticleFields::NG + ParticleFields::NK + 9 + 2) * sizeof(double);
   bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
+  bytes += (double) hinges.capacity() * sizeof(Hinge);
   const double n = atom->ntypes + 1;
   bytes += n * n * (11.0 * sizeof(double) + 5.0 * sizeof(int));
   return bytes;

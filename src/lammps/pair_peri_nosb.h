@@ -91,6 +91,16 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   std::vector<double> bend, bend_auto_factor;
   int any_bend;
   class FixNosbMesh *meshfix;    // the meshes (read_mesh), null if none
+  // a hinge of the bending term with at least one owned vertex here (compute_bending)
+  struct Hinge {
+    int v[4];         // local indices of its vertices, v[0] -> v[1] the edge (smaller tag
+                      //   first), images closest to the owned vertex that listed it
+    int own[4];       // owned index that takes vertex k's share, -1: none on this rank
+    double theta0;    // rest angle
+    double c;         // stiffness D |e0|^2 / (2 A0)
+  };
+  std::vector<Hinge> hinges;    // each hinge once per rank (straddling ones on every rank)
+  int hinges_stale;             // local indices may have changed: build the list again
   // summary flags
   int any_break, any_contact;
   int external_breaking;    // 1: compute() does not break bonds (inside an implicit step)
@@ -138,6 +148,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   void grow_peratom();
   void compute_contact(int, int);
   void compute_bending();
+  void build_hinges();
   double bending_modulus(int i) const;
   void build_contact_list(double margin);
   void neighbor_rebuilt();

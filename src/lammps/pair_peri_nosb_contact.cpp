@@ -94,11 +94,13 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
 }
 
 /* ----------------------------------------------------------------------
-   called by fix nosb/family right after every neighbor list build
+   called by fix nosb/family right after every neighbor list build: the hinge list of the
+   bending term is stale (atoms migrated or were sorted), the contact candidates are chosen again
 ------------------------------------------------------------------------- */
 
 void PairPeriNosb::neighbor_rebuilt()
 {
+  hinges_stale = 1;
   if (!any_contact || !list) return;
   const double skin = neighbor->skin;
   follow_explicit = !track_motion && contact_reach() + 0.25 * skin <= contact_horizon();
