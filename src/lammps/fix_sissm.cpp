@@ -270,15 +270,18 @@ void FixSissm::init()
   comm_reverse = 3;
   choose_external();
   forces->track_contact_motion(1);
-  // membranes: the coarse level's matrix has no stiffness out of their plane, and its rigid
-  // modes mix that direction into the in-plane correction (measured: the hanging strip of
-  // examples/membranes leaves its plane and misses the tolerance), so the default is block
-  if (!precond_given && precond_type == PRECOND_AMG && forces->has_membranes()) {
+  // membranes without bending: the coarse level's matrix has no stiffness out of their plane
+  // but the mass (with bending, the hinges give it one), and amg lets such a flat membrane
+  // leave its plane (measured: the hanging strip of examples/membranes buckles sideways in the
+  // first step and then misses the tolerance; block keeps it in its plane), so the default is
+  // block there
+  if (!precond_given && precond_type == PRECOND_AMG && forces->has_unbent_membranes()) {
     precond_type = PRECOND_BLOCK;
     if (comm->me == 0)
       utils::logmesg(lmp,
-                     "Fix sissm {}: membranes (pair_coeff ... membrane yes): precond block (the "
-                     "default amg does not handle membranes yet; precond amg asks for it)\n",
+                     "Fix sissm {}: membranes without bending (pair_coeff ... membrane yes, no "
+                     "bend): precond block (the default amg has no out-of-plane stiffness for "
+                     "them; precond amg asks for it)\n",
                      id);
   }
   block_precond = std::make_unique<PeriSISSM::BlockPreconditioner>();

@@ -15,6 +15,7 @@
 
 namespace PeriSISSM {
 struct BondSprings;
+struct HingeCouplings;
 }
 
 namespace LAMMPS_NS {
@@ -38,6 +39,9 @@ class ImplicitForces {
   // the bond-projected stiffness of the owned atoms' unbroken bonds in the current positions
   // (core peri/bond_stiffness.h), from the last evaluation with blocks
   virtual void bond_springs(PeriSISSM::BondSprings &springs) = 0;
+  // the bending hinges with an owned vertex, each once, in the current positions (core
+  // peri/bond_stiffness.h; empty without bending)
+  virtual void hinge_couplings(PeriSISSM::HingeCouplings &hinges) = 0;
 
   // contact candidates while an implicit step moves the atoms: track_contact_motion(1) at
   // init; contact_follow_motion() after every move (ghost positions current) re-selects the
@@ -58,10 +62,10 @@ class ImplicitForces {
   // converged), 0 (it did not), -1 (explicit)
   virtual void check_motion(int converged) = 0;
 
-  // true when some particles are membranes (their out-of-plane motion has no stiffness of its
-  // own, which the coarse level does not yet handle: fix sissm's default preconditioner is then
-  // block)
-  virtual bool has_membranes() const = 0;
+  // true when some particles are membranes of a type without bending: the coarse level's
+  // matrix has no stiffness out of their plane but the mass (fix sissm's default
+  // preconditioner is then block)
+  virtual bool has_unbent_membranes() const = 0;
 
  protected:
   // not deleted through this interface (its implementations are LAMMPS styles whose

@@ -638,9 +638,12 @@ void PairPeriNosb::check_membranes()
 
 /* ---------------------------------------------------------------------- */
 
-bool PairPeriNosb::has_membranes() const
+bool PairPeriNosb::has_unbent_membranes() const
 {
-  return model_ && model_->any_membrane();
+  if (!model_ || !model_->any_membrane()) return false;
+  for (int t = 1; t <= atom->ntypes; t++)
+    if (membraneflag[t][t] && (t >= (int) bend.size() || bend[t] == 0.0)) return true;
+  return false;
 }
 
 /* ---------------------------------------------------------------------- */

@@ -66,12 +66,13 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   void evaluate(double **block) override;
   bool ghost_forces() const override;
   void bond_springs(PeriSISSM::BondSprings &springs) override;
+  void hinge_couplings(PeriSISSM::HingeCouplings &couplings) override;
   void track_contact_motion(int flag) override;
   int contact_follow_motion() override;
   bool contact_end_of_step(const std::string &cause) override;
   bool group_coupled(int groupbit) override;
   void check_motion(int converged) override;
-  bool has_membranes() const override;
+  bool has_unbent_membranes() const override;
 
  protected:
   // per type pair (as given for i <= j; mixed and mirrored in init_style)

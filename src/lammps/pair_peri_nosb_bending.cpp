@@ -20,6 +20,7 @@
 #include "fix_nosb_mesh.h"
 
 #include "membrane/hinge.h"
+#include "peri/bond_stiffness.h"
 #include "peri/model.h"
 
 #include "atom.h"
@@ -27,6 +28,7 @@
 #include "error.h"
 
 #include <algorithm>
+#include <cmath>
 
 using namespace LAMMPS_NS;
 
@@ -188,6 +190,32 @@ void PairPeriNosb::compute_bending()
         if (vflag_atom)
           for (int m = 0; m < 6; m++) vatom[i][m] += w[m];
       }
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   ImplicitForces: the hinges of this rank's list in the current positions, for the coarse
+   level's matrix (each hinge once; a vertex's row is where compute_bending() puts its share)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings)
+{
+  couplings.vertex.clear();
+  couplings.row.clear();
+  couplings.grad.clear();
+  if (!any_bend || !meshfix) return;
+  if (hinges_stale) build_hinges();
+  double **x = atom->x;
+  for (const Hinge &h : hinges) {
+    const int *v = h.v;
+    double g[4][3];
+    PeriSISSM::hinge_angle(x[v[0]], x[v[1]], x[v[2]], x[v[3]], g);
+    const double s = std::sqrt(2.0 * h.c);
+    for (int k = 0; k < 4; k++) {
+      couplings.vertex.push_back(v[k]);
+      couplings.row.push_back(h.own[k]);
+      for (int d = 0; d < 3; d++) couplings.grad.push_back(s * g[k][d]);
     }
   }
 }
