@@ -1,0 +1,48 @@
+#!/bin/sh
+# The tablecloth's bending sweep at the SISSM authors' size (README.md, "Full size"), in one
+# command: makes cloth_full.obj (39911 vertices, 6.5 mm triangles) when it is missing, runs the
+# deck for D = 0 (bend no), 1e-5, 1e-4 and 1e-3 N m for 1.5 s (1500 steps of 1 ms), two runs
+# at a time (one per core), each writing log.full.DX, dump.full.DX.STEP and full.DX.STEP.png
+# every 250 steps, then measures each drape with drape.py (drape.full.DX.svg) and prints the
+# table. Hours of wall time on a 2-core machine (README.md gives the measured cost).
+#   ./run_full.sh                 all four
+#   ./run_full.sh no 1e-3         only these moduli
+# Environment: LMP (default ../../build/lmp), STEPS (1500), EVERY (250), JOBS (2),
+#   PRECOND (block: with this light cloth the multigrid saves iterations, not time).
+set -e
+cd "$(dirname "$0")"
+LMP=${LMP:-../../build/lmp}
+STEPS=${STEPS:-1500}
+EVERY=${EVERY:-250}
+JOBS=${JOBS:-2}
+PRECOND=${PRECOND:-block}
+[ $# -gt 0 ] || set -- no 1e-5 1e-4 1e-3
+[ -f cloth_full.obj ] || ./make_meshes.sh full
+
+run_one() {
+  name=full.D$1
+  "$LMP" -in in.tablecloth -var mesh cloth_full.obj -var a 0.0065 -var steps "$STEPS" \
+    -var every "$EVERY" -var bend "$1" -var precond "$PRECOND" -var name "$name" \
+    -log "log.$name" > /dev/null 2>&1 || echo "run $name failed: see log.$name" >&2
+}
+
+# at most JOBS runs at a time
+running=0
+for d in "$@"; do
+  run_one "$d" &
+  running=$((running + 1))
+  if [ "$running" -ge "$JOBS" ]; then
+    wait
+    running=0
+  fi
+done
+wait
+
+printf '%-6s %-18s %-10s\n' D drape_coefficient convex_hull
+for d in "$@"; do
+  dump=dump.full.D$d.$STEPS
+  [ -f "$dump" ] || { echo "$d: no $dump"; continue; }
+  python3 drape.py cloth_full.obj "$dump" --svg "drape.full.D$d.svg" --json |
+    python3 -c 'import json, sys; r = json.load(sys.stdin); d = sys.argv[1]
+print("%-6s %-18.3f %-10.3f" % (d, r["drape_coefficient"], r["drape_coefficient_hull"]))' "$d"
+done
