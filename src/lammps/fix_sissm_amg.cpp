@@ -98,6 +98,8 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   // 4 h + v for its place v in hinge h
   std::vector<int> hinge_first_, hinge_of_;
   void index_hinges(int nlocal);
+  // a new PETSc hierarchy (aggregates and interpolation) for the current pattern
+  void make_hierarchy();
   void fail(const std::runtime_error &e);
 };
 
@@ -182,7 +184,6 @@ bool SissmAmg::build_pattern()
   MPI_Allreduce(&same, &all, 1, MPI_INT, MPI_MIN, fix_->world);
   if (all) return false;
 
-  const std::vector<int> &cols = col_;
   nodes_ = count;
   values_.assign(9 * rows.size(), 0.0);
   coords_.assign(3 * count, 0.0);
@@ -192,7 +193,17 @@ bool SissmAmg::build_pattern()
     if (!amg_)
       amg_ = std::make_unique<PetscAmg>(fix_->world, fmt::format("sissm_{}_", fix_->id),
                                         fix_->petsc_options);
-    amg_->set_pattern(count, rows, cols);
+  } catch (std::runtime_error &e) {
+    fail(e);
+  }
+  make_hierarchy();
+  return true;
+}
+
+void SissmAmg::make_hierarchy()
+{
+  try {
+    amg_->set_pattern(nodes_, rows_, col_);
   } catch (std::runtime_error &e) {
     fail(e);
   }
@@ -200,7 +211,6 @@ bool SissmAmg::build_pattern()
   interp_at_ = built_at_;
   reinterp_ = false;
   fresh_interp_ = true;
-  return true;
 }
 
 // (row r may be the one being built: its blocks then run to the end of col_)
@@ -241,28 +251,20 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &)
   const double *rho = atom->rmass, *vol = atom->vfrac;
   const double c = fix_->scheme->force_factor();
   fix_->forces->bond_springs(springs_);
-  fix_->forces->hinge_couplings(hinges_);
+  // (the hinges' gradients only when the matrix is assembled: most Newton steps keep it)
+  fix_->forces->hinge_couplings(hinges_, false);
   index_hinges(nlocal);
   const bool same_pattern = pattern_current() || !build_pattern();
   used_ = true;
   if (same_pattern && !stale_ && set_factor_ == c) return;
+  fix_->forces->hinge_couplings(hinges_, true);
   fresh_ = true;
   stale_ = false;
   // an interpolation is only as good as the rigid-body modes and the matrix it was made from:
   // a new one once the atoms moved far enough for a neighbor list build, and after a failed
   // step (measured: a cloth falling from flat, the first step's interpolation kept to step 23,
   // failed that step with values set up in it; a new interpolation converged it)
-  if (same_pattern && (reinterp_ || interp_at_ != built_at_)) {
-    try {
-      amg_->set_pattern(nodes_, rows_, col_);
-    } catch (std::runtime_error &e) {
-      fail(e);
-    }
-    patterns_++;
-    interp_at_ = built_at_;
-    reinterp_ = false;
-    fresh_interp_ = true;
-  }
+  if (same_pattern && (reinterp_ || interp_at_ != built_at_)) make_hierarchy();
   solves_ = 0;
   setups_++;
   set_factor_ = c;

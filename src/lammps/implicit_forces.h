@@ -39,9 +39,10 @@ class ImplicitForces {
   // the bond-projected stiffness of the owned atoms' unbroken bonds in the current positions
   // (core peri/bond_stiffness.h), from the last evaluation with blocks
   virtual void bond_springs(PeriSISSM::BondSprings &springs) = 0;
-  // the bending hinges with an owned vertex, each once, in the current positions (core
-  // peri/bond_stiffness.h; empty without bending)
-  virtual void hinge_couplings(PeriSISSM::HingeCouplings &hinges) = 0;
+  // the bending hinges with an owned vertex, each once (core peri/bond_stiffness.h; empty
+  // without bending): their vertices and rows, and with gradients true also their gradients in
+  // the current positions (grad left empty otherwise)
+  virtual void hinge_couplings(PeriSISSM::HingeCouplings &hinges, bool gradients) = 0;
 
   // contact candidates while an implicit step moves the atoms: track_contact_motion(1) at
   // init; contact_follow_motion() after every move (ghost positions current) re-selects the

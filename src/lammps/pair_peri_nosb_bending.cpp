@@ -199,7 +199,7 @@ void PairPeriNosb::compute_bending()
    level's matrix (each hinge once; a vertex's row is where compute_bending() puts its share)
 ------------------------------------------------------------------------- */
 
-void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings)
+void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gradients)
 {
   couplings.vertex.clear();
   couplings.row.clear();
@@ -209,13 +209,15 @@ void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings)
   double **x = atom->x;
   for (const Hinge &h : hinges) {
     const int *v = h.v;
-    double g[4][3];
-    PeriSISSM::hinge_angle(x[v[0]], x[v[1]], x[v[2]], x[v[3]], g);
-    const double s = std::sqrt(2.0 * h.c);
     for (int k = 0; k < 4; k++) {
       couplings.vertex.push_back(v[k]);
       couplings.row.push_back(h.own[k]);
-      for (int d = 0; d < 3; d++) couplings.grad.push_back(s * g[k][d]);
     }
+    if (!gradients) continue;
+    double g[4][3];
+    PeriSISSM::hinge_angle(x[v[0]], x[v[1]], x[v[2]], x[v[3]], g);
+    const double s = std::sqrt(2.0 * h.c);
+    for (int k = 0; k < 4; k++)
+      for (int d = 0; d < 3; d++) couplings.grad.push_back(s * g[k][d]);
   }
 }
