@@ -22,7 +22,8 @@ double barrier(double g, double dhat)
   return -r * r * std::log(g / dhat);
 }
 
-// b'(g) = -2 (g - dhat) ln(g / dhat) - (g - dhat)^2 / g = (dhat - g) (2 ln(g / dhat) - dhat / g + 1).
+// b'(g) = -2 (g - dhat) ln(g / dhat) - (g - dhat)^2 / g
+//       = (dhat - g) (2 ln(g / dhat) - dhat / g + 1).
 double barrier_first_derivative(double g, double dhat)
 {
   if (g >= dhat) return 0.0;

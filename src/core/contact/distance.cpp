@@ -55,8 +55,9 @@ Jet<9> triple_product(const Vector3d &a, const Vector3d &b, const Vector3d &c, b
 // The squared cross product w = |n|^2, n = b x c, in the 6 variables (b, c).
 // dn/db = -[c]_x, dn/dc = [b]_x, so with J = [-[c]_x, [b]_x] (3 x 6): dw = 2 J^T n, i.e.
 // dw/db = 2 [c]_x n = 2 c x n and dw/dc = -2 [b]_x n = 2 n x b.
-// d2w = 2 J^T J + 2 sum_k n_k d2n_k; n is bilinear, d2n_k/db_i dc_j = -eps_kji... summed with
-// n_k this is the block d2/db dc = -[n]_x (and [n]_x below the diagonal).
+// d2w = 2 J^T J + 2 sum_k n_k d2n_k. n is bilinear, n_k = eps_kij b_i c_j, so d2n_k/db_i dc_j =
+// eps_kij and sum_k n_k eps_kij = -([n]_x)_ij: the block d2/db dc gains -2 [n]_x (and the block
+// d2/dc db its transpose, +2 [n]_x); d2n_k/db db = d2n_k/dc dc = 0.
 Jet<6> cross_norm2(const Vector3d &b, const Vector3d &c, bool hessian)
 {
   Jet<6> j;
@@ -225,9 +226,15 @@ Jet<12> point_triangle_jet(const Vector3d &p, const Vector3d &t0, const Vector3d
 {
   Jet<12> out;
   switch (point_triangle_type(p, t0, t1, t2)) {
-    case PointTriangleType::kT0: scatter<6, 12>(point_point_jet(p, t0, hessian), {0, 1}, out); break;
-    case PointTriangleType::kT1: scatter<6, 12>(point_point_jet(p, t1, hessian), {0, 2}, out); break;
-    case PointTriangleType::kT2: scatter<6, 12>(point_point_jet(p, t2, hessian), {0, 3}, out); break;
+    case PointTriangleType::kT0:
+      scatter<6, 12>(point_point_jet(p, t0, hessian), {0, 1}, out);
+      break;
+    case PointTriangleType::kT1:
+      scatter<6, 12>(point_point_jet(p, t1, hessian), {0, 2}, out);
+      break;
+    case PointTriangleType::kT2:
+      scatter<6, 12>(point_point_jet(p, t2, hessian), {0, 3}, out);
+      break;
     case PointTriangleType::kE01:
       scatter<9, 12>(point_line_jet(p, t0, t1, hessian), {0, 1, 2}, out);
       break;

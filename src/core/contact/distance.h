@@ -12,9 +12,10 @@
 //   points move continuously), not C2.
 // - the edge-edge mollifier of IPC (section 4.3): for nearly parallel edges the line-line
 //   distance is ill-conditioned and its closest points jump, so the edge-edge energy is
-//   multiplied by e(c) = (2 - c / eps) c / eps for c < eps (1 beyond), c = |(a1 - a0) x (b1 - b0)|^2
-//   and eps = 1e-3 |A1 - A0|^2 |B1 - B0|^2 from the rest shape: the product is C1 and vanishes for
-//   parallel edges (their contact is carried by the point-triangle pairs of the edges' ends).
+//   multiplied by e(c) = (2 - c / eps) c / eps for c < eps (1 beyond),
+//   c = |(a1 - a0) x (b1 - b0)|^2 and eps = 1e-3 |A1 - A0|^2 |B1 - B0|^2 from the rest shape:
+//   the product is C1 and vanishes for parallel edges (their contact is carried by the
+//   point-triangle pairs of the edges' ends).
 //
 // Every smooth piece is built from two polynomials in the coordinates, the triple product
 // s = det[a, b, c] and the squared cross product w = |b x c|^2, composed with a square and a

@@ -205,11 +205,13 @@ struct FdError {
   double gradient = 0.0, hessian = 0.0;
 };
 
+template <int N> using Vec = Eigen::Matrix<double, N, 1>;
+template <int N> using Mat = Eigen::Matrix<double, N, N>;
+
 template <int N>
-FdError fd_errors(const std::function<double(const Eigen::Matrix<double, N, 1> &)> &f,
-                  const std::function<Eigen::Matrix<double, N, 1>(const Eigen::Matrix<double, N, 1> &)> &g,
-                  const std::function<Eigen::Matrix<double, N, N>(const Eigen::Matrix<double, N, 1> &)> &H,
-                  const Eigen::Matrix<double, N, 1> &x, double L)
+FdError fd_errors(const std::function<double(const Vec<N> &)> &f,
+                  const std::function<Vec<N>(const Vec<N> &)> &g,
+                  const std::function<Mat<N>(const Vec<N> &)> &H, const Vec<N> &x, double L)
 {
   const double h = 1e-5 * L;
   FdError e;
