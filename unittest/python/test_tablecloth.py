@@ -102,3 +102,29 @@ def test_explicit_variant_falls_as_the_exact_solution(tmp_path):
         z = z0 - (GRAV / DAMP) * (t - (1.0 - math.exp(-DAMP * t)) / DAMP)
         assert abs(zc - z) < 1e-5 and abs(zmin - z) < 1e-5, (step, zc, zmin, z)
     assert table["Step"][-1] == steps
+
+
+def test_settling_continues_from_the_dump_at_rest(scene, tmp_path):
+    """`-var startstep N` (run_full.sh's settling) continues from dump.NAME.N with zero velocity:
+    its first thermo row is the drop run's state at step N (the same positions, to the dump's 8
+    digits: c_zc, c_zmin, c_rmax within 1e-7 m) with KinEng = 0, the reference configuration is
+    still the flat mesh (the potential energy equals the drop run's at step N to 1e-6 relative:
+    the energy of a family built from the draped shape would be 0), and under the raised drag
+    (25 /s) the steps converge and the centre stays on the table (as in the drop test)."""
+    import shutil
+    run, work = scene
+    shutil.copy(work / f"dump.ci.{STEPS}", tmp_path / f"dump.ci.{STEPS}")
+    settle = run_deck(SCENE / "in.tablecloth", tmp_path, variables={
+        "mesh": SCENE / "cloth_ci.obj", "startstep": STEPS, "steps": 40, "every": 20,
+        "damp": 25})
+    drop = {k: v[-1] for k, v in run.thermo[-1].items()}
+    table = settle.thermo[-1]
+    first = {k: v[0] for k, v in table.items()}
+    assert first["Step"] == STEPS and first["KinEng"] == 0.0, first
+    for key in ("c_zc", "c_zmin", "c_rmax[1]", "c_rmax[2]"):
+        assert abs(first[key] - drop[key]) < 1e-7, (key, first[key], drop[key])
+    assert abs(first["PotEng"] - drop["PotEng"]) < 1e-6 * abs(drop["PotEng"]), (first, drop)
+    assert drop["PotEng"] > 0.0
+    last = {k: v[-1] for k, v in table.items()}
+    assert last["Step"] == STEPS + 40 and last["f_integrate[2]"] < 1e-6, last
+    assert abs(last["c_zc"] - (RC - RHO * GRAV / (2.0 * EPS))) < 5e-4, last
