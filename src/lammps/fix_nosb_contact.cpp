@@ -21,10 +21,11 @@
    every pair with an owned vertex o is found from o and a neighbor j of o within r + 1.5 L: as
    (point o, the triangles at j), (point j, the triangles at o) and (the edges at o, the edges at
    j). The fix requests a full neighbor list of cutoff r + 1.5 Lmax (LAMMPS adds its skin), with
-   Lmax = 1.25 x the longest edge at the run's start; at every neighbor list build the candidates
+   Lmax = 1.5 x the longest edge at the run's start; at every neighbor list build the candidates
    are chosen again from it, each pair once (sorted by its vertices' IDs and made unique), keeping
-   the pairs closer than r + skin at the build: while no atom moves more than skin/2 (LAMMPS
-   rebuilds the list before that; checked here at every evaluation) no other pair can come within
+   the pairs closer than r + skin at the build: while no atom moves more than skin/2 (the fix asks
+   for a build at skin/4, LAMMPS at skin/2 between steps; an error beyond, checked at every
+   evaluation: check_motion()) no other pair can come within
    r, and no edge can grow beyond Lmax while its length plus the skin stays below Lmax at each
    build (checked then). The other vertices of a candidate lie within r + skin + 2.5 Lmax of an
    owned atom: the ghost cutoff must cover that (checked at init, like the bending term's).
@@ -40,7 +41,7 @@
    pair's energy E = kappa b(d - dmin) (times the mollifier for edges) is an energy; vertex k of
    the pair gets the force density -dE/dx_k / V_k (so that fix nve moves it by -dE/dx_k / m_k),
    and an energy density E / (4 V_k), as the bending term of pair peri/nosb tallies its hinges
-   (pe of peri/nosb is a sum of energy densities; interface.md, "Data model"). The global scalar
+   (pe of peri/nosb is a sum of energy densities: doc/pair_peri_nosb.rst). The global scalar
    is that sum of densities (fix_modify energy yes adds it to pe); vector element 4 is the
    energy itself, sum_pairs E.
 ------------------------------------------------------------------------- */
@@ -76,9 +77,9 @@ using namespace FixConst;
 using Eigen::Vector3d;
 
 static constexpr int NVECTOR = 5;
-// Lmax = EDGE_FACTOR x the longest edge at the start of a run: edges may stretch by 25% (less the
+// Lmax = EDGE_FACTOR x the longest edge at the start of a run: edges may stretch by 50% (less the
 // neighbor skin) before the candidates could be incomplete (an error then)
-static constexpr double EDGE_FACTOR = 1.25;
+static constexpr double EDGE_FACTOR = 1.5;
 
 /* ---------------------------------------------------------------------- */
 
@@ -141,6 +142,8 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   energy_global_flag = 1;
   thermo_energy = 0;
+  force_reneighbor = 1;
+  next_reneighbor = -1;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -234,7 +237,7 @@ double FixNosbContact::predicted_comm_cutoff() const
 /* ----------------------------------------------------------------------
    the longest edge of the group's triangles (all ranks). owned_partners_only: at init, when
    the ghost atoms may not exist yet, only the edges whose ends are both owned on some rank
-   count (an edge between ranks is then missed: the 25% margin covers a mesh of even edges);
+   count (an edge between ranks is then missed: the 50% margin covers a mesh of even edges);
    otherwise every edge at an owned vertex (ghosts current: after a neighbor list build)
 ------------------------------------------------------------------------- */
 
@@ -436,17 +439,20 @@ void FixNosbContact::build_candidates()
 /* ----------------------------------------------------------------------
    the candidates are complete while no atom has moved skin/2 since they were chosen: an error
    beyond (neigh_modify check no with a long every, or an implicit step that moves the atoms
-   farther than the skin allows inside one step)
+   farther than a quarter of the skin inside one step); beyond skin/4, a neighbor list build at
+   the next step (collective: every force evaluation calls it on all ranks)
 ------------------------------------------------------------------------- */
 
 void FixNosbContact::check_motion()
 {
   double **x = atom->x;
   const double limit = 0.25 * neighbor->skin * neighbor->skin;
+  double most = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     double r2 = 0.0;
     for (int d = 0; d < 3; d++) r2 += (x[i][d] - xbuild[i][d]) * (x[i][d] - xbuild[i][d]);
+    most = std::max(most, r2);
     if (r2 > limit)
       error->one(FLERR,
                  "Fix nosb/contact {}: atom {} moved {:.6g} since the last neighbor list build "
@@ -455,6 +461,14 @@ void FixNosbContact::check_motion()
                  "yes), use a larger skin or a smaller time step",
                  id, atom->tag[i], std::sqrt(r2), neighbor->lastcall);
   }
+  // LAMMPS checks the motion only once per step; fix sissm's iterates move the atoms inside the
+  // step (its post_integrate, before that check): beyond a quarter of the skin, the next step
+  // builds a new list (decided on all ranks alike). A pending request is not moved: fix sissm
+  // evaluates the forces of step n + 1 before LAMMPS decides on that step's list build.
+  double all;
+  MPI_Allreduce(&most, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (all > 0.25 * limit && next_reneighbor < update->ntimestep)
+    next_reneighbor = update->ntimestep + 1;
 }
 
 /* ----------------------------------------------------------------------
