@@ -311,7 +311,7 @@ bool is_pure_additive(const std::string &style)
   static const char *const names[] = {
       "gravity",    "addforce",     "viscous",     "indent",     "wall/lj93",   "wall/lj126",
       "wall/lj1043", "wall/colloid", "wall/harmonic", "wall/morse", "wall/table", "wall/region",
-      "spring",     "spring/self",  "drag",        "efield"};
+      "spring",     "spring/self",  "drag",        "efield",     "nosb/contact"};
   for (const char *n : names)
     if (style == n) return true;
   return false;

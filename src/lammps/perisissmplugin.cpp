@@ -8,6 +8,7 @@
 #include "version.h"
 
 #include "compute_nosb_atom.h"
+#include "fix_nosb_contact.h"
 #include "fix_nosb_family.h"
 #include "fix_nosb_mesh.h"
 #include "fix_sissm.h"
@@ -34,6 +35,11 @@ static Fix *sissm_creator(LAMMPS *lmp, int argc, char **argv)
 static Fix *nosb_mesh_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixNosbMesh(lmp, argc, argv);
+}
+
+static Fix *nosb_contact_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixNosbContact(lmp, argc, argv);
 }
 
 static Command *read_mesh_creator(LAMMPS *lmp)
@@ -77,6 +83,12 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "nosb/mesh";
   plugin.info = "PERI-SISSM triangles of the meshes read by read_mesh";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &nosb_mesh_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "nosb/contact";
+  plugin.info = "PERI-SISSM barrier contact between mesh primitives";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &nosb_contact_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "command";

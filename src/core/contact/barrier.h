@@ -11,7 +11,7 @@
 //
 // Choice (issue 15 leaves it open): the barrier is a function of the distance d itself, not of d^2
 // as in IPC, so that dhat and dmin are lengths and "acts within dhat beyond dmin" holds literally
-// (interface.md, "Contact"). Since the distances come squared (D = d^2, distance.h), the chain
+// (doc/fix_nosb_contact.rst). Since the distances come squared (D = d^2, distance.h), the chain
 // rule through d = sqrt(D) is applied once, in distance_barrier_*():
 //   B(D) = b(sqrt(D) - dmin),  B' = b' / (2 d),  B'' = b'' / (4 D) - b' / (4 d^3),
 // safe because the barrier only acts for d > dmin >= 0 (and b -> inf as d -> dmin).

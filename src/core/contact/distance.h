@@ -1,4 +1,4 @@
-// Distances between the primitives of barrier contact (issue 15; interface.md "Contact"): the
+// Distances between the primitives of barrier contact (issue 15; doc/fix_nosb_contact.rst): the
 // squared distance of a point and a triangle and of two edges, with exact gradients and Hessians
 // with respect to the 12 coordinates, as in Incremental Potential Contact (Li, Ferguson,
 // Schneider, Langlois, Zorin, Panozzo, Jiang, Kaufman 2020, section 4 and supplement):

@@ -1,0 +1,593 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix nosb/contact: the barrier contact of Incremental Potential Contact between the mesh
+   primitives of the fix's group, as a force (post_force). The barrier, distances and their
+   gradients are the core's (contact/barrier.h, contact/distance.h); this file finds the pairs
+   and hands out the forces.
+
+   Pairs. Every point-triangle pair (a vertex and a triangle) and every edge-edge pair of the
+   meshes read with read_mesh (fix nosb/mesh) whose primitives are in the group, except those
+   that share a vertex: a vertex and the triangles of its own 1-ring, two edges with a common end.
+   Adjacency is decided on the mesh alone, not by the peridynamic bond families: a vertex and a
+   triangle whose vertices it is bonded to can be far apart on a folded cloth and must still
+   repel. (For a flat sheet, dmin + dhat must then stay below the distance of a vertex to the far
+   side of its neighbours' triangles, about the triangles' height: the doc says so.)
+
+   Candidates. A pair of primitives closer than r = dmin + dhat has vertices closer than
+   r + 1.5 L (L the longest edge): for a point p and a triangle T with closest point q, every
+   vertex of T is within L of q, so |p - t_k| < r + L for all k; for two edges with closest points
+   qa, qb, an end a_k is within L of qa and the nearer end b_c of the other within L/2 of qb. So
+   every pair with an owned vertex o is found from o and a neighbor j of o within r + 1.5 L: as
+   (point o, the triangles at j), (point j, the triangles at o) and (the edges at o, the edges at
+   j). The fix requests a full neighbor list of cutoff r + 1.5 Lmax (LAMMPS adds its skin), with
+   Lmax = 1.5 x the longest edge at the run's start; at every neighbor list build the candidates
+   are chosen again from it, each pair once (sorted by its vertices' IDs and made unique), keeping
+   the pairs closer than r + skin at the build: while no atom moves more than skin/2 (the fix asks
+   for a build at skin/4, LAMMPS at skin/2 between steps; an error beyond, checked at every
+   evaluation: check_motion()) no other pair can come within
+   r, and no edge can grow beyond Lmax while its length plus the skin stays below Lmax at each
+   build (checked then). The other vertices of a candidate lie within r + skin + 2.5 Lmax of an
+   owned atom: the ghost cutoff must cover that (checked at init, like the bending term's).
+
+   Forces. Each rank evaluates all of its candidates (each pair with an owned vertex, once) and
+   gives only its owned vertices their shares: no force goes to ghost atoms, so no reverse
+   communication; a pair that straddles ranks is evaluated on each of them, with the same
+   positions in the same vertex order (by ID), so the shares agree to the last bit. The pairs are
+   in the order of their IDs, so that a vertex sums its shares in the same order however the
+   atoms are ordered locally or split between ranks.
+
+   Units (atom_style peri: f is a force density, rmass a mass density, vfrac the volume V_i): the
+   pair's energy E = kappa b(d - dmin) (times the mollifier for edges) is an energy; vertex k of
+   the pair gets the force density -dE/dx_k / V_k (so that fix nve moves it by -dE/dx_k / m_k),
+   and an energy density E / (4 V_k), as the bending term of pair peri/nosb tallies its hinges
+   (pe of peri/nosb is a sum of energy densities: doc/pair_peri_nosb.rst). The global scalar
+   is that sum of densities (fix_modify energy yes adds it to pe); vector element 4 is the
+   energy itself, sum_pairs E.
+------------------------------------------------------------------------- */
+
+#include "fix_nosb_contact.h"
+
+#include "fix_nosb_mesh.h"
+
+#include "contact/barrier.h"
+#include "contact/distance.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "group.h"
+#include "memory.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
+#include "pair.h"
+#include "update.h"
+
+#include <algorithm>
+#include <array>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using Eigen::Vector3d;
+
+static constexpr int NVECTOR = 5;
+// Lmax = EDGE_FACTOR x the longest edge at the start of a run: edges may stretch by 50% (less the
+// neighbor skin) before the candidates could be incomplete (an error then)
+static constexpr double EDGE_FACTOR = 1.5;
+
+/* ---------------------------------------------------------------------- */
+
+static double positive_number(const char *str, const char *what, bool zero_ok, Error *error,
+                              LAMMPS *lmp)
+{
+  const double v = utils::numeric(FLERR, str, false, lmp);
+  if (!std::isfinite(v) || v < 0.0 || (!zero_ok && v == 0.0))
+    error->all(FLERR, "Illegal fix nosb/contact command: {} must be {} 0, got '{}'", what,
+               zero_ok ? ">=" : ">", str);
+  return v;
+}
+
+FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), edge_factor(EDGE_FACTOR),
+    longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), stale(1),
+    xbuild(nullptr), nxbuild(0), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
+    nactive{0, 0}, ncandidates(0), reduced(0), all_energy_density(0.0), all_vector{}
+{
+  const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k]";
+  int iarg = 3;
+  while (iarg < narg) {
+    const std::string key(arg[iarg]);
+    if (key == "friction" || key == "ccd")
+      error->all(FLERR,
+                 "Illegal fix nosb/contact command: keyword '{}' is not available yet (this "
+                 "version has the barrier force only: doc/fix_nosb_contact.rst, Restrictions)",
+                 key);
+    if (key != "dhat" && key != "dmin" && key != "kappa")
+      error->all(FLERR, "Illegal fix nosb/contact command: unknown keyword '{}' ({})", key,
+                 usage);
+    if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix nosb/contact " + key, error);
+    const char *val = arg[iarg + 1];
+    if (key == "dhat")
+      dhat = positive_number(val, "dhat", false, error, lmp);
+    else if (key == "dmin")
+      dmin = positive_number(val, "dmin", true, error, lmp);
+    else {
+      if (strcmp(val, "auto") == 0)
+        error->all(FLERR,
+                   "Illegal fix nosb/contact command: kappa auto is not available yet; give the "
+                   "barrier stiffness as a number (energy / length^2)");
+      kappa = positive_number(val, "kappa", false, error, lmp);
+    }
+    iarg += 2;
+  }
+  if (dhat < 0.0)
+    error->all(FLERR, "Illegal fix nosb/contact command: keyword dhat is required ({})", usage);
+  if (kappa < 0.0)
+    error->all(FLERR,
+               "Illegal fix nosb/contact command: keyword kappa is required (kappa auto is not "
+               "available yet) ({})",
+               usage);
+
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = NVECTOR;
+  global_freq = 1;
+  extscalar = 1;
+  extvector = 0;
+  energy_global_flag = 1;
+  thermo_energy = 0;
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixNosbContact::~FixNosbContact()
+{
+  memory->destroy(xbuild);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbContact::setmask()
+{
+  return POST_FORCE | POST_NEIGHBOR;
+}
+
+/* ----------------------------------------------------------------------
+   the mesh, the group (mesh atoms only), the longest edge, the ghost cutoff, the neighbor list
+------------------------------------------------------------------------- */
+
+void FixNosbContact::init()
+{
+  if (!atom->peri_flag || !atom->vfrac)
+    error->all(FLERR, "Fix nosb/contact requires atom_style peri (per-atom volume vfrac)");
+  meshfix = FixNosbMesh::find(lmp);
+  if (!meshfix)
+    error->all(FLERR, "Fix nosb/contact {}: no mesh: the contact acts between the triangles of "
+               "meshes read with read_mesh", id);
+
+  // non-mesh (volumetric) particles: point-point contact is not available yet
+  tagint bad = MAXTAGINT, badall;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((atom->mask[i] & groupbit) && !meshfix->mesh[i]) bad = std::min(bad, atom->tag[i]);
+  MPI_Allreduce(&bad, &badall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  if (badall != MAXTAGINT)
+    error->all(FLERR,
+               "Fix nosb/contact {}: atom {} of group {} is not a vertex of a mesh read with "
+               "read_mesh; contact of volumetric (non-mesh) particles is not available yet: "
+               "leave them out of the fix's group",
+               id, badall, group->names[igroup]);
+
+  const double L = measure_longest_edge(true);
+  if (!(L > 0.0))
+    error->all(FLERR, "Fix nosb/contact {}: group {} holds no mesh edge", id,
+               group->names[igroup]);
+  longest_edge = edge_factor * L;
+  list_cutoff = dmin + dhat + 1.5 * longest_edge;
+
+  const double skin = neighbor->skin;
+  const double needed = list_cutoff + skin + longest_edge;
+  const double have = predicted_comm_cutoff();
+  if (have < needed)
+    error->all(FLERR,
+               "Fix nosb/contact {}: the ghost cutoff {:.6g} is shorter than a contact pair "
+               "needs: dmin + dhat + skin + 2.5 x {} x the longest edge ({:.6g}) = {:.6g} (the "
+               "other vertices of a pair with an owned vertex must be ghost atoms); set "
+               "comm_modify cutoff {:.6g} or more",
+               id, have, edge_factor, L, needed, needed);
+
+  auto req = neighbor->add_request(this, NeighConst::REQ_FULL);
+  req->set_cutoff(list_cutoff);
+  stale = 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbContact::init_list(int /*id*/, NeighList *ptr)
+{
+  list = ptr;
+}
+
+/* ----------------------------------------------------------------------
+   the ghost cutoff the coming run will have (Comm::get_comm_cutoff() after Neighbor::init,
+   which comes after this fix's init): the larger of comm_modify cutoff and the pair's
+   cutoff + skin
+------------------------------------------------------------------------- */
+
+double FixNosbContact::predicted_comm_cutoff() const
+{
+  double cut = comm->cutghostuser;
+  if (force->pair && force->pair->cutsq) {
+    const int n = atom->ntypes;
+    for (int i = 1; i <= n; i++)
+      for (int j = 1; j <= n; j++)
+        if (force->pair->cutsq[i][j] > 0.0)
+          cut = std::max(cut, std::sqrt(force->pair->cutsq[i][j]) + neighbor->skin);
+  }
+  return cut;
+}
+
+/* ----------------------------------------------------------------------
+   the longest edge of the group's triangles (all ranks). owned_partners_only: at init, when
+   the ghost atoms may not exist yet, only the edges whose ends are both owned on some rank
+   count (an edge between ranks is then missed: the 50% margin covers a mesh of even edges);
+   otherwise every edge at an owned vertex (ghosts current: after a neighbor list build)
+------------------------------------------------------------------------- */
+
+double FixNosbContact::measure_longest_edge(bool owned_partners_only)
+{
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  double L2 = 0.0;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(atom->mask[i] & groupbit) || !meshfix->mesh[i]) continue;
+    for (int k = 0; k < meshfix->ntri[i]; k++)
+      for (int e = 0; e < 2; e++) {
+        const int m = atom->map(meshfix->tri[i][k][e]);
+        if (m < 0 || (owned_partners_only && m >= nlocal)) continue;
+        if (!(atom->mask[m] & groupbit)) continue;
+        const int j = domain->closest_image(i, m);
+        double r2 = 0.0;
+        for (int d = 0; d < 3; d++) r2 += (x[j][d] - x[i][d]) * (x[j][d] - x[i][d]);
+        L2 = std::max(L2, r2);
+      }
+  }
+  double all;
+  MPI_Allreduce(&L2, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  return std::sqrt(all);
+}
+
+/* ---------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   right after every neighbor list build (ghost positions current): the candidates are chosen
+   at the positions the list was built from, so that its skin covers them (under fix sissm the
+   step's first force evaluation may already be elsewhere)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::setup_post_neighbor()
+{
+  build_candidates();
+}
+
+void FixNosbContact::post_neighbor()
+{
+  build_candidates();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNosbContact::setup(int vflag)
+{
+  post_force(vflag);
+}
+
+/* ----------------------------------------------------------------------
+   the candidate pairs of this rank (see the file's header), chosen at a neighbor list build
+------------------------------------------------------------------------- */
+
+void FixNosbContact::build_candidates()
+{
+  double **x = atom->x;
+  double **x0 = atom->x0;
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int *mesh = meshfix->mesh;
+  const int *ntri = meshfix->ntri;
+  tagint ***tri = meshfix->tri;
+
+  // no edge may have grown past what the list's cutoff assumes (see the header)
+  const double L = measure_longest_edge(false);
+  if (L + neighbor->skin > longest_edge)
+    error->all(FLERR,
+               "Fix nosb/contact {}: at step {} a mesh edge is {:.6g} long, more than the "
+               "contact candidates of this run allow ({} x the longest edge at the run's start "
+               "less the neighbor skin: {:.6g}): start a new run (which measures the edges "
+               "again) or use a smaller neighbor skin",
+               id, update->ntimestep, L, edge_factor, longest_edge - neighbor->skin);
+
+  auto member = [&](int k) { return k >= 0 && (mask[k] & groupbit) && mesh[k]; };
+  tagint missing = 0;
+  // triangles and edges at atom i (owned or ghost), vertices at their images closest to i
+  using Tri = std::array<int, 3>;
+  using Edge = std::array<int, 2>;
+  auto primitives = [&](int i, std::vector<Tri> &tris, std::vector<Edge> &edges) {
+    tris.clear();
+    edges.clear();
+    for (int k = 0; k < ntri[i]; k++) {
+      int w[2];
+      for (int e = 0; e < 2; e++) {
+        const int m = atom->map(tri[i][k][e]);
+        w[e] = m < 0 ? -1 : domain->closest_image(i, m);
+      }
+      if (w[0] < 0 || w[1] < 0) {
+        missing = tag[i];
+        continue;
+      }
+      if (!member(w[0]) || !member(w[1])) continue;
+      tris.push_back({i, w[0], w[1]});
+      for (int e = 0; e < 2; e++) {
+        bool seen = false;
+        for (const Edge &g : edges) seen = seen || tag[g[1]] == tag[w[e]];
+        if (!seen) edges.push_back({i, w[e]});
+      }
+    }
+  };
+
+  std::vector<Candidate> found;
+  std::vector<Tri> ti, tj;
+  std::vector<Edge> ei, ej;
+  // a point-triangle pair in canonical order (the triangle's vertices by ID); none if p is one
+  auto add_pt = [&](int p, const Tri &t) {
+    for (int k = 0; k < 3; k++)
+      if (tag[t[k]] == tag[p]) return;
+    Tri s = t;
+    std::sort(s.begin(), s.end(), [tag](int a, int b) { return tag[a] < tag[b]; });
+    Candidate c{PT, {tag[p], tag[s[0]], tag[s[1]], tag[s[2]]}, {p, s[0], s[1], s[2]}, 0.0};
+    found.push_back(c);
+  };
+  // an edge-edge pair in canonical order (each edge from its smaller ID, the edges by their
+  // first IDs); none if they share a vertex
+  auto add_ee = [&](const Edge &a, const Edge &b) {
+    for (int k = 0; k < 2; k++)
+      for (int l = 0; l < 2; l++)
+        if (tag[a[k]] == tag[b[l]]) return;
+    Edge u = tag[a[0]] < tag[a[1]] ? a : Edge{a[1], a[0]};
+    Edge w = tag[b[0]] < tag[b[1]] ? b : Edge{b[1], b[0]};
+    if (tag[w[0]] < tag[u[0]]) std::swap(u, w);
+    Candidate c{EE, {tag[u[0]], tag[u[1]], tag[w[0]], tag[w[1]]}, {u[0], u[1], w[0], w[1]}, 0.0};
+    found.push_back(c);
+  };
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    if (i >= nlocal || !member(i)) continue;
+    primitives(i, ti, ei);
+    const int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      if (!member(j) || tag[j] == tag[i]) continue;
+      primitives(j, tj, ej);
+      for (const Tri &t : tj) add_pt(i, t);
+      for (const Tri &t : ti) add_pt(j, t);
+      for (const Edge &a : ei)
+        for (const Edge &b : ej) add_ee(a, b);
+    }
+  }
+  if (missing)
+    error->one(FLERR,
+               "Fix nosb/contact {}: a vertex of a triangle of atom {} is neither owned nor a "
+               "ghost atom here: the ghost cutoff is too short for the mesh (comm_modify cutoff)",
+               id, missing);
+
+  // each pair once, in the order of its IDs
+  std::sort(found.begin(), found.end(), [](const Candidate &a, const Candidate &b) {
+    if (a.type != b.type) return a.type < b.type;
+    return std::lexicographical_compare(a.tag, a.tag + 4, b.tag, b.tag + 4);
+  });
+  const auto same = [](const Candidate &a, const Candidate &b) {
+    return a.type == b.type && std::equal(a.tag, a.tag + 4, b.tag);
+  };
+  found.erase(std::unique(found.begin(), found.end(), same), found.end());
+
+  // the pairs that can come within dmin + dhat before the next neighbor list build
+  const double reach = dmin + dhat + neighbor->skin;
+  candidates.clear();
+  for (Candidate &c : found) {
+    Vector3d y[4];
+    for (int k = 0; k < 4; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    const double d = c.type == PT ? PeriSISSM::point_triangle_distance(y[0], y[1], y[2], y[3])
+                                  : PeriSISSM::edge_edge_distance(y[0], y[1], y[2], y[3]);
+    if (!(d < reach)) continue;
+    if (c.type == EE) {
+      // the rest shape's edge vectors (minimum image: x0 of a periodic ghost is not shifted)
+      Vector3d r[2];
+      for (int e = 0; e < 2; e++) {
+        const int a = c.v[2 * e], b = c.v[2 * e + 1];
+        double dx = x0[b][0] - x0[a][0], dy = x0[b][1] - x0[a][1], dz = x0[b][2] - x0[a][2];
+        domain->minimum_image(dx, dy, dz);
+        r[e] = Vector3d(dx, dy, dz);
+      }
+      c.eps = PeriSISSM::edge_edge_mollifier_threshold(Vector3d::Zero(), r[0], Vector3d::Zero(),
+                                                        r[1]);
+    }
+    candidates.push_back(c);
+  }
+
+  // where the owned atoms were (check_motion())
+  if (atom->nmax > nxbuild) {
+    nxbuild = atom->nmax;
+    memory->grow(xbuild, nxbuild, 3, "nosb/contact:xbuild");
+  }
+  for (int i = 0; i < nlocal; i++)
+    for (int d = 0; d < 3; d++) xbuild[i][d] = x[i][d];
+  stale = 0;
+}
+
+/* ----------------------------------------------------------------------
+   the candidates are complete while no atom has moved skin/2 since they were chosen: an error
+   beyond (neigh_modify check no with a long every, or an implicit step that moves the atoms
+   farther than a quarter of the skin inside one step); beyond skin/4, a neighbor list build at
+   the next step (collective: every force evaluation calls it on all ranks)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::check_motion()
+{
+  double **x = atom->x;
+  const double limit = 0.25 * neighbor->skin * neighbor->skin;
+  double most = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    double r2 = 0.0;
+    for (int d = 0; d < 3; d++) r2 += (x[i][d] - xbuild[i][d]) * (x[i][d] - xbuild[i][d]);
+    most = std::max(most, r2);
+    if (r2 > limit)
+      error->one(FLERR,
+                 "Fix nosb/contact {}: atom {} moved {:.6g} since the last neighbor list build "
+                 "at step {}, more than half the neighbor skin: contact pairs may be missing; "
+                 "let LAMMPS rebuild the lists when needed (neigh_modify every 1 delay 0 check "
+                 "yes), use a larger skin or a smaller time step",
+                 id, atom->tag[i], std::sqrt(r2), neighbor->lastcall);
+  }
+  // LAMMPS checks the motion only once per step; fix sissm's iterates move the atoms inside the
+  // step (its post_integrate, before that check): beyond a quarter of the skin, the next step
+  // builds a new list (decided on all ranks alike). A pending request is not moved: fix sissm
+  // evaluates the forces of step n + 1 before LAMMPS decides on that step's list build.
+  double all;
+  MPI_Allreduce(&most, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (all > 0.25 * limit && next_reneighbor < update->ntimestep)
+    next_reneighbor = update->ntimestep + 1;
+}
+
+/* ----------------------------------------------------------------------
+   the barrier force densities of the owned vertices of every candidate pair
+------------------------------------------------------------------------- */
+
+void FixNosbContact::post_force(int /*vflag*/)
+{
+  if (stale) build_candidates();
+  else check_motion();
+
+  double **x = atom->x;
+  double **f = atom->f;
+  const double *vfrac = atom->vfrac;
+  const int nlocal = atom->nlocal;
+  const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
+  const double range = dmin + dhat;
+
+  energy_density = energy_pairs = 0.0;
+  nactive[0] = nactive[1] = 0;
+  ncandidates = 0;
+  mindist = dmin + dhat + neighbor->skin;
+  reduced = 0;
+
+  for (const Candidate &c : candidates) {
+    Vector3d y[4];
+    for (int k = 0; k < 4; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    // the owned vertices of the pair, and whether this rank counts it (its smallest ID)
+    int own[4];
+    int smallest = 0;
+    for (int k = 0; k < 4; k++) {
+      const int m = atom->map(c.tag[k]);
+      own[k] = (m >= 0 && m < nlocal) ? m : -1;
+      if (c.tag[k] < c.tag[smallest]) smallest = k;
+    }
+    const bool counts = own[smallest] >= 0;
+    if (counts) ncandidates++;
+
+    const double D = c.type == PT
+        ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
+        : PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3]);
+    const double d = std::sqrt(D);
+    mindist = std::min(mindist, d);
+    if (!(d < range)) continue;
+    if (!(d > dmin))
+      error->one(FLERR,
+                 "Fix nosb/contact {}: at step {} the {} pair of atoms {} {} {} {} is {:.6g} "
+                 "apart, not more than dmin = {:.6g}: the barrier is infinite there (the "
+                 "primitives came through the barrier: use a larger kappa, a smaller time step "
+                 "or a larger dhat)",
+                 id, update->ntimestep, c.type == PT ? "point-triangle" : "edge-edge", c.tag[0],
+                 c.tag[1], c.tag[2], c.tag[3], d, dmin);
+
+    double E;
+    PeriSISSM::Vector12d g;
+    if (c.type == PT) {
+      E = PeriSISSM::point_triangle_barrier_energy(y[0], y[1], y[2], y[3], prm);
+      g = PeriSISSM::point_triangle_barrier_gradient(y[0], y[1], y[2], y[3], prm);
+    } else {
+      E = PeriSISSM::edge_edge_barrier_energy(y[0], y[1], y[2], y[3], c.eps, prm);
+      g = PeriSISSM::edge_edge_barrier_gradient(y[0], y[1], y[2], y[3], c.eps, prm);
+    }
+    if (counts) {
+      nactive[c.type]++;
+      energy_pairs += E;
+    }
+    for (int k = 0; k < 4; k++) {
+      const int i = own[k];
+      if (i < 0) continue;
+      const double vi = vfrac[i];
+      for (int dim = 0; dim < 3; dim++) f[i][dim] -= g[3 * k + dim] / vi;
+      energy_density += 0.25 * E / vi;
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   global sums of the last evaluation (collective; once per evaluation)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::reduce()
+{
+  if (reduced) return;
+  double local[4] = {energy_density, energy_pairs, 0.0, 0.0}, sums[4];
+  bigint counts[3] = {nactive[0], nactive[1], ncandidates}, countsall[3];
+  MPI_Allreduce(local, sums, 2, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(counts, countsall, 3, MPI_LMP_BIGINT, MPI_SUM, world);
+  double mind;
+  MPI_Allreduce(&mindist, &mind, 1, MPI_DOUBLE, MPI_MIN, world);
+  all_energy_density = sums[0];
+  all_vector[0] = countsall[0];
+  all_vector[1] = countsall[1];
+  all_vector[2] = mind;
+  all_vector[3] = sums[1];
+  all_vector[4] = countsall[2];
+  reduced = 1;
+}
+
+double FixNosbContact::compute_scalar()
+{
+  reduce();
+  return all_energy_density;
+}
+
+/* ----------------------------------------------------------------------
+   1 active point-triangle pairs, 2 active edge-edge pairs (closer than dmin + dhat),
+   3 smallest distance among the candidates (dmin + dhat + skin when there is none),
+   4 barrier energy sum_pairs E, 5 candidate pairs
+------------------------------------------------------------------------- */
+
+double FixNosbContact::compute_vector(int n)
+{
+  reduce();
+  return all_vector[n];
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixNosbContact::memory_usage()
+{
+  return (double) candidates.capacity() * sizeof(Candidate) + 3.0 * nxbuild * sizeof(double);
+}

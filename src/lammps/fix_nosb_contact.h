@@ -1,0 +1,80 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix nosb/contact: barrier contact (IPC log barrier with a thickness) between the
+   point-triangle and edge-edge pairs of the meshes read by read_mesh (doc/fix_nosb_contact.rst).
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(nosb/contact,FixNosbContact);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_NOSB_CONTACT_H
+#define LMP_FIX_NOSB_CONTACT_H
+
+#include "fix.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixNosbContact : public Fix {
+ public:
+  FixNosbContact(class LAMMPS *, int, char **);
+  ~FixNosbContact() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup(int) override;
+  void setup_post_neighbor() override;
+  void post_neighbor() override;
+  void post_force(int) override;
+  double compute_scalar() override;
+  double compute_vector(int) override;
+  double memory_usage() override;
+
+ private:
+  // a candidate pair: a point and a triangle (PT: v = p, t0, t1, t2) or two edges (EE:
+  // v = a0, a1, b0, b1), local indices of the images used, tags in canonical order
+  enum { PT = 0, EE = 1 };
+  struct Candidate {
+    int type;
+    tagint tag[4];
+    int v[4];
+    double eps;    // EE: the mollifier threshold from the rest shape
+  };
+
+  double dhat, dmin, kappa;
+  double edge_factor;          // assumed longest edge = edge_factor x the longest at init
+  double longest_edge;         // that assumption (this run)
+  double list_cutoff;          // dmin + dhat + 1.5 longest_edge (neighbor skin added by LAMMPS)
+  class NeighList *list;
+  class FixNosbMesh *meshfix;
+
+  std::vector<Candidate> candidates;
+  int stale;                   // the candidates are chosen again at the next force evaluation
+  double **xbuild;             // owned positions when they were chosen
+  int nxbuild;
+
+  // results of the last force evaluation (this rank)
+  double energy_density;       // sum of the owned vertices' shares / their volumes
+  double energy_pairs;         // sum of the pair energies (each pair once over all ranks)
+  double mindist;              // smallest distance among the candidates
+  bigint nactive[2];           // pairs within dmin + dhat (each once over all ranks)
+  bigint ncandidates;          // candidates (each once over all ranks)
+  int reduced;                 // the global sums below are current
+  double all_energy_density, all_vector[5];
+
+  void build_candidates();
+  void check_motion();
+  double measure_longest_edge(bool owned_partners_only);
+  double predicted_comm_cutoff() const;
+  void reduce();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
