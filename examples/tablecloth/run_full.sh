@@ -8,7 +8,7 @@
 # with the deck's 2 /s; 25 /s damps it beyond critically), and measures each drape at the end
 # with drape.py (drape.full.DX.svg) and prints the table (at 1.5 s and settled).
 # By default the runs are explicit (fix nve, dt = 50 us: 30000 steps): at this size that is
-# about 4 times cheaper than fix sissm at the authors' 1 ms (README.md, "Full size").
+# 6.5 to 8 times cheaper than fix sissm at the authors' 1 ms (README.md, "Full size").
 # SOLVER=krylov DT=1e-3 STEPS=1500 EVERY=250 runs the sweep with fix sissm instead.
 #   ./run_full.sh                 all four
 #   ./run_full.sh no 1e-3         only these moduli
