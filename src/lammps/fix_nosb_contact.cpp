@@ -60,6 +60,7 @@
 #include "force.h"
 #include "group.h"
 #include "memory.h"
+#include "modify.h"
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
@@ -95,7 +96,7 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
 
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), edge_factor(EDGE_FACTOR),
-    longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), stale(1),
+    longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), stale(1), warned_sissm(0),
     xbuild(nullptr), nxbuild(0), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
     nactive{0, 0}, ncandidates(0), reduced(0), all_energy_density(0.0), all_vector{}
 {
@@ -202,6 +203,19 @@ void FixNosbContact::init()
                "other vertices of a pair with an owned vertex must be ghost atoms); set "
                "comm_modify cutoff {:.6g} or more",
                id, have, edge_factor, L, needed, needed);
+
+  // without continuous collision detection fix sissm's steps are not collision-free: say so
+  // once, since the interface promises that they will be (doc/fix_nosb_contact.rst)
+  if (!warned_sissm && !modify->get_fix_by_style("^sissm$").empty()) {
+    if (comm->me == 0)
+      error->warning(FLERR,
+                     "Fix nosb/contact {}: under fix sissm the barrier is part of the implicit "
+                     "step, but the step is not yet collision-free (no continuous collision "
+                     "detection): a pair can pass through the barrier within one step unless "
+                     "the step moves vertices by less than dhat",
+                     id);
+    warned_sissm = 1;
+  }
 
   auto req = neighbor->add_request(this, NeighConst::REQ_FULL);
   req->set_cutoff(list_cutoff);

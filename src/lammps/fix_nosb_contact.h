@@ -55,6 +55,7 @@ class FixNosbContact : public Fix {
 
   std::vector<Candidate> candidates;
   int stale;                   // the candidates are chosen again at the next force evaluation
+  int warned_sissm;            // the not-collision-free warning under fix sissm was given
   double **xbuild;             // owned positions when they were chosen
   int nxbuild;
 

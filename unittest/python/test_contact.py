@@ -237,6 +237,8 @@ def test_dropped_cloth_stays_above_dmin(tmp_path, kappa):
     # it bounced: the lowest vertex of the upper cloth rises again at the end
     zmin = run.thermo[-1]["c_zmin"]
     assert zmin[-1] > zmin.min()
+    # under fix nve there is no implicit step to warn about
+    assert not [w for w in run.warnings if "collision-free" in w], run.warnings
 
 
 # Under fix sissm (backward Euler, 0.2 ms steps) the barrier is an implicit external force: the
@@ -255,6 +257,9 @@ def test_implicit_drop_under_fix_sissm(tmp_path):
     assert t["c_zmin"][-1] > t["c_zmin"].min()        # and left it
     builds = int(run.log.split("Neighbor list builds =")[1].split()[0])
     assert builds >= 5, builds
+    # the user is told that the step is not collision-free yet, once
+    told = [w for w in run.warnings if "not yet collision-free" in w]
+    assert len(told) == 1, run.warnings
 
 
 # ---- bad input ----
