@@ -21,7 +21,7 @@
    every pair with an owned vertex o is found from o and a neighbor j of o within r + 1.5 L: as
    (point o, the triangles at j), (point j, the triangles at o) and (the edges at o, the edges at
    j). The fix requests a full neighbor list of cutoff r + 1.5 Lmax (LAMMPS adds its skin), with
-   Lmax = 1.5 x the longest edge at the run's start; at every neighbor list build the candidates
+   Lmax = the larger of 1.5 x the longest edge at the run's start and that edge + 2 skin; at every neighbor list build the candidates
    are chosen again from it, each pair once (sorted by its vertices' IDs and made unique), keeping
    the pairs closer than r + skin at the build: while no atom moves more than skin/2 (the fix asks
    for a build at skin/4, LAMMPS at skin/2 between steps; an error beyond, checked at every
@@ -51,6 +51,7 @@
 #include "fix_nosb_mesh.h"
 
 #include "contact/barrier.h"
+#include "contact/ccd.h"
 #include "contact/distance.h"
 
 #include "atom.h"
@@ -78,8 +79,9 @@ using namespace FixConst;
 using Eigen::Vector3d;
 
 static constexpr int NVECTOR = 5;
-// Lmax = EDGE_FACTOR x the longest edge at the start of a run: edges may stretch by 50% (less the
-// neighbor skin) before the candidates could be incomplete (an error then)
+// Lmax = EDGE_FACTOR x the longest edge at the start of a run (or that edge + 2 skin when the skin
+// is large): edges may stretch by 50% less the skin (by a skin) before the candidates could be
+// incomplete (an error then)
 static constexpr double EDGE_FACTOR = 1.5;
 
 /* ---------------------------------------------------------------------- */
@@ -97,19 +99,21 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), edge_factor(EDGE_FACTOR),
     longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), stale(1), warned_sissm(0),
-    xbuild(nullptr), nxbuild(0), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
+    xbuild(nullptr), nxbuild(0), ccd(1), xref(nullptr), nxref(0), reach_bound(0),
+    reach_moved(0.0), reach_atom(0), ccd_queries(0), ccd_capped(0), energy_density(0.0),
+    energy_pairs(0.0), mindist(0.0),
     nactive{0, 0}, ncandidates(0), reduced(0), all_energy_density(0.0), all_vector{}
 {
-  const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k]";
+  const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k] [ccd yes|no]";
   int iarg = 3;
   while (iarg < narg) {
     const std::string key(arg[iarg]);
-    if (key == "friction" || key == "ccd")
+    if (key == "friction")
       error->all(FLERR,
                  "Illegal fix nosb/contact command: keyword '{}' is not available yet (this "
                  "version has the barrier force only: doc/fix_nosb_contact.rst, Restrictions)",
                  key);
-    if (key != "dhat" && key != "dmin" && key != "kappa")
+    if (key != "dhat" && key != "dmin" && key != "kappa" && key != "ccd")
       error->all(FLERR, "Illegal fix nosb/contact command: unknown keyword '{}' ({})", key,
                  usage);
     if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix nosb/contact " + key, error);
@@ -118,6 +122,8 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
       dhat = positive_number(val, "dhat", false, error, lmp);
     else if (key == "dmin")
       dmin = positive_number(val, "dmin", true, error, lmp);
+    else if (key == "ccd")
+      ccd = utils::logical(FLERR, val, false, lmp);
     else {
       if (strcmp(val, "auto") == 0)
         error->all(FLERR,
@@ -152,6 +158,7 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
 FixNosbContact::~FixNosbContact()
 {
   memory->destroy(xbuild);
+  memory->destroy(xref);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -190,7 +197,7 @@ void FixNosbContact::init()
   if (!(L > 0.0))
     error->all(FLERR, "Fix nosb/contact {}: group {} holds no mesh edge", id,
                group->names[igroup]);
-  longest_edge = edge_factor * L;
+  longest_edge = std::max(edge_factor * L, L + 2.0 * neighbor->skin);
   list_cutoff = dmin + dhat + 1.5 * longest_edge;
 
   const double skin = neighbor->skin;
@@ -199,20 +206,19 @@ void FixNosbContact::init()
   if (have < needed)
     error->all(FLERR,
                "Fix nosb/contact {}: the ghost cutoff {:.6g} is shorter than a contact pair "
-               "needs: dmin + dhat + skin + 2.5 x {} x the longest edge ({:.6g}) = {:.6g} (the "
-               "other vertices of a pair with an owned vertex must be ghost atoms); set "
-               "comm_modify cutoff {:.6g} or more",
+               "needs: dmin + dhat + skin + 2.5 x max({} x the longest edge ({:.6g}), that edge + "
+               "2 skin) = {:.6g} (the other vertices of a pair with an owned vertex must be ghost "
+               "atoms); set comm_modify cutoff {:.6g} or more",
                id, have, edge_factor, L, needed, needed);
 
-  // without continuous collision detection fix sissm's steps are not collision-free: say so
-  // once, since the interface promises that they will be (doc/fix_nosb_contact.rst)
-  if (!warned_sissm && !modify->get_fix_by_style("^sissm$").empty()) {
+  // ccd no: fix sissm's steps are not collision-free; say so once (doc/fix_nosb_contact.rst)
+  if (!ccd && !warned_sissm && !modify->get_fix_by_style("^sissm$").empty()) {
     if (comm->me == 0)
       error->warning(FLERR,
-                     "Fix nosb/contact {}: under fix sissm the barrier is part of the implicit "
-                     "step, but the step is not yet collision-free (no continuous collision "
-                     "detection): a pair can pass through the barrier within one step unless "
-                     "the step moves vertices by less than dhat",
+                     "Fix nosb/contact {}: ccd no: under fix sissm the barrier is part of the "
+                     "implicit step, but the step is not collision-free: a pair can pass through "
+                     "the barrier within one step unless the step moves vertices by less than "
+                     "dhat",
                      id);
     warned_sissm = 1;
   }
@@ -323,9 +329,9 @@ void FixNosbContact::build_candidates()
   if (L + neighbor->skin > longest_edge)
     error->all(FLERR,
                "Fix nosb/contact {}: at step {} a mesh edge is {:.6g} long, more than the "
-               "contact candidates of this run allow ({} x the longest edge at the run's start "
-               "less the neighbor skin: {:.6g}): start a new run (which measures the edges "
-               "again) or use a smaller neighbor skin",
+               "contact candidates of this run allow (the longest edge at the run's start, the "
+               "larger of {} x it and it + 2 skin, less the neighbor skin: {:.6g}): start a new "
+               "run (which measures the edges again) or use a smaller neighbor skin",
                id, update->ntimestep, L, edge_factor, longest_edge - neighbor->skin);
 
   auto member = [&](int k) { return k >= 0 && (mask[k] & groupbit) && mesh[k]; };
@@ -359,6 +365,16 @@ void FixNosbContact::build_candidates()
   std::vector<Candidate> found;
   std::vector<Tri> ti, tj;
   std::vector<Edge> ei, ej;
+  // the pairs that can come within dmin + dhat before the next neighbor list build (tested as
+  // they are found: a neighbor list with a wide skin finds many times more pairs than it keeps)
+  const double reach = dmin + dhat + neighbor->skin;
+  auto near = [&](const Candidate &c) {
+    Vector3d y[4];
+    for (int k = 0; k < 4; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
+                                  : PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3]);
+    return D < reach * reach;
+  };
   // a point-triangle pair in canonical order (the triangle's vertices by ID); none if p is one
   auto add_pt = [&](int p, const Tri &t) {
     for (int k = 0; k < 3; k++)
@@ -366,7 +382,7 @@ void FixNosbContact::build_candidates()
     Tri s = t;
     std::sort(s.begin(), s.end(), [tag](int a, int b) { return tag[a] < tag[b]; });
     Candidate c{PT, {tag[p], tag[s[0]], tag[s[1]], tag[s[2]]}, {p, s[0], s[1], s[2]}, 0.0};
-    found.push_back(c);
+    if (near(c)) found.push_back(c);
   };
   // an edge-edge pair in canonical order (each edge from its smaller ID, the edges by their
   // first IDs); none if they share a vertex
@@ -378,7 +394,7 @@ void FixNosbContact::build_candidates()
     Edge w = tag[b[0]] < tag[b[1]] ? b : Edge{b[1], b[0]};
     if (tag[w[0]] < tag[u[0]]) std::swap(u, w);
     Candidate c{EE, {tag[u[0]], tag[u[1]], tag[w[0]], tag[w[1]]}, {u[0], u[1], w[0], w[1]}, 0.0};
-    found.push_back(c);
+    if (near(c)) found.push_back(c);
   };
 
   const int inum = list->inum;
@@ -416,15 +432,8 @@ void FixNosbContact::build_candidates()
   };
   found.erase(std::unique(found.begin(), found.end(), same), found.end());
 
-  // the pairs that can come within dmin + dhat before the next neighbor list build
-  const double reach = dmin + dhat + neighbor->skin;
   candidates.clear();
   for (Candidate &c : found) {
-    Vector3d y[4];
-    for (int k = 0; k < 4; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
-    const double d = c.type == PT ? PeriSISSM::point_triangle_distance(y[0], y[1], y[2], y[3])
-                                  : PeriSISSM::edge_edge_distance(y[0], y[1], y[2], y[3]);
-    if (!(d < reach)) continue;
     if (c.type == EE) {
       // the rest shape's edge vectors (minimum image: x0 of a periodic ghost is not shifted)
       Vector3d r[2];
@@ -599,9 +608,188 @@ double FixNosbContact::compute_vector(int n)
   return all_vector[n];
 }
 
+/* ----------------------------------------------------------------------
+   CollisionLimit (collision_limit.h): fix sissm's path of admissible positions.
+
+   The reference is the positions of the last admissible state, owned and ghost (the indices
+   of the ghosts do not change inside a step: no neighbor list build). A move from it to the
+   current positions is checked pair by pair with additive CCD (core contact/ccd.h: the
+   fraction returned keeps the pair's gap above 0.1 of its gap at the reference, so it never
+   reaches dmin on the straight move), over the candidates: a pair that is not a candidate was
+   farther than dmin + dhat + skin apart at the list build and cannot come within dmin + dhat
+   while no atom has moved skin/2 from there (the file's header), so the move is also limited
+   to that reach. The fraction is the minimum over all pairs and ranks; the owned atoms of the
+   integrator's group go back to it.
+------------------------------------------------------------------------- */
+
+void FixNosbContact::begin_path()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  if (nall > nxref) {
+    nxref = atom->nmax;
+    memory->grow(xref, nxref, 3, "nosb/contact:xref");
+  }
+  double **x = atom->x;
+  for (int i = 0; i < nall; i++)
+    for (int d = 0; d < 3; d++) xref[i][d] = x[i][d];
+}
+
+double FixNosbContact::limit_move(int groupbit)
+{
+  if (stale) build_candidates();
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+
+  // pairs: the largest fraction that no candidate pair contradicts
+  double t_pairs = 1.0;
+  PeriSISSM::CcdOptions opt;
+  opt.dmin = dmin;
+  for (const Candidate &c : candidates) {
+    Vector3d y[4], dy[4];
+    bool moved = false;
+    for (int k = 0; k < 4; k++) {
+      const double *a = xref[c.v[k]], *b = x[c.v[k]];
+      y[k] = Vector3d(a[0], a[1], a[2]);
+      dy[k] = Vector3d(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+      moved = moved || dy[k].squaredNorm() > 0.0;
+    }
+    if (!moved) continue;
+    opt.t_max = t_pairs;
+    PeriSISSM::CcdReport report;
+    const double t = c.type == PT
+        ? PeriSISSM::point_triangle_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt,
+                                        &report)
+        : PeriSISSM::edge_edge_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt,
+                                   &report);
+    ccd_queries++;
+    if (report.capped) ccd_capped++;
+    t_pairs = std::min(t_pairs, t);
+  }
+
+  // reach: no atom of the group farther than skin/2 from the list build (exactly: the largest
+  // t with |xref + t (x - xref) - xbuild| <= skin/2; the segment is inside the ball when both
+  // ends are)
+  const double R = 0.5 * neighbor->skin;
+  double t_reach = 1.0, far = 0.0;
+  tagint who = MAXTAGINT;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(atom->mask[i] & this->groupbit)) continue;
+    double a2 = 0.0, ad = 0.0, d2 = 0.0, e2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+      const double a = xref[i][k] - xbuild[i][k], d = x[i][k] - xref[i][k];
+      a2 += a * a;
+      ad += a * d;
+      d2 += d * d;
+      e2 += (a + d) * (a + d);
+    }
+    if (e2 <= R * R) continue;
+    // |a + t d|^2 = R^2 for the root in [0, 1] (a2 <= R^2: the reference is admissible)
+    const double disc = std::max(0.0, ad * ad - d2 * (a2 - R * R));
+    const double t = std::max(0.0, (-ad + std::sqrt(disc)) / d2) * (1.0 - 1.0e-12);
+    if (t < t_reach || (t == t_reach && atom->tag[i] < who)) {
+      t_reach = t;
+      who = atom->tag[i];
+      far = std::sqrt(a2);
+    }
+  }
+
+  double mine[2] = {t_pairs, t_reach}, all[2];
+  MPI_Allreduce(mine, all, 2, MPI_DOUBLE, MPI_MIN, world);
+  const double t = std::min(all[0], all[1]);
+  reach_bound = all[1] < 1.0 && all[1] <= all[0];
+  if (reach_bound) {
+    // the atom that set the reach limit (smallest ID among the ranks that found it)
+    const tagint mine_who = (t_reach == all[1]) ? who : MAXTAGINT;
+    MPI_Allreduce(&mine_who, &reach_atom, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+    const double mine_far = (mine_who == reach_atom) ? far : 0.0;
+    MPI_Allreduce(&mine_far, &reach_moved, 1, MPI_DOUBLE, MPI_MAX, world);
+  }
+  if (t < 1.0)
+    for (int i = 0; i < nlocal; i++)
+      if (atom->mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) x[i][k] = xref[i][k] + t * (x[i][k] - xref[i][k]);
+  return t;
+}
+
+/* ----------------------------------------------------------------------
+   an implicit step that ended where the contact candidates' reach cut it short
+------------------------------------------------------------------------- */
+
+void FixNosbContact::reach_error(const char *integrator)
+{
+  error->all(FLERR,
+             "Fix nosb/contact {}: {} step {} needs atom {} to move farther than half the "
+             "neighbor skin ({:.6g}) from where it was at the last neighbor list build (it was "
+             "{:.6g} from there at the start of the move): the contact candidates cannot follow "
+             "a step that far; use a larger neighbor skin (a step may move the atoms by 3/8 of "
+             "it at least: the lists are built again after a step that moved an atom skin/8) or "
+             "a smaller time step",
+             id, integrator, update->ntimestep, reach_atom, 0.5 * neighbor->skin, reach_moved);
+}
+
+/* ----------------------------------------------------------------------
+   at the end of an implicit step: a new neighbor list before the next step once an atom has
+   moved skin/8 from the last build, so that every step may move the atoms by 3/8 of the skin
+   at least (fix sissm builds it right after its step, before the forces of that step)
+------------------------------------------------------------------------- */
+
+bool FixNosbContact::rebuild_wanted()
+{
+  double **x = atom->x;
+  double most = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    double r2 = 0.0;
+    for (int d = 0; d < 3; d++) r2 += (x[i][d] - xbuild[i][d]) * (x[i][d] - xbuild[i][d]);
+    most = std::max(most, r2);
+  }
+  double all;
+  MPI_Allreduce(&most, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double trigger = 0.125 * neighbor->skin;
+  return all > trigger * trigger;
+}
+
+/* ----------------------------------------------------------------------
+   the barrier's diagonal stiffness blocks of the owned vertices at the current positions:
+   the 3x3 diagonal blocks of each active pair's Hessian projected to positive semi-definite,
+   divided by the vertex's volume (the force is a density), added to block (xx yy zz xy xz yz)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::add_blocks(double **block)
+{
+  double **x = atom->x;
+  const double *vfrac = atom->vfrac;
+  const int nlocal = atom->nlocal;
+  const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
+  const double range = dmin + dhat;
+  for (const Candidate &c : candidates) {
+    Vector3d y[4];
+    for (int k = 0; k < 4; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
+                                  : PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3]);
+    if (!(D < range * range)) continue;
+    const PeriSISSM::Matrix12d H = c.type == PT
+        ? PeriSISSM::point_triangle_barrier_hessian(y[0], y[1], y[2], y[3], prm, true)
+        : PeriSISSM::edge_edge_barrier_hessian(y[0], y[1], y[2], y[3], c.eps, prm, true);
+    for (int k = 0; k < 4; k++) {
+      const int i = atom->map(c.tag[k]);
+      if (i < 0 || i >= nlocal) continue;
+      const double w = 1.0 / vfrac[i];
+      const int o = 3 * k;
+      block[i][0] += w * H(o, o);
+      block[i][1] += w * H(o + 1, o + 1);
+      block[i][2] += w * H(o + 2, o + 2);
+      block[i][3] += w * H(o, o + 1);
+      block[i][4] += w * H(o, o + 2);
+      block[i][5] += w * H(o + 1, o + 2);
+    }
+  }
+}
+
 /* ---------------------------------------------------------------------- */
 
 double FixNosbContact::memory_usage()
 {
-  return (double) candidates.capacity() * sizeof(Candidate) + 3.0 * nxbuild * sizeof(double);
+  return (double) candidates.capacity() * sizeof(Candidate) +
+      3.0 * (nxbuild + nxref) * sizeof(double);
 }

@@ -16,11 +16,13 @@ FixStyle(nosb/contact,FixNosbContact);
 
 #include "fix.h"
 
+#include "collision_limit.h"
+
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class FixNosbContact : public Fix {
+class FixNosbContact : public Fix, public CollisionLimit {
  public:
   FixNosbContact(class LAMMPS *, int, char **);
   ~FixNosbContact() override;
@@ -34,6 +36,15 @@ class FixNosbContact : public Fix {
   double compute_scalar() override;
   double compute_vector(int) override;
   double memory_usage() override;
+
+  // ---- CollisionLimit: the collision-free step of fix sissm (continuous collision detection)
+  bool limits_moves() const override { return ccd != 0; }
+  void begin_path() override;
+  double limit_move(int groupbit) override;
+  bool reach_limited() const override { return reach_bound; }
+  void reach_error(const char *integrator) override;
+  bool rebuild_wanted() override;
+  void add_blocks(double **block) override;
 
  private:
   // a candidate pair: a point and a triangle (PT: v = p, t0, t1, t2) or two edges (EE:
@@ -58,6 +69,13 @@ class FixNosbContact : public Fix {
   int warned_sissm;            // the not-collision-free warning under fix sissm was given
   double **xbuild;             // owned positions when they were chosen
   int nxbuild;
+  int ccd;                     // keyword ccd: fix sissm limits its moves (CollisionLimit)
+  double **xref;               // the last admissible positions (owned and ghost; begin_path())
+  int nxref;
+  int reach_bound;             // the last limit_move() was cut short by the candidates' reach
+  double reach_moved;          // then: how far an atom had moved from the list build
+  tagint reach_atom;           //   which one
+  bigint ccd_queries, ccd_capped;    // CCD pair queries and those that hit the sub-step cap
 
   // results of the last force evaluation (this rank)
   double energy_density;       // sum of the owned vertices' shares / their volumes

@@ -25,6 +25,8 @@
 
 #include "fix_sissm.h"
 
+#include "collision_limit.h"
+
 #include "implicit_forces.h"
 
 #include "linalg/exact_sum.h"
@@ -42,6 +44,7 @@
 #include "pair.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -89,7 +92,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
     last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), fallback_run(0),
     warned_fallback(0), block_first(0), warned(0), warned_roundoff(0), nmax(0), evaluations_(0),
-    contact_incomplete(0), fint(nullptr),
+    contact_incomplete(0), reach_cut(0), fint(nullptr),
     fext(nullptr), flagged(nullptr),
     yn(nullptr), yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr),
     xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
@@ -370,6 +373,51 @@ void FixSissm::choose_external()
   }
   if (note != external_note && comm->me == 0 && !note.empty()) utils::logmesg(lmp, note);
   external_note = note;
+
+  // contact that limits the moves (collision-free steps) must be part of every iterate
+  limiters.clear();
+  for (Fix *f : fixes) {
+    auto *limit = dynamic_cast<CollisionLimit *>(f);
+    if (!limit || !limit->limits_moves()) continue;
+    const bool implicit = external_mode != EXT_LAGGED &&
+        std::find(implicit_fixes.begin(), implicit_fixes.end(), f) != implicit_fixes.end();
+    if (!implicit)
+      error->all(FLERR,
+                 "Fix sissm {}: fix {} ({}) makes the implicit step collision-free, so its force "
+                 "must be re-evaluated at every iterate, but the forces of the other fixes are "
+                 "lagged here ({}): remove that, or turn the collision check off (ccd no)",
+                 id, f->id, f->style,
+                 implicit_external ? "a fix that rewrites forces is present; hold atoms by "
+                                     "leaving them out of fix sissm's group instead"
+                                   : "keyword external lagged");
+    limiters.push_back(limit);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   collision-free steps (collision_limit.h): the positions at the start of a (sub-)step are
+   admissible; every later move of the group is limited so that no contact pair comes within
+   its thickness on the straight move from the last admissible positions
+------------------------------------------------------------------------- */
+
+void FixSissm::begin_path()
+{
+  comm->forward_comm();
+  for (CollisionLimit *limit : limiters) limit->begin_path();
+}
+
+// ghost positions current on entry and on return
+void FixSissm::limit_path(bool end_of_step)
+{
+  reach_cut = 0;
+  for (CollisionLimit *limit : limiters) {
+    if (limit->limit_move(groupbit) < 1.0) comm->forward_comm();
+    if (limit->reach_limited()) {
+      if (end_of_step) limit->reach_error("fix sissm");
+      reach_cut = 1;
+    }
+  }
+  for (CollisionLimit *limit : limiters) limit->begin_path();
 }
 
 /* ---------------------------------------------------------------------- */
@@ -540,6 +588,7 @@ void FixSissm::evaluate(bool blocks)
 {
   evaluations_++;
   comm->forward_comm();
+  if (!limiters.empty()) limit_path(false);
   double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;
@@ -548,7 +597,9 @@ void FixSissm::evaluate(bool blocks)
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
 
-  contact_incomplete = forces->contact_follow_motion() < 0;
+  // an iterate that contact candidates could not follow (the pair's short-range contact, or a
+  // move cut short by the reach of a contact fix's candidates) cannot count as converged
+  contact_incomplete = forces->contact_follow_motion() < 0 || reach_cut;
   for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
   forces->evaluate(blocks ? kblock : nullptr);
   if (forces->ghost_forces()) comm->reverse_comm();
@@ -560,6 +611,8 @@ void FixSissm::evaluate(bool blocks)
         for (int k = 0; k < 3; k++) fext[i][k] = f[i][k];
       }
     for (Fix *fix : implicit_fixes) fix->post_force(0);
+    if (blocks)
+      for (CollisionLimit *limit : limiters) limit->add_blocks(kblock);
     for (int i = 0; i < nlocal; i++)
       if (mask[i] & groupbit)
         for (int k = 0; k < 3; k++) {
@@ -696,6 +749,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   const double tforce = t_end - (1.0 - scheme->force_time()) * h / dtv;
   const bool move_others = xstart && (tforce < 1.0);
   if (move_others) place_others(tforce);
+  if (!limiters.empty()) begin_path();
   arrays.y = x;
   arrays.v = v;
   arrays.yn = yn;
@@ -738,6 +792,11 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
                                              scheme->name() == "euler"};
     PeriSISSM::balance_momentum(rows_, *this, balance, x, yn, yhat, flag ? nullptr : fext,
                                 moment);
+  }
+  // the last move (the final correction, the momentum balance) is limited like the others
+  if (!limiters.empty()) {
+    comm->forward_comm();
+    limit_path(true);
   }
   scheme->finish(rows_, arrays);
   if (move_others) place_others(t_end);
@@ -929,7 +988,9 @@ void FixSissm::post_integrate()
                     "unconverged solve",
                     measure, tol_step)
       : "";
-  if (forces->contact_end_of_step(cause)) next_reneighbor = update->ntimestep;
+  bool rebuild = forces->contact_end_of_step(cause);
+  for (CollisionLimit *limit : limiters) rebuild = limit->rebuild_wanted() || rebuild;
+  if (rebuild) next_reneighbor = update->ntimestep;
 
   last_iterations = evaluations;
   last_measure = measure;

@@ -116,6 +116,10 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   int implicit_external;    // keyword external: 1 implicit, 0 lagged
   int external_mode;        // EXT_*, see above
   std::vector<class Fix *> implicit_fixes;    // re-evaluated at every iterate, in LAMMPS order
+  // contact that makes the step collision-free: every move of the atoms is limited by it
+  // (collision_limit.h)
+  std::vector<class CollisionLimit *> limiters;
+  int reach_cut;        // the last evaluation's move was cut short by a contact's reach
   std::string external_note;                  // what was last logged about them
   double dtv;
   double tol_step;      // the tolerance of the current step (attainable_tolerance())
@@ -158,6 +162,8 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   void grow();
   void destroy_arrays();
   void choose_external();
+  void begin_path();
+  void limit_path(bool end_of_step);
   void capture_internal_force();
   void lagged_external_force();
   PeriSISSM::SolveResult solve_step(double h, double t_end, double **flag);

@@ -1,0 +1,56 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   What an implicit integrator (fix sissm) needs from a contact model to make its steps
+   collision-free: the largest fraction of a move of the atoms that keeps every contact pair
+   apart (continuous collision detection), and the contact's diagonal stiffness blocks for the
+   SISSM blocks. fix nosb/contact implements it; fix sissm finds it among the fixes whose
+   forces it re-evaluates at every iterate.
+
+   The integrator keeps its atoms on a path of admissible positions: it marks the positions of
+   the start of a step admissible (begin_path()), and before every force evaluation, and at
+   the step's end, moves its atoms back along the straight line from the last admissible
+   positions to the current ones by the fraction limit_move() returns, which then become the
+   last admissible positions. Every position the integrator evaluates or ends a step at is then
+   connected to the step's start by straight moves on which no pair comes within the contact's
+   thickness.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_PERISISSM_COLLISION_LIMIT_H
+#define LMP_PERISISSM_COLLISION_LIMIT_H
+
+namespace LAMMPS_NS {
+
+class CollisionLimit {
+ public:
+  // false when this contact does not limit moves (then the other calls are not made)
+  virtual bool limits_moves() const = 0;
+  // the current positions (owned and ghost, current) are admissible: the reference of the next
+  // move. Collective.
+  virtual void begin_path() = 0;
+  // the move from the reference to the current positions (owned and ghost current): returns
+  // the largest fraction t in [0, 1] of it on which no pair comes within the thickness and no
+  // atom leaves the candidates' reach (the same on all ranks), after moving the owned atoms of
+  // groupbit back to reference + t (current - reference) when t < 1 (the caller then brings the
+  // ghosts up to date and calls begin_path()). Collective.
+  virtual double limit_move(int groupbit) = 0;
+  // true when the last limit_move() was cut short by how far the contact candidates reach (the
+  // atoms cannot move farther inside this step), not by a pair coming close
+  virtual bool reach_limited() const = 0;
+  // the error for a step that ended cut short by the candidates' reach (collective)
+  virtual void reach_error(const char *integrator) = 0;
+  // at the end of a step: true (all ranks) when the next step should start from a new neighbor
+  // list (the atoms moved far enough from the last build to shorten the next step's reach).
+  // Collective.
+  virtual bool rebuild_wanted() = 0;
+  // add the positive semi-definite diagonal blocks of the contact's stiffness at the last
+  // force evaluation, per unit volume of each owned atom (xx yy zz xy xz yz), to block
+  virtual void add_blocks(double **block) = 0;
+
+ protected:
+  ~CollisionLimit() = default;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
