@@ -47,7 +47,7 @@
 // The Hessian has rank <= 2; the lagged data have no derivatives (they are constants of the
 // step), so these are the exact derivatives of the lagged potential.
 //
-// Use in the glue (phase after this one; src/lammps/fix_nosb_contact.cpp):
+// Use in the glue (fix nosb/contact, a later phase):
 // - Under fix sissm (implicit): at the start of each step, from the positions x^n, build a
 //   FrictionPair for every pair within dmin + dhat (the barrier's active pairs; the candidates are
 //   those of the barrier, and only pairs with lambda > 0 need be kept). Keep them, with x^n of
@@ -56,16 +56,17 @@
 //   force densities, gradient / vfrac, like the barrier) and its Hessian blocks to the matrix
 //   where the barrier's go. eps = eps_v h with fix sissm's step h, eps_v a keyword of the fix
 //   (a speed well below the sliding speeds of the scene). A neighbor list rebuild inside a step
-//   must not drop the step's lagged pairs. The lagging is IPC's: one set of lagged data per step (IPC
-//   optionally iterates the lagged solve; one pass is what its experiments use by default).
+//   must not drop the step's lagged pairs. One set of lagged data per step (IPC also allows
+//   re-solving a step with data lagged at its own result; not needed for the incline below).
 // - Under fix nve (explicit), recommended: build the pairs at the current positions at every
 //   step (lambda = the barrier force now, nothing to lag) and use u = v dt, v the velocity at
-//   the force evaluation. The force is then -mu lambda s(|v_T| / eps_v) v_T / |v_T|,
-//   s(r) = 2 r - r^2 below 1, 1 beyond: Coulomb friction regularised below the slip speed
-//   eps_v, independent of dt (eps = eps_v dt). Its static regime is a viscous force
-//   2 mu lambda / eps_v per unit relative tangential speed, so explicit integration needs
-//   dt < m eps_v / (mu lambda) for the vertex mass m (a damper's stability bound, with margin);
-//   eps_v must be chosen large enough for that (or the step small). No guarantee of sticking.
+//   the force evaluation (fix nve's half-step velocity). The force is then
+//   -mu lambda s(|v_T| / eps_v) v_T / |v_T|, s(r) = 2 r - r^2 below 1, 1 beyond: Coulomb
+//   friction regularised below the slip speed eps_v, independent of dt (eps = eps_v dt). Its
+//   static regime is a damper of 2 mu lambda / eps_v per unit relative tangential speed, so an
+//   explicit step needs dt < m eps_v / (mu lambda) for a vertex of mass m (the damper's
+//   stability bound; half of it so that the slip does not reverse within a step): eps_v large
+//   enough for that, or a small step. No guarantee of sticking.
 // - Incline test (issue 15's acceptance): a block (or a vertex) resting on a fixed plane tilted
 //   by theta under gravity g. Once its normal motion has settled, lambda sums to m g cos(theta)
 //   over the pairs; it slides with acceleration g (sin(theta) - mu cos(theta)) when
