@@ -283,13 +283,6 @@ def test_bad_arguments(tmp_path, args, message):
     assert any(message in e for e in run.errors), (args, run.errors)
 
 
-def test_non_mesh_atoms_are_refused(tmp_path):
-    mesh, _, _ = cloth(tmp_path)
-    run = run_deck(CLOTHS, tmp_path, check=False, variables={"mesh": mesh, "single": "yes"})
-    assert any("atom 73 of group all is not a vertex of a mesh" in e and
-               "not available yet" in e for e in run.errors), run.errors
-
-
 def test_short_ghost_cutoff_is_refused(tmp_path):
     """The other vertices of a pair must be ghost atoms: dmin + dhat + skin + 2.5 x 1.5 x the
     longest edge (2 cm x sqrt 2) = 0.118066 here."""
