@@ -2,9 +2,9 @@
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
    fix nosb/contact: the barrier contact of Incremental Potential Contact between the mesh
-   primitives and the volumetric particles of the fix's group, as a force (post_force). The barrier, distances and their
-   gradients are the core's (contact/barrier.h, contact/distance.h); this file finds the pairs
-   and hands out the forces.
+   primitives and the volumetric particles of the fix's group, as a force (post_force). The
+   barrier, distances and their gradients are the core's (contact/barrier.h,
+   contact/distance.h); this file finds the pairs and hands out the forces.
 
    Pairs. Every point-triangle pair (a vertex and a triangle) and every edge-edge pair of the
    meshes read with read_mesh (fix nosb/mesh) whose primitives are in the group, except those
@@ -23,17 +23,18 @@
    particles are partners (a warning says so).
 
    Candidates. A pair of primitives closer than r = dmin + dhat has vertices closer than
-   r + 1.5 L (L the longest edge; two particles are within r): for a point p and a triangle T with closest point q, every
-   vertex of T is within L of q, so |p - t_k| < r + L for all k; for two edges with closest points
-   qa, qb, an end a_k is within L of qa and the nearer end b_c of the other within L/2 of qb. So
-   every pair with an owned vertex o is found from o and a neighbor j of o within r + 1.5 L: as
-   (point o, the triangles at j), (point j, the triangles at o) and (the edges at o, the edges at
-   j), or (particle o, particle j). The fix requests a full neighbor list of cutoff r + 1.5 Lmax (LAMMPS adds its skin), with
-   Lmax = 1.5 x the longest edge at the run's start; at every neighbor list build the candidates
-   are chosen again from it, each pair once (sorted by its vertices' IDs and made unique), keeping
-   the pairs closer than r + skin at the build: while no atom moves more than skin/2 (the fix asks
-   for a build at skin/4, LAMMPS at skin/2 between steps; an error beyond, checked at every
-   evaluation: check_motion()) no other pair can come within
+   r + 1.5 L (L the longest edge; two particles are within r): for a point p and a triangle T
+   with closest point q, every vertex of T is within L of q, so |p - t_k| < r + L for all k; for
+   two edges with closest points qa, qb, an end a_k is within L of qa and the nearer end b_c of
+   the other within L/2 of qb. So every pair with an owned vertex o is found from o and a
+   neighbor j of o within r + 1.5 L: as (point o, the triangles at j), (point j, the triangles
+   at o) and (the edges at o, the edges at j), or (particle o, particle j). The fix builds a
+   full occasional neighbor list of cutoff r + 1.5 Lmax + skin at every neighbor list build of
+   LAMMPS, with Lmax = 1.5 x the longest edge at the run's start (0 without mesh edges), and
+   chooses the candidates again from it, each pair once (sorted by its vertices' IDs and made
+   unique), keeping the pairs closer than r + skin at the build: while no atom moves more than
+   skin/2 (the fix asks for a build at skin/4, LAMMPS at skin/2 between steps; an error beyond,
+   checked at every evaluation: check_motion()) no other pair can come within
    r, and no edge can grow beyond Lmax while its length plus the skin stays below Lmax at each
    build (checked then). The other vertices of a candidate lie within r + skin + 2.5 Lmax of an
    owned atom: the ghost cutoff must cover that (checked at init, like the bending term's).
@@ -48,8 +49,9 @@
    Units (atom_style peri: f is a force density, rmass a mass density, vfrac the volume V_i): the
    pair's energy E = kappa b(d - dmin) (times the mollifier for edges) is an energy; vertex k of
    the pair gets the force density -dE/dx_k / V_k (so that fix nve moves it by -dE/dx_k / m_k),
-   and an energy density E / (n V_k) (n = 4 vertices, 2 for two particles), as the bending term of pair peri/nosb tallies its hinges
-   (pe of peri/nosb is a sum of energy densities: doc/pair_peri_nosb.rst). The global scalar
+   and an energy density E / (n V_k) (n = 4 vertices, 2 for two particles), as the bending term
+   of pair peri/nosb tallies its hinges (pe of peri/nosb is a sum of energy densities:
+   doc/pair_peri_nosb.rst). The global scalar
    is that sum of densities (fix_modify energy yes adds it to pe); vector element 4 is the
    energy itself, sum_pairs E; element 6 (added last) counts the active point-point pairs.
 ------------------------------------------------------------------------- */
@@ -109,8 +111,9 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), edge_factor(EDGE_FACTOR),
     longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), pair(nullptr),
-    nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0), energy_density(0.0),
-    energy_pairs(0.0), mindist(0.0), nactive{0, 0, 0}, ncandidates(0), reduced(0), all_energy_density(0.0), all_vector{}
+    nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0),
+    energy_density(0.0), energy_pairs(0.0), mindist(0.0), nactive{0, 0, 0}, ncandidates(0),
+    reduced(0), all_energy_density(0.0), all_vector{}
 {
   const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k]";
   int iarg = 3;
@@ -209,8 +212,9 @@ void FixNosbContact::init()
 
   const double L = all[0] ? measure_longest_edge(true) : 0.0;
   if (all[0] && !nparticles && !(L > 0.0))
-    error->all(FLERR, "Fix nosb/contact {}: group {} holds no mesh edge and no volumetric "
-               "particle", id, group->names[igroup]);
+    error->all(FLERR,
+               "Fix nosb/contact {}: group {} holds no mesh edge and no volumetric particle", id,
+               group->names[igroup]);
   longest_edge = edge_factor * L;
   list_cutoff = dmin + dhat + 1.5 * longest_edge;
 
@@ -569,8 +573,10 @@ void FixNosbContact::post_force(int /*vflag*/)
   if (stale) build_candidates();
   else check_motion();
   if (stale)
-    error->all(FLERR, "Fix nosb/contact {}: the bond families of pair peri/nosb were not built "
-               "at the run's setup", id);
+    error->all(FLERR,
+               "Fix nosb/contact {}: the bond families of pair peri/nosb were not built at the "
+               "run's setup",
+               id);
 
   double **x = atom->x;
   double **f = atom->f;
