@@ -2,9 +2,9 @@
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
    fix nosb/contact: the barrier contact of Incremental Potential Contact between the mesh
-   primitives of the fix's group, as a force (post_force). The barrier, distances and their
-   gradients are the core's (contact/barrier.h, contact/distance.h); this file finds the pairs
-   and hands out the forces.
+   primitives and the volumetric particles of the fix's group, as a force (post_force). The
+   barrier, distances and their gradients are the core's (contact/barrier.h,
+   contact/distance.h); this file finds the pairs and hands out the forces.
 
    Pairs. Every point-triangle pair (a vertex and a triangle) and every edge-edge pair of the
    meshes read with read_mesh (fix nosb/mesh) whose primitives are in the group, except those
@@ -13,19 +13,29 @@
    triangle whose vertices it is bonded to can be far apart on a folded cloth and must still
    repel. (For a flat sheet, dmin + dhat must then stay below the distance of a vertex to the far
    side of its neighbours' triangles, about the triangles' height: the doc says so.)
+   The group's atoms that are not mesh vertices are volumetric particles, i.e. points: they form
+   point-point pairs with each other and point-triangle pairs with the group's triangles, with
+   the same dmin and dhat. Two particles that are or were bond partners (pair peri/nosb's
+   families, broken bonds included) are no pair: partners are the particles whose reference
+   positions x0 lie within the horizon of their types, as fix nosb/family chose them when it
+   built the families (atoms made after that are no one's partners); a broken bond keeps no tag
+   in the families, but its reference distance is still there. Without pair peri/nosb no
+   particles are partners (a warning says so).
 
    Candidates. A pair of primitives closer than r = dmin + dhat has vertices closer than
-   r + 1.5 L (L the longest edge): for a point p and a triangle T with closest point q, every
-   vertex of T is within L of q, so |p - t_k| < r + L for all k; for two edges with closest points
-   qa, qb, an end a_k is within L of qa and the nearer end b_c of the other within L/2 of qb. So
-   every pair with an owned vertex o is found from o and a neighbor j of o within r + 1.5 L: as
-   (point o, the triangles at j), (point j, the triangles at o) and (the edges at o, the edges at
-   j). The fix requests a full neighbor list of cutoff r + 1.5 Lmax (LAMMPS adds its skin), with
-   Lmax = the larger of 1.5 x the longest edge at the run's start and that edge + 2 skin; at every neighbor list build the candidates
-   are chosen again from it, each pair once (sorted by its vertices' IDs and made unique), keeping
-   the pairs closer than r + skin at the build: while no atom moves more than skin/2 (the fix asks
-   for a build at skin/4, LAMMPS at skin/2 between steps; an error beyond, checked at every
-   evaluation: check_motion()) no other pair can come within
+   r + 1.5 L (L the longest edge; two particles are within r): for a point p and a triangle T
+   with closest point q, every vertex of T is within L of q, so |p - t_k| < r + L for all k; for
+   two edges with closest points qa, qb, an end a_k is within L of qa and the nearer end b_c of
+   the other within L/2 of qb. So every pair with an owned vertex o is found from o and a
+   neighbor j of o within r + 1.5 L: as (point o, the triangles at j), (point j, the triangles
+   at o) and (the edges at o, the edges at j), or (particle o, particle j). The fix builds a
+   full occasional neighbor list of cutoff r + 1.5 Lmax + skin at every neighbor list build of
+   LAMMPS, with Lmax = the larger of 1.5 x the longest edge at the run's start and that edge +
+   2 skin (0 without mesh edges), and
+   chooses the candidates again from it, each pair once (sorted by its vertices' IDs and made
+   unique), keeping the pairs closer than r + skin at the build: while no atom moves more than
+   skin/2 (the fix asks for a build at skin/4, LAMMPS at skin/2 between steps; an error beyond,
+   checked at every evaluation: check_motion()) no other pair can come within
    r, and no edge can grow beyond Lmax while its length plus the skin stays below Lmax at each
    build (checked then). The other vertices of a candidate lie within r + skin + 2.5 Lmax of an
    owned atom: the ghost cutoff must cover that (checked at init, like the bending term's).
@@ -40,19 +50,23 @@
    Units (atom_style peri: f is a force density, rmass a mass density, vfrac the volume V_i): the
    pair's energy E = kappa b(d - dmin) (times the mollifier for edges) is an energy; vertex k of
    the pair gets the force density -dE/dx_k / V_k (so that fix nve moves it by -dE/dx_k / m_k),
-   and an energy density E / (4 V_k), as the bending term of pair peri/nosb tallies its hinges
-   (pe of peri/nosb is a sum of energy densities: doc/pair_peri_nosb.rst). The global scalar
+   and an energy density E / (n V_k) (n = 4 vertices, 2 for two particles), as the bending term
+   of pair peri/nosb tallies its hinges (pe of peri/nosb is a sum of energy densities:
+   doc/pair_peri_nosb.rst). The global scalar
    is that sum of densities (fix_modify energy yes adds it to pe); vector element 4 is the
-   energy itself, sum_pairs E.
+   energy itself, sum_pairs E; element 6 (added last) counts the active point-point pairs.
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_contact.h"
 
+#include "fix_nosb_family.h"
 #include "fix_nosb_mesh.h"
+#include "pair_peri_nosb.h"
 
 #include "contact/barrier.h"
 #include "contact/ccd.h"
 #include "contact/distance.h"
+#include "peri/model.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -73,12 +87,13 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 using Eigen::Vector3d;
 
-static constexpr int NVECTOR = 5;
+static constexpr int NVECTOR = 6;
 // Lmax = EDGE_FACTOR x the longest edge at the start of a run (or that edge + 2 skin when the skin
 // is large): edges may stretch by 50% less the skin (by a skin) before the candidates could be
 // incomplete (an error then)
@@ -98,11 +113,11 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
 
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), edge_factor(EDGE_FACTOR),
-    longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), stale(1), warned_sissm(0),
-    xbuild(nullptr), nxbuild(0), ccd(1), xref(nullptr), nxref(0), reach_bound(0),
-    reach_moved(0.0), reach_atom(0), ccd_queries(0), ccd_capped(0), energy_density(0.0),
-    energy_pairs(0.0), mindist(0.0),
-    nactive{0, 0}, ncandidates(0), reduced(0), all_energy_density(0.0), all_vector{}
+    longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), pair(nullptr),
+    nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0),
+    ccd(1), xref(nullptr), nxref(0), reach_bound(0), reach_moved(0.0), reach_atom(0),
+    ccd_queries(0), ccd_capped(0), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
+    nactive{0, 0, 0}, ncandidates(0), reduced(0), all_energy_density(0.0), all_vector{}
 {
   const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k] [ccd yes|no]";
   int iarg = 3;
@@ -169,7 +184,8 @@ int FixNosbContact::setmask()
 }
 
 /* ----------------------------------------------------------------------
-   the mesh, the group (mesh atoms only), the longest edge, the ghost cutoff, the neighbor list
+   the mesh (if any), the group (mesh vertices and volumetric particles), the bond families,
+   the longest edge, the ghost cutoff, the neighbor list
 ------------------------------------------------------------------------- */
 
 void FixNosbContact::init()
@@ -177,32 +193,47 @@ void FixNosbContact::init()
   if (!atom->peri_flag || !atom->vfrac)
     error->all(FLERR, "Fix nosb/contact requires atom_style peri (per-atom volume vfrac)");
   meshfix = FixNosbMesh::find(lmp);
-  if (!meshfix)
-    error->all(FLERR, "Fix nosb/contact {}: no mesh: the contact acts between the triangles of "
-               "meshes read with read_mesh", id);
 
-  // non-mesh (volumetric) particles: point-point contact is not available yet
-  tagint bad = MAXTAGINT, badall;
+  // the group's mesh vertices and volumetric (non-mesh) particles
+  bigint mine[2] = {0, 0}, all[2];
   for (int i = 0; i < atom->nlocal; i++)
-    if ((atom->mask[i] & groupbit) && !meshfix->mesh[i]) bad = std::min(bad, atom->tag[i]);
-  MPI_Allreduce(&bad, &badall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
-  if (badall != MAXTAGINT)
+    if (atom->mask[i] & groupbit) mine[(meshfix && meshfix->mesh[i]) ? 0 : 1]++;
+  MPI_Allreduce(mine, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
+  nparticles = all[1];
+  if (all[0] + all[1] == 0)
     error->all(FLERR,
-               "Fix nosb/contact {}: atom {} of group {} is not a vertex of a mesh read with "
-               "read_mesh; contact of volumetric (non-mesh) particles is not available yet: "
-               "leave them out of the fix's group",
-               id, badall, group->names[igroup]);
+               "Fix nosb/contact {}: group {} holds no atom: the contact acts between the "
+               "triangles of meshes read with read_mesh and between volumetric particles",
+               id, group->names[igroup]);
 
-  const double L = measure_longest_edge(true);
-  if (!(L > 0.0))
-    error->all(FLERR, "Fix nosb/contact {}: group {} holds no mesh edge", id,
+  // particles that are or were bond partners are no contact pair: pair peri/nosb's families
+  pair = dynamic_cast<PairPeriNosb *>(force->pair_match("peri/nosb", 1));
+  if (nparticles && !pair && !warned_families) {
+    if (comm->me == 0)
+      error->warning(FLERR,
+                     "Fix nosb/contact {}: no pair_style peri/nosb, so no bond families: every "
+                     "two volumetric particles of group {} closer than dmin + dhat repel",
+                     id, group->names[igroup]);
+    warned_families = 1;
+  }
+
+  const double L = all[0] ? measure_longest_edge(true) : 0.0;
+  if (all[0] && !nparticles && !(L > 0.0))
+    error->all(FLERR,
+               "Fix nosb/contact {}: group {} holds no mesh edge and no volumetric particle", id,
                group->names[igroup]);
-  longest_edge = std::max(edge_factor * L, L + 2.0 * neighbor->skin);
+  longest_edge = L > 0.0 ? std::max(edge_factor * L, L + 2.0 * neighbor->skin) : 0.0;
   list_cutoff = dmin + dhat + 1.5 * longest_edge;
 
   const double skin = neighbor->skin;
   const double needed = list_cutoff + skin + longest_edge;
   const double have = predicted_comm_cutoff();
+  if (have < needed && longest_edge == 0.0)
+    error->all(FLERR,
+               "Fix nosb/contact {}: the ghost cutoff {:.6g} is shorter than a contact pair "
+               "needs: dmin + dhat + skin = {:.6g} (the other particle of a pair with an owned "
+               "one must be a ghost atom); set comm_modify cutoff {:.6g} or more",
+               id, have, needed, needed);
   if (have < needed)
     error->all(FLERR,
                "Fix nosb/contact {}: the ghost cutoff {:.6g} is shorter than a contact pair "
@@ -223,8 +254,13 @@ void FixNosbContact::init()
     warned_sissm = 1;
   }
 
-  auto req = neighbor->add_request(this, NeighConst::REQ_FULL);
-  req->set_cutoff(list_cutoff);
+  // an occasional list, built by this fix at every neighbor list build (build_candidates):
+  // LAMMPS 4Feb2025 would make fix nosb/family's occasional list (no custom cutoff) a trimmed
+  // copy of a perpetual list with a custom cutoff longer than the pair's, trimmed to a zero
+  // cutoff (NPairTrim with cutoff_custom 0): empty families, no bonds. Occasional lists are not
+  // copied from. The skin is added here (LAMMPS adds it to perpetual lists only).
+  auto req = neighbor->add_request(this, NeighConst::REQ_FULL | NeighConst::REQ_OCCASIONAL);
+  req->set_cutoff(list_cutoff + neighbor->skin);
   stale = 1;
 }
 
@@ -318,15 +354,28 @@ void FixNosbContact::build_candidates()
   double **x = atom->x;
   double **x0 = atom->x0;
   const tagint *tag = atom->tag;
+  const int *type = atom->type;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const int *mesh = meshfix->mesh;
-  const int *ntri = meshfix->ntri;
-  tagint ***tri = meshfix->tri;
+  const int *mesh = meshfix ? meshfix->mesh : nullptr;
+  const int *ntri = meshfix ? meshfix->ntri : nullptr;
+  tagint ***tri = meshfix ? meshfix->tri : nullptr;
+
+  // pair peri/nosb builds its families at the first run's setup, in the setup_post_neighbor of
+  // its fix nosb/family, which comes after this fix's (the pair creates that fix at its init):
+  // the candidates are then chosen at the setup's force evaluation (post_force)
+  FixNosbFamily *fam = pair ? pair->family : nullptr;
+  if (nparticles && fam && !fam->built) {
+    candidates.clear();
+    stale = 1;
+    return;
+  }
+
+  neighbor->build_one(list);
 
   // no edge may have grown past what the list's cutoff assumes (see the header)
-  const double L = measure_longest_edge(false);
-  if (L + neighbor->skin > longest_edge)
+  const double L = longest_edge > 0.0 ? measure_longest_edge(false) : 0.0;
+  if (longest_edge > 0.0 && L + neighbor->skin > longest_edge)
     error->all(FLERR,
                "Fix nosb/contact {}: at step {} a mesh edge is {:.6g} long, more than the "
                "contact candidates of this run allow (the longest edge at the run's start, the "
@@ -334,7 +383,9 @@ void FixNosbContact::build_candidates()
                "run (which measures the edges again) or use a smaller neighbor skin",
                id, update->ntimestep, L, edge_factor, longest_edge - neighbor->skin);
 
-  auto member = [&](int k) { return k >= 0 && (mask[k] & groupbit) && mesh[k]; };
+  // mesh vertices and volumetric particles of the group
+  auto member = [&](int k) { return k >= 0 && (mask[k] & groupbit) && mesh && mesh[k]; };
+  auto particle = [&](int k) { return (mask[k] & groupbit) && !(mesh && mesh[k]); };
   tagint missing = 0;
   // triangles and edges at atom i (owned or ghost), vertices at their images closest to i
   using Tri = std::array<int, 3>;
@@ -370,9 +421,10 @@ void FixNosbContact::build_candidates()
   const double reach = dmin + dhat + neighbor->skin;
   auto near = [&](const Candidate &c) {
     Vector3d y[4];
-    for (int k = 0; k < 4; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    for (int k = 0; k < c.nv(); k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
     const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
-                                  : PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3]);
+        : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
+                                  : PeriSISSM::point_point_distance2(y[0], y[1]);
     return D < reach * reach;
   };
   // a point-triangle pair in canonical order (the triangle's vertices by ID); none if p is one
@@ -397,19 +449,46 @@ void FixNosbContact::build_candidates()
     if (near(c)) found.push_back(c);
   };
 
+  // were two particles bond partners: their reference distance (x0, minimum image in the box of
+  // the families) within the horizon of their types, as fix nosb/family chose the partners (the
+  // same test, so broken bonds count too); atoms made after the families are no one's partners
+  auto were_bonded = [&](int a, int b) {
+    if (!fam || tag[a] > fam->tagmax0 || tag[b] > fam->tagmax0) return false;
+    double xi[3];
+    PeriSISSM::reference_bond(x0[0], fam->box, a, b, xi);
+    const double delta = pair->model().horizon(type[a], type[b]);
+    return xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] <= delta * delta;
+  };
+  // a point-point pair in canonical order (by ID); none if they were bond partners
+  auto add_pp = [&](int p, int q) {
+    if (tag[q] < tag[p]) std::swap(p, q);
+    if (were_bonded(p, q)) return;
+    Candidate c{PP, {tag[p], tag[q], 0, 0}, {p, q, -1, -1}, 0.0};
+    if (near(c)) found.push_back(c);
+  };
+
   const int inum = list->inum;
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    if (i >= nlocal || !member(i)) continue;
-    primitives(i, ti, ei);
+    if (i >= nlocal || !(member(i) || particle(i))) continue;
+    ti.clear();
+    ei.clear();
+    if (member(i)) primitives(i, ti, ei);
     const int *jlist = firstneigh[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      if (!member(j) || tag[j] == tag[i]) continue;
-      primitives(j, tj, ej);
+      if (tag[j] == tag[i]) continue;
+      if (particle(i) && particle(j)) {
+        add_pp(i, j);
+        continue;
+      }
+      if (!member(j) && !particle(j)) continue;
+      tj.clear();
+      ej.clear();
+      if (member(j)) primitives(j, tj, ej);
       for (const Tri &t : tj) add_pt(i, t);
       for (const Tri &t : ti) add_pt(j, t);
       for (const Edge &a : ei)
@@ -502,6 +581,11 @@ void FixNosbContact::post_force(int /*vflag*/)
 {
   if (stale) build_candidates();
   else check_motion();
+  if (stale)
+    error->all(FLERR,
+               "Fix nosb/contact {}: the bond families of pair peri/nosb were not built at the "
+               "run's setup",
+               id);
 
   double **x = atom->x;
   double **f = atom->f;
@@ -511,18 +595,19 @@ void FixNosbContact::post_force(int /*vflag*/)
   const double range = dmin + dhat;
 
   energy_density = energy_pairs = 0.0;
-  nactive[0] = nactive[1] = 0;
+  nactive[0] = nactive[1] = nactive[2] = 0;
   ncandidates = 0;
   mindist = dmin + dhat + neighbor->skin;
   reduced = 0;
 
   for (const Candidate &c : candidates) {
+    const int nv = c.nv();
     Vector3d y[4];
-    for (int k = 0; k < 4; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    for (int k = 0; k < nv; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
     // the owned vertices of the pair, and whether this rank counts it (its smallest ID)
     int own[4];
     int smallest = 0;
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < nv; k++) {
       const int m = atom->map(c.tag[k]);
       own[k] = (m >= 0 && m < nlocal) ? m : -1;
       if (c.tag[k] < c.tag[smallest]) smallest = k;
@@ -530,40 +615,47 @@ void FixNosbContact::post_force(int /*vflag*/)
     const bool counts = own[smallest] >= 0;
     if (counts) ncandidates++;
 
-    const double D = c.type == PT
-        ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
-        : PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3]);
+    const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
+        : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
+                                  : PeriSISSM::point_point_distance2(y[0], y[1]);
     const double d = std::sqrt(D);
     mindist = std::min(mindist, d);
     if (!(d < range)) continue;
-    if (!(d > dmin))
+    if (!(d > dmin)) {
+      static const char *const kind[3] = {"point-triangle", "edge-edge", "point-point"};
+      std::string atoms = std::to_string(c.tag[0]);
+      for (int k = 1; k < nv; k++) atoms += " " + std::to_string(c.tag[k]);
       error->one(FLERR,
-                 "Fix nosb/contact {}: at step {} the {} pair of atoms {} {} {} {} is {:.6g} "
-                 "apart, not more than dmin = {:.6g}: the barrier is infinite there (the "
-                 "primitives came through the barrier: use a larger kappa, a smaller time step "
-                 "or a larger dhat)",
-                 id, update->ntimestep, c.type == PT ? "point-triangle" : "edge-edge", c.tag[0],
-                 c.tag[1], c.tag[2], c.tag[3], d, dmin);
+                 "Fix nosb/contact {}: at step {} the {} pair of atoms {} is {:.6g} apart, not "
+                 "more than dmin = {:.6g}: the barrier is infinite there (the primitives came "
+                 "through the barrier: use a larger kappa, a smaller time step or a larger dhat)",
+                 id, update->ntimestep, kind[c.type], atoms, d, dmin);
+    }
 
     double E;
     PeriSISSM::Vector12d g;
     if (c.type == PT) {
       E = PeriSISSM::point_triangle_barrier_energy(y[0], y[1], y[2], y[3], prm);
       g = PeriSISSM::point_triangle_barrier_gradient(y[0], y[1], y[2], y[3], prm);
-    } else {
+    } else if (c.type == EE) {
       E = PeriSISSM::edge_edge_barrier_energy(y[0], y[1], y[2], y[3], c.eps, prm);
       g = PeriSISSM::edge_edge_barrier_gradient(y[0], y[1], y[2], y[3], c.eps, prm);
+    } else {
+      E = PeriSISSM::point_point_barrier_energy(y[0], y[1], prm);
+      g.head<6>() = PeriSISSM::point_point_barrier_gradient(y[0], y[1], prm);
     }
     if (counts) {
       nactive[c.type]++;
       energy_pairs += E;
     }
-    for (int k = 0; k < 4; k++) {
+    // each vertex's share of the energy: E / nv (1 / nv exact: 0.25 or 0.5)
+    const double share = 1.0 / nv;
+    for (int k = 0; k < nv; k++) {
       const int i = own[k];
       if (i < 0) continue;
       const double vi = vfrac[i];
       for (int dim = 0; dim < 3; dim++) f[i][dim] -= g[3 * k + dim] / vi;
-      energy_density += 0.25 * E / vi;
+      energy_density += share * E / vi;
     }
   }
 }
@@ -576,9 +668,9 @@ void FixNosbContact::reduce()
 {
   if (reduced) return;
   double local[4] = {energy_density, energy_pairs, 0.0, 0.0}, sums[4];
-  bigint counts[3] = {nactive[0], nactive[1], ncandidates}, countsall[3];
+  bigint counts[4] = {nactive[0], nactive[1], ncandidates, nactive[2]}, countsall[4];
   MPI_Allreduce(local, sums, 2, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(counts, countsall, 3, MPI_LMP_BIGINT, MPI_SUM, world);
+  MPI_Allreduce(counts, countsall, 4, MPI_LMP_BIGINT, MPI_SUM, world);
   double mind;
   MPI_Allreduce(&mindist, &mind, 1, MPI_DOUBLE, MPI_MIN, world);
   all_energy_density = sums[0];
@@ -587,6 +679,7 @@ void FixNosbContact::reduce()
   all_vector[2] = mind;
   all_vector[3] = sums[1];
   all_vector[4] = countsall[2];
+  all_vector[5] = countsall[3];
   reduced = 1;
 }
 
@@ -599,7 +692,7 @@ double FixNosbContact::compute_scalar()
 /* ----------------------------------------------------------------------
    1 active point-triangle pairs, 2 active edge-edge pairs (closer than dmin + dhat),
    3 smallest distance among the candidates (dmin + dhat + skin when there is none),
-   4 barrier energy sum_pairs E, 5 candidate pairs
+   4 barrier energy sum_pairs E, 5 candidate pairs, 6 active point-point pairs
 ------------------------------------------------------------------------- */
 
 double FixNosbContact::compute_vector(int n)
@@ -647,7 +740,7 @@ double FixNosbContact::limit_move(int groupbit)
   for (const Candidate &c : candidates) {
     Vector3d y[4], dy[4];
     bool moved = false;
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < c.nv(); k++) {
       const double *a = xref[c.v[k]], *b = x[c.v[k]];
       y[k] = Vector3d(a[0], a[1], a[2]);
       dy[k] = Vector3d(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
@@ -659,8 +752,10 @@ double FixNosbContact::limit_move(int groupbit)
     const double t = c.type == PT
         ? PeriSISSM::point_triangle_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt,
                                         &report)
-        : PeriSISSM::edge_edge_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt,
-                                   &report);
+        : c.type == EE
+        ? PeriSISSM::edge_edge_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt,
+                                   &report)
+        : PeriSISSM::point_point_ccd(y[0], y[1], dy[0], dy[1], opt, &report);
     ccd_queries++;
     if (report.capped) ccd_capped++;
     t_pairs = std::min(t_pairs, t);
@@ -764,14 +859,19 @@ void FixNosbContact::add_blocks(double **block)
   const double range = dmin + dhat;
   for (const Candidate &c : candidates) {
     Vector3d y[4];
-    for (int k = 0; k < 4; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    for (int k = 0; k < c.nv(); k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
     const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
-                                  : PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3]);
+        : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
+                                  : PeriSISSM::point_point_distance2(y[0], y[1]);
     if (!(D < range * range)) continue;
-    const PeriSISSM::Matrix12d H = c.type == PT
-        ? PeriSISSM::point_triangle_barrier_hessian(y[0], y[1], y[2], y[3], prm, true)
-        : PeriSISSM::edge_edge_barrier_hessian(y[0], y[1], y[2], y[3], c.eps, prm, true);
-    for (int k = 0; k < 4; k++) {
+    PeriSISSM::Matrix12d H;
+    if (c.type == PT)
+      H = PeriSISSM::point_triangle_barrier_hessian(y[0], y[1], y[2], y[3], prm, true);
+    else if (c.type == EE)
+      H = PeriSISSM::edge_edge_barrier_hessian(y[0], y[1], y[2], y[3], c.eps, prm, true);
+    else
+      H.topLeftCorner<6, 6>() = PeriSISSM::point_point_barrier_hessian(y[0], y[1], prm, true);
+    for (int k = 0; k < c.nv(); k++) {
       const int i = atom->map(c.tag[k]);
       if (i < 0 || i >= nlocal) continue;
       const double w = 1.0 / vfrac[i];

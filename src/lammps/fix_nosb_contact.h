@@ -2,7 +2,8 @@
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
    fix nosb/contact: barrier contact (IPC log barrier with a thickness) between the
-   point-triangle and edge-edge pairs of the meshes read by read_mesh (doc/fix_nosb_contact.rst).
+   point-triangle and edge-edge pairs of the meshes read by read_mesh and the point-point pairs
+   of volumetric particles (doc/fix_nosb_contact.rst).
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -47,14 +48,17 @@ class FixNosbContact : public Fix, public CollisionLimit {
   void add_blocks(double **block) override;
 
  private:
-  // a candidate pair: a point and a triangle (PT: v = p, t0, t1, t2) or two edges (EE:
-  // v = a0, a1, b0, b1), local indices of the images used, tags in canonical order
-  enum { PT = 0, EE = 1 };
+  // a candidate pair: a point and a triangle (PT: v = p, t0, t1, t2), two edges (EE:
+  // v = a0, a1, b0, b1) or two volumetric particles (PP: v = p, q; v[2], v[3] are -1 and
+  // tag[2], tag[3] 0), local indices of the images used, tags in canonical order
+  enum { PT = 0, EE = 1, PP = 2 };
   struct Candidate {
     int type;
     tagint tag[4];
     int v[4];
     double eps;    // EE: the mollifier threshold from the rest shape
+    // the number of vertices used (v[0] .. v[nv() - 1])
+    int nv() const { return type == PP ? 2 : 4; }
   };
 
   double dhat, dmin, kappa;
@@ -62,11 +66,14 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double longest_edge;         // that assumption (this run)
   double list_cutoff;          // dmin + dhat + 1.5 longest_edge (neighbor skin added by LAMMPS)
   class NeighList *list;
-  class FixNosbMesh *meshfix;
+  class FixNosbMesh *meshfix;    // nullptr without meshes
+  class PairPeriNosb *pair;      // its bond families exclude particle pairs; nullptr if none
+  bigint nparticles;             // volumetric (non-mesh) particles in the group
 
   std::vector<Candidate> candidates;
   int stale;                   // the candidates are chosen again at the next force evaluation
   int warned_sissm;            // the not-collision-free warning under fix sissm was given
+  int warned_families;         // the no-bond-families warning was given
   double **xbuild;             // owned positions when they were chosen
   int nxbuild;
   int ccd;                     // keyword ccd: fix sissm limits its moves (CollisionLimit)
@@ -81,10 +88,10 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double energy_density;       // sum of the owned vertices' shares / their volumes
   double energy_pairs;         // sum of the pair energies (each pair once over all ranks)
   double mindist;              // smallest distance among the candidates
-  bigint nactive[2];           // pairs within dmin + dhat (each once over all ranks)
+  bigint nactive[3];           // pairs within dmin + dhat by type (each once over all ranks)
   bigint ncandidates;          // candidates (each once over all ranks)
   int reduced;                 // the global sums below are current
-  double all_energy_density, all_vector[5];
+  double all_energy_density, all_vector[6];
 
   void build_candidates();
   void check_motion();
