@@ -74,10 +74,11 @@ def test_thrown_cloth_never_within_dmin(tmp_path, nprocs):
 def test_one_and_two_ranks_agree(tmp_path):
     one, _, _ = throw(tmp_path / "one", steps=6)
     two, _, _ = throw(tmp_path / "two", nprocs=2, steps=6)
-    for key in ("c_zmin", "c_vz", "f_c[3]"):
+    # the solves converge to 1e-6 of a particle size, 1e-8 m on 1 cm particles: positions agree
+    # to 10x that, velocities ((y - y^n) / h, h = 1 ms) to 10x that / h
+    for key, tol in (("c_zmin", 1e-7), ("f_c[3]", 1e-7), ("c_vz", 1e-4)):
         a, b = one.thermo[-1][key], two.thermo[-1][key]
-        # the solves converge to 1e-6 of a particle size: 1e-8 m on 1 cm particles
-        assert np.abs(a - b).max() < 1e-7, (key, a, b)
+        assert np.abs(a - b).max() < tol, (key, a, b)
 
 
 def test_without_ccd_an_iterate_goes_through_the_barrier(tmp_path):
