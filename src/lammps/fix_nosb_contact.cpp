@@ -115,7 +115,7 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), edge_factor(EDGE_FACTOR),
     longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), pair(nullptr),
     nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0),
-    ccd(1), xref(nullptr), nxref(0), reach_bound(0), reach_moved(0.0), reach_atom(0),
+    ccd(1), xref(nullptr), nxref(0), distance_valid(0), reach_bound(0), reach_moved(0.0), reach_atom(0),
     ccd_queries(0), ccd_capped(0), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
     nactive{0, 0, 0}, ncandidates(0), reduced(0), all_energy_density(0.0), all_vector{}
 {
@@ -351,6 +351,7 @@ void FixNosbContact::setup(int vflag)
 
 void FixNosbContact::build_candidates()
 {
+  distance_valid = 0;    // the distances were of the old candidates
   double **x = atom->x;
   double **x0 = atom->x0;
   const tagint *tag = atom->tag;
@@ -600,7 +601,12 @@ void FixNosbContact::post_force(int /*vflag*/)
   mindist = dmin + dhat + neighbor->skin;
   reduced = 0;
 
-  for (const Candidate &c : candidates) {
+  // the candidates' distances at these positions: the gaps limit_move() starts from when fix
+  // sissm evaluates at the positions it has just marked admissible (begin_path() clears the mark)
+  distance.resize(candidates.size());
+  distance_valid = 0;
+  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+    const Candidate &c = candidates[ic];
     const int nv = c.nv();
     Vector3d y[4];
     for (int k = 0; k < nv; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
@@ -619,6 +625,7 @@ void FixNosbContact::post_force(int /*vflag*/)
         : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
                                   : PeriSISSM::point_point_distance2(y[0], y[1]);
     const double d = std::sqrt(D);
+    distance[ic] = d;
     mindist = std::min(mindist, d);
     if (!(d < range)) continue;
     if (!(d > dmin)) {
@@ -658,6 +665,7 @@ void FixNosbContact::post_force(int /*vflag*/)
       energy_density += share * E / vi;
     }
   }
+  distance_valid = 1;
 }
 
 /* ----------------------------------------------------------------------
@@ -725,6 +733,7 @@ void FixNosbContact::begin_path()
   double **x = atom->x;
   for (int i = 0; i < nall; i++)
     for (int d = 0; d < 3; d++) xref[i][d] = x[i][d];
+  distance_valid = 0;
 }
 
 double FixNosbContact::limit_move(int groupbit)
@@ -737,7 +746,8 @@ double FixNosbContact::limit_move(int groupbit)
   double t_pairs = 1.0;
   PeriSISSM::CcdOptions opt;
   opt.dmin = dmin;
-  for (const Candidate &c : candidates) {
+  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+    const Candidate &c = candidates[ic];
     Vector3d y[4], dy[4];
     bool moved = false;
     for (int k = 0; k < c.nv(); k++) {
@@ -747,6 +757,18 @@ double FixNosbContact::limit_move(int groupbit)
       moved = moved || dy[k].squaredNorm() > 0.0;
     }
     if (!moved) continue;
+    if (distance_valid) {
+      // the gap at the reference is known (the last evaluation was there): a pair whose points
+      // move less than 0.9 of it over [0, t_pairs] keeps 0.1 of it, as ACCD would certify
+      // (the gap shrinks at most at the largest speed of a point of each primitive, summed)
+      const int na = c.type == EE ? 2 : 1;    // the first primitive's points: p, a0 a1, p
+      double la = 0.0, lb = 0.0;
+      for (int k = 0; k < c.nv(); k++) {
+        double &l = k < na ? la : lb;
+        l = std::max(l, dy[k].norm());
+      }
+      if ((la + lb) * t_pairs <= (1.0 - opt.s) * (distance[ic] - dmin)) continue;
+    }
     opt.t_max = t_pairs;
     PeriSISSM::CcdReport report;
     const double t = c.type == PT
@@ -857,13 +879,13 @@ void FixNosbContact::add_blocks(double **block)
   const int nlocal = atom->nlocal;
   const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
   const double range = dmin + dhat;
-  for (const Candidate &c : candidates) {
+  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+    const Candidate &c = candidates[ic];
+    // the distance of the last force evaluation (these positions: fix sissm calls this right
+    // after post_force)
+    if (!(distance_valid && distance[ic] < range)) continue;
     Vector3d y[4];
     for (int k = 0; k < c.nv(); k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
-    const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
-        : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
-                                  : PeriSISSM::point_point_distance2(y[0], y[1]);
-    if (!(D < range * range)) continue;
     PeriSISSM::Matrix12d H;
     if (c.type == PT)
       H = PeriSISSM::point_triangle_barrier_hessian(y[0], y[1], y[2], y[3], prm, true);

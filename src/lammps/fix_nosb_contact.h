@@ -78,6 +78,8 @@ class FixNosbContact : public Fix, public CollisionLimit {
   int nxbuild;
   int ccd;                     // keyword ccd: fix sissm limits its moves (CollisionLimit)
   double **xref;               // the last admissible positions (owned and ghost; begin_path())
+  std::vector<double> distance;    // the candidates' distances at the last force evaluation
+  int distance_valid;          // 1: the positions are still those (cleared by begin_path())
   int nxref;
   int reach_bound;             // the last limit_move() was cut short by the candidates' reach
   double reach_moved;          // then: how far an atom had moved from the list build
