@@ -4,6 +4,7 @@
     python3 tools/make_sheet.py rectangle 1.0 0.5 --spacing 0.05 -o sheet.obj
     python3 tools/make_sheet.py rectangle 1.0 0.5 --spacing 0.05 --pattern equilateral -o cloth.obj
     python3 tools/make_sheet.py disc 0.5 --spacing 0.02 --jitter 0.2 --seed 3 -o disc.obj
+    python3 tools/make_sheet.py sphere 0.05 --spacing 0.01 -o ball.obj
 
 The file holds `v x y z` and `f a b c` lines (1-based vertex indices), the form `read_mesh`
 reads. The sheet is centred at the origin (--center X Y Z moves it) and every triangle is
@@ -45,6 +46,15 @@ the circle. The triangles are equilateral around the centre; the worst are the n
 along the six sector lines (legs h and about h pi/3): smallest angle above atan(3/pi) = 43.68
 degrees, smallest altitude above 0.7232 h, both approached as n grows.
 
+sphere R (a closed surface, not a sheet: an obstacle such as a ball): the geodesic sphere of
+frequency n = round(1.0515 R/a) (at least 1; 1.0515 R is the edge of the icosahedron inscribed
+in the sphere): each of the icosahedron's 20 faces cut into n^2 triangles by its barycentric
+grid and every vertex projected radially onto the sphere, 10 n^2 + 2 vertices (12 with 5
+triangles, the rest with 6), 20 n^2 triangles, each counter-clockwise seen from outside (its
+normal points out of the ball). The projection stretches the middle of each big face most (by
+up to 1/0.7947, the icosahedron's circumradius over its inradius): edges range over about 0.87
+to 1.26 times 1.0515 R / n. --jitter is refused.
+
 --jitter f (0 <= f < 0.3) makes the mesh irregular: with random.Random(--seed) every interior
 vertex moves by an offset drawn uniformly from the ellipse of half-axes f sx, f sy
 (rectangle: sx = min(a, dx), sy = min(a, dy); disc: sx = sy = min(a, h)), so never by more
@@ -65,7 +75,7 @@ moves by at most f dx across it; twice the area is the product of the two distan
 checks every triangle anyway.
 
 Functions for scripts and tests (vertices as (x, y, z) tuples, faces as 0-based (i, j, k)):
-rectangle(), disc(), write_obj(), read_obj(), check_triangles(), mesh_stats().
+rectangle(), disc(), sphere(), write_obj(), read_obj(), check_triangles(), mesh_stats().
 """
 from __future__ import annotations
 
@@ -249,6 +259,60 @@ def disc(R: float, a: float, jitter: float = 0.0, seed: int = 1, center=(0.0, 0.
     return vertices, faces
 
 
+def sphere(R: float, a: float, center=(0.0, 0.0, 0.0)):
+    """A geodesic sphere of radius R centred at `center` (an icosahedron subdivided n times).
+
+    Inputs:  R > 0 the radius; a > 0 the target spacing; center (x, y, z).
+    Outputs: (vertices, faces): n = round(1.0515 R / a) (at least 1); 10 n^2 + 2 vertices on
+             the sphere (the icosahedron's 12 corners first), 20 n^2 triangles (0-based), each
+             counter-clockwise seen from outside.
+    Raises ValueError on a bad argument or (never expected) a triangle facing inwards.
+    """
+    _require(math.isfinite(R) and R > 0, f"make_sheet sphere: radius R must be > 0 (got {R})")
+    _check_common("sphere", a, 0.0)
+    g = (1.0 + math.sqrt(5.0)) / 2.0            # the icosahedron (0, +-1, +-g) and its cycles
+    corners = [(-1, g, 0), (1, g, 0), (-1, -g, 0), (1, -g, 0), (0, -1, g), (0, 1, g),
+               (0, -1, -g), (0, 1, -g), (g, 0, -1), (g, 0, 1), (-g, 0, -1), (-g, 0, 1)]
+    big = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
+           (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
+           (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    edge = 2.0 / math.sqrt(g * g + 1.0)         # 1.0515: the edge of the unit icosahedron
+    n = max(1, round(edge * R / a))
+    points, index = [], {}
+
+    def vertex(weights):
+        """The index of the grid point sum_c (w_c / n) corner_c, keyed by its nonzero weights
+        (so a point on a shared edge or corner is made once)."""
+        key = tuple(sorted((c, w) for c, w in weights if w > 0))
+        if key not in index:
+            p = [sum(w * corners[c][k] for c, w in key) / n for k in range(3)]
+            r = math.sqrt(p[0] ** 2 + p[1] ** 2 + p[2] ** 2)
+            index[key] = len(points)
+            points.append(tuple(R * q / r for q in p))
+        return index[key]
+
+    for c in range(12):
+        vertex([(c, n)])
+    faces = []
+    for A, B, C in big:
+        def at(i, j):                           # i steps towards B, j towards C
+            return vertex([(A, n - i - j), (B, i), (C, j)])
+
+        for i in range(n):
+            for j in range(n - i):
+                faces.append((at(i, j), at(i + 1, j), at(i, j + 1)))
+                if i + j < n - 1:
+                    faces.append((at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)))
+    for f, (i, j, k) in enumerate(faces):       # outward: (q - p) x (r - p) . p > 0
+        p, q, r = points[i], points[j], points[k]
+        outward = sum(u * v for u, v in zip(_cross(_sub(q, p), _sub(r, p)), p))
+        _require(outward > 0, f"make_sheet sphere {R} --spacing {a}: triangle {f} (vertices "
+                              f"{i} {j} {k}) faces inwards")
+    cx, cy, cz = (float(c) for c in center)
+    vertices = [(x + cx + 0.0, y + cy + 0.0, z + cz + 0.0) for x, y, z in points]
+    return vertices, faces
+
+
 def check_triangles(vertices, faces, what: str = "mesh"):
     """Raise ValueError naming the first triangle that is inverted or degenerate seen from +z.
 
@@ -409,7 +473,7 @@ def main(argv=None):
                         help="the OBJ file to write")
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    shapes = ap.add_subparsers(dest="shape", required=True, metavar="{rectangle,disc}")
+    shapes = ap.add_subparsers(dest="shape", required=True, metavar="{rectangle,disc,sphere}")
     rect = shapes.add_parser("rectangle", parents=[common], help="LX by LY rectangle")
     rect.add_argument("Lx", type=float, metavar="LX", help="width along x")
     rect.add_argument("Ly", type=float, metavar="LY", help="height along y")
@@ -419,13 +483,20 @@ def main(argv=None):
                            "of height a sqrt(3)/2 (equilateral: isotropic bending)")
     circle = shapes.add_parser("disc", parents=[common], help="disc of radius R")
     circle.add_argument("R", type=float, help="radius")
+    ball = shapes.add_parser("sphere", parents=[common], help="geodesic sphere of radius R "
+                             "(a closed surface: an obstacle)")
+    ball.add_argument("R", type=float, help="radius")
     args = ap.parse_args(argv)
     try:
         if args.shape == "rectangle":
             vertices, faces = rectangle(args.Lx, args.Ly, args.spacing, args.pattern,
                                         args.jitter, args.seed, args.center)
-        else:
+        elif args.shape == "disc":
             vertices, faces = disc(args.R, args.spacing, args.jitter, args.seed, args.center)
+        else:
+            _require(args.jitter == 0, f"make_sheet sphere: --jitter is not available for a "
+                                       f"sphere (got {args.jitter})")
+            vertices, faces = sphere(args.R, args.spacing, args.center)
     except ValueError as err:                   # the message names the shape and option
         print(err, file=sys.stderr)
         return 2

@@ -36,7 +36,9 @@
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
+#include "neigh_request.h"
 #include "neighbor.h"
+#include "pair.h"
 #include "update.h"
 
 #include <algorithm>
@@ -115,9 +117,18 @@ void FixNosbFamily::init()
     error->all(FLERR, "Fix nosb/family requires pair_style peri/nosb (it is created by that "
                "pair style and is not meant to be defined in an input script)");
 
-  // a full neighbor list once, to build the families
+  // a full neighbor list once, to build the families. LAMMPS (4Feb2025) makes a list a
+  // trimmed copy of a longer one (fix nosb/contact's) and NPairTrim trims a list without a
+  // custom cutoff at distance 0: every atom was left without a bond. So when the user's ghost
+  // cutoff (comm_modify cutoff, which a longer list needs) exceeds the default list cutoff, the
+  // list gets that cutoff as its own: trimmed at it, or built alone, never emptied. A longer
+  // list than the horizon costs nothing but its one build: the families keep the horizon.
 
-  if (!built) neighbor->add_request(this, NeighConst::REQ_FULL | NeighConst::REQ_OCCASIONAL);
+  if (!built) {
+    auto req = neighbor->add_request(this, NeighConst::REQ_FULL | NeighConst::REQ_OCCASIONAL);
+    const double cutdefault = force->pair->cutforce + neighbor->skin;
+    if (comm->cutghostuser > cutdefault) req->set_cutoff(comm->cutghostuser);
+  }
 
   // fix sissm moves the atoms in its own post_integrate, which may come after this one: it
   // calls check_motion() itself once it has

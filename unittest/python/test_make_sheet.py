@@ -381,6 +381,57 @@ def test_disc_jitter_below_03_cannot_invert(n):
         ms.disc(float(n), 1.0, 0.299, seed)
 
 
+# ---------------------------------------------------------------- sphere
+
+
+@pytest.mark.parametrize("R, a, n", [(1.0, 2.0, 1), (0.05, 0.01, 5), (2.0, 0.3, 7)])
+def test_sphere(R, a, n):
+    """A closed, consistently oriented surface of genus 0 on the sphere, facing outwards, with
+    the documented counts; its area tends to 4 pi R^2 from below as n grows."""
+    center = (0.5, -1.0, 2.0)
+    vertices, faces = ms.sphere(R, a, center=center)
+    assert len(vertices) == 10 * n * n + 2 and len(faces) == 20 * n * n
+    directed = set()
+    for i, j, k in faces:
+        assert len({i, j, k}) == 3
+        for e in ((i, j), (j, k), (k, i)):
+            assert e not in directed
+            directed.add(e)
+    assert all((j, i) in directed for i, j in directed)         # closed: no boundary edge
+    assert len(vertices) - len(directed) // 2 + len(faces) == 2  # Euler characteristic
+    for p in vertices:
+        assert math.dist(p, center) == pytest.approx(R, rel=1e-14)
+    valence = {}
+    for face in faces:
+        for i in face:
+            valence[i] = valence.get(i, 0) + 1
+        p, q, r = (vertices[i] for i in face)
+        normal = ms._cross(ms._sub(q, p), ms._sub(r, p))
+        middle = [(p[k] + q[k] + r[k]) / 3 - center[k] for k in range(3)]
+        assert sum(u * v for u, v in zip(normal, middle)) > 0      # outwards
+    assert sorted(valence.values()) == [5] * 12 + [6] * (len(vertices) - 12)
+    s = ms.mesh_stats(vertices, faces)
+    assert s["boundary_edges"] == 0
+    assert s["area"] < 4 * math.pi * R * R
+    if n >= 5:
+        assert s["area"] > 0.98 * 4 * math.pi * R * R
+    # the projection stretches the middle of each big face most: by up to 1/0.7947 (the
+    # icosahedron's inradius over its circumradius); edges near its corners stay near 0.87
+    edge = 1.0515 * R / n
+    assert 0.85 * edge < s["min_edge"] <= s["max_edge"] < 1.2584 * edge
+
+
+def test_sphere_command_line(tmp_path):
+    out = tmp_path / "ball.obj"
+    run = run_tool("sphere", "0.05", "--spacing", "0.01", "--center", "0", "0", "-0.05",
+                   "-o", str(out))
+    assert run.returncode == 0, run.stderr
+    assert ms.read_obj(out) == ms.sphere(0.05, 0.01, center=(0, 0, -0.05))
+    assert "# vertices 252 faces 500" in out.read_text()
+    bad = run_tool("sphere", "0.05", "--spacing", "0.01", "--jitter", "0.1", "-o", str(out))
+    assert bad.returncode == 2 and "--jitter is not available for a sphere" in bad.stderr
+
+
 # ---------------------------------------------------------------- shared
 
 

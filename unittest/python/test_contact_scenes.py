@@ -1,0 +1,111 @@
+"""Contact scenes of issue 15 at CI size: layers of cloth dropped onto a held ball
+(examples/cloth-on-ball), run under fix nve on 1 and 2 ranks with every step dumped, and checked
+by the independent tools/mesh_gaps.py: no non-adjacent point-triangle or edge-edge pair of any
+mesh (the ball, each layer with itself, the layers with each other and with the ball) below
+dmin in any frame, no crossing triangles; and the physical outcome. Also the regression of the
+bond families under fix nosb/contact."""
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lammps_run import run_deck
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "tools"))
+import make_sheet  # noqa: E402
+import mesh_gaps  # noqa: E402
+
+BALL_DECK = REPO / "examples" / "cloth-on-ball" / "in.cloth-on-ball"
+DMIN, DHAT, RADIUS = 0.001, 0.002, 0.05
+HORIZON = 2.0002 * 0.01
+
+
+def ball_scene(workdir, layers=3, steps=300, nprocs=1, size=0.1):
+    """The deck with a 10 cm cloth (121 vertices a layer, 1 cm right triangles) and a coarser
+    ball (162 vertices) than the example's, dumped every step. Returns (run, mesh vertices,
+    faces, ball vertex count, cloth vertex count): the meshes in atom-ID order (the ball, then
+    layer 1, 2, ...), as read_mesh numbers them."""
+    workdir = Path(workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
+    cv, cf = make_sheet.rectangle(size, size, 0.01)
+    bv, bf = make_sheet.sphere(RADIUS, 0.015)
+    make_sheet.write_obj(workdir / "cloth.obj", cv, cf)
+    make_sheet.write_obj(workdir / "ball.obj", bv, bf)
+    run = run_deck(BALL_DECK, workdir, nprocs=nprocs, variables={
+        "mesh": workdir / "cloth.obj", "ball": workdir / "ball.obj", "layers": layers,
+        "steps": steps, "every": 50, "dump": 1, "name": "ci"})
+    vertices, faces = list(bv), list(bf)
+    for _ in range(layers):
+        first = len(vertices)
+        vertices += cv
+        faces += [tuple(i + first for i in f) for f in cf]
+    return run, vertices, faces, len(bv), len(cv)
+
+
+def check_every_frame(path, vertices, faces):
+    """mesh_gaps over every frame of the dump: (frames, smallest distance, last positions);
+    asserts that no frame has a pair below dmin or crossing triangles."""
+    checker = mesh_gaps.MeshGaps(vertices, faces, 1, 1)
+    frames, smallest, x = 0, np.inf, None
+    for frame in mesh_gaps.read_dump(path):
+        x = mesh_gaps.mesh_positions(frame, len(vertices))
+        gaps = checker.check(x, radius=DMIN + DHAT, dmin=DMIN)
+        assert not gaps.fails, (frame.step, gaps)
+        for pair in (gaps.point_triangle, gaps.edge_edge):
+            if pair is not None:
+                smallest = min(smallest, pair.distance)
+        frames += 1
+    return frames, smallest, x
+
+
+# Three 10 cm layers (6 mm apart, each turned by 7 degrees and shifted by (1.3, 2.1) mm against
+# the one below) start 4 mm above the ball at 0.99 m/s and fall onto it under fix nve (dt 20 us,
+# kappa 10, 300 steps = 6 ms: the lowest layer reaches the ball at step ~100, the layers above it
+# then press on it). Every step is dumped and checked: no pair below dmin = 1 mm, no crossing
+# (measured smallest distance 2.0 mm on 1 rank). At the end the lowest layer's centre vertex is
+# in the barrier's range over the ball's top (dmin < d < dmin + dhat from the ball's triangles;
+# measured 2.6 mm), and the cloth has begun to hang over the ball: its lowest vertex lies more than
+# 3 mm below that centre vertex (measured 4.9 mm; 0 at the flat start) and above the ball's bottom.
+# On 2 ranks the same. The whole file takes about a minute on one core.
+@pytest.mark.parametrize("nprocs", [1, pytest.param(2, marks=pytest.mark.mpi)])
+def test_layers_on_a_ball_never_within_dmin(tmp_path, nprocs):
+    run, vertices, faces, nball, ncloth = ball_scene(tmp_path, nprocs=nprocs)
+    t = run.thermo[-1]
+    assert t["Step"][-1] == 300
+    assert t["f_contact[1]"][-1] + t["f_contact[2]"][-1] > 0       # in contact at the end
+    frames, smallest, x = check_every_frame(tmp_path / "dump.ci", vertices, faces)
+    assert frames == 301
+    assert DMIN < smallest < DMIN + DHAT, smallest                 # the barrier was reached
+    # the fix's own smallest candidate distance never went below dmin either
+    assert t["f_contact[3]"].min() > DMIN
+    ball = np.array(faces[:2 * (nball - 2)])                       # the ball's 20 n^2 faces
+    centre = nball + ncloth // 2                                    # 0-based: layer 1's middle
+    d, _ = mesh_gaps.point_triangle_distance(np.tile(x[centre], (len(ball), 1)),
+                                             x[ball[:, 0]], x[ball[:, 1]], x[ball[:, 2]])
+    assert DMIN < d.min() < DMIN + DHAT, d.min()
+    assert x[centre, 2] > RADIUS * 0.9                              # over the ball's top
+    lowest = x[nball:, 2].min()
+    assert -RADIUS < lowest < x[centre, 2] - 0.003                 # started flat: 0
+
+
+def horizon_pairs(vertices):
+    """Ordered pairs of a mesh's vertices within the horizon: the bonds read_mesh's families
+    must hold (a family takes every vertex of its own mesh within the horizon)."""
+    x = np.array(vertices)
+    d = np.linalg.norm(x[:, None, :] - x[None, :, :], axis=2)
+    return int((d <= HORIZON).sum() - len(x))
+
+
+# Regression: with fix nosb/contact defined, LAMMPS made the families' neighbor list a trimmed
+# copy of the contact fix's longer list, trimmed at distance 0: every membrane had no bond at
+# all (the cloth fell as loose particles). The bond count of the scene is the sum over its
+# meshes of the vertex pairs within the horizon, with and without the contact fix.
+def test_families_are_built_under_fix_nosb_contact(tmp_path):
+    run, vertices, faces, nball, ncloth = ball_scene(tmp_path, layers=2, steps=0)
+    expected = horizon_pairs(vertices[:nball]) + 2 * horizon_pairs(vertices[nball:nball + ncloth])
+    bonds = int(run.log.split("total # of bonds =")[1].split()[0])
+    assert bonds == expected > 0
+    assert "atoms with a singular shape tensor = 0" in run.log
