@@ -786,7 +786,7 @@ double FixNosbContact::limit_move(int groupbit)
   // reach: no atom of the group farther than skin/2 from the list build (exactly: the largest
   // t with |xref + t (x - xref) - xbuild| <= skin/2; the segment is inside the ball when both
   // ends are)
-  const double R = 0.5 * neighbor->skin;
+  const double R = 0.5 * neighbor->skin * (1.0 - 1.0e-9);    // inside check_motion()'s bound
   double t_reach = 1.0, far = 0.0;
   tagint who = MAXTAGINT;
   for (int i = 0; i < nlocal; i++) {
