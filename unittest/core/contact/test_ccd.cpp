@@ -1,5 +1,6 @@
 // Tests of additive CCD (contact/ccd.h): exact cases with known contact times (a point falling
-// onto a triangle, edges crossing, parallel and collinear edges, point-edge, point-point), no
+// onto a triangle, edges crossing, parallel, collinear and degenerate edges, point-edge,
+// point-point), no
 // contact, zero motion, pairs that start within the thickness, the iteration cap; random pairs
 // whose distance is sampled densely over [0, t] (never below dmin) and over [0, 1] (t before
 // any sampled crossing); the same pairs scaled by 1e-6 and 1e6.
@@ -146,6 +147,35 @@ TEST(Ccd, ParallelEdgesSlidingIntoEachOther)
   opt.dmin = 0.0;
   opt.s = 0.05;
   EXPECT_EQ(edge_edge_ccd(a0, a1, b0, b1, zero, zero, db, db, opt), 1.0);
+}
+
+// Degenerate edge-edge pairs: an edge of zero length (a point) falling head-on onto the middle
+// of another edge behaves as the point-edge pair it is (t = (1 - s) t_true); an edge that
+// shrinks to a point during the move while it approaches (its ends meeting at the crossing)
+// never gets within dmin on [0, t], and t is not later than the first contact.
+TEST(Ccd, DegenerateEdges)
+{
+  const Vector3d zero = Vector3d::Zero();
+  const Vector3d a0(0.5, 0, 1), b0(0, 0, 0), b1(1, 0, 0), da(0, 0, -2);
+  for (double dmin : {0.0, 0.01}) {
+    CcdOptions opt;
+    opt.dmin = dmin;
+    const double t = edge_edge_ccd(a0, a0, b0, b1, da, da, zero, zero, opt);
+    expect_head_on(t, (1.0 - dmin) / 2.0, opt.s, "zero-length edge");
+  }
+  // a from (0.3, 0.2, 1)-(0.7, -0.2, 1) to the single point (0.5, 0, -1): its ends close at the
+  // rate its midpoint falls; the midpoint is the closest point, so contact at t = (1 - dmin) / 2
+  const Vector3d c0(0.3, 0.2, 1), c1(0.7, -0.2, 1), end(0.5, 0, -1);
+  CcdOptions opt;
+  opt.dmin = 0.01;
+  const double t = edge_edge_ccd(c0, c1, b0, b1, end - c0, end - c1, zero, zero, opt);
+  const double t_true = (1.0 - opt.dmin) / 2.0;
+  EXPECT_LE(t, t_true);
+  EXPECT_GT(t, 0.0);
+  for (int k = 0; k <= 1000; k++) {
+    const double tau = t * k / 1000.0;
+    EXPECT_GT(edge_edge_distance(c0 + tau * (end - c0), c1 + tau * (end - c1), b0, b1), opt.dmin);
+  }
 }
 
 TEST(Ccd, PointEdgeAndPointPoint)
