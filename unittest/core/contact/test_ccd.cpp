@@ -1,9 +1,8 @@
 // Tests of additive CCD (contact/ccd.h): exact cases with known contact times (a point falling
 // onto a triangle, edges crossing, parallel, collinear and degenerate edges, point-edge,
-// point-point), no
-// contact, zero motion, pairs that start within the thickness, the iteration cap; random pairs
-// whose distance is sampled densely over [0, t] (never below dmin) and over [0, 1] (t before
-// any sampled crossing); the same pairs scaled by 1e-6 and 1e6.
+// point-point), no contact, zero motion, pairs that start within the thickness, the iteration
+// cap; random pairs whose distance is sampled densely over [0, t] (never below dmin) and over
+// [0, 1] (t before any sampled crossing); the same pairs scaled by 1e-6 and 1e6.
 
 #include "contact/ccd.h"
 
