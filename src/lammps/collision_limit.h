@@ -14,6 +14,11 @@
    last admissible positions. Every position the integrator evaluates or ends a step at is then
    connected to the step's start by straight moves on which no pair comes within the contact's
    thickness.
+
+   Lagged friction needs the start of each step: the integrator calls begin_step() once at the
+   start of every (sub-)step solve, right before begin_path(), for every such contact whose force
+   it re-evaluates at every iterate (whether or not it limits the moves). The positions then
+   are the step's start x^n; the step lasts h.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_PERISISSM_COLLISION_LIMIT_H
@@ -23,8 +28,13 @@ namespace LAMMPS_NS {
 
 class CollisionLimit {
  public:
-  // false when this contact does not limit moves (then the other calls are not made)
+  // false when this contact does not limit moves (then the calls below begin_step() are not
+  // made)
   virtual bool limits_moves() const = 0;
+  // the start of an implicit (sub-)step of length h (> 0): the current positions (owned and
+  // ghost, current) are x^n, and the force evaluations up to the next begin_step() are the
+  // iterates of this step (and the one after it, at its result). Collective.
+  virtual void begin_step(double h) = 0;
   // the current positions (owned and ghost, current) are admissible: the reference of the next
   // move. Collective.
   virtual void begin_path() = 0;

@@ -54,7 +54,23 @@
    of pair peri/nosb tallies its hinges (pe of peri/nosb is a sum of energy densities:
    doc/pair_peri_nosb.rst). The global scalar
    is that sum of densities (fix_modify energy yes adds it to pe); vector element 4 is the
-   energy itself, sum_pairs E; element 6 (added last) counts the active point-point pairs.
+   energy itself, sum_pairs E; element 6 counts the active point-point pairs.
+
+   Friction (keyword friction mu > 0): the lagged smooth friction of the core
+   (contact/friction.h) on every active pair (within dmin + dhat, lambda > 0). Under fix sissm
+   (which calls begin_step() at the start of each (sub-)step solve, collision_limit.h) the pairs'
+   lagged data and the positions x^n of their vertices (the images used, owned and ghost: no
+   neighbor list build inside a step, so the local indices hold) are built there, once per
+   (sub-)step, and every evaluation of the step adds the force of D(x - x^n) with the slip
+   length eps = epsv h, and add_blocks() its Hessian's diagonal blocks. Otherwise (fix nve, or
+   the evaluation after a step that was followed by a neighbor list build, whose local indices
+   are gone) the pairs are built at every evaluation from the current positions and
+   u = v dt (ghost velocities sent by this fix), eps = epsv dt: Coulomb friction regularised
+   below the slip speed epsv. Which recipe: in_step, set by begin_step() and cleared at init().
+   D is a potential of the step, not a stored energy: it is in neither the scalar nor pe.
+   Element 7 counts the friction pairs, element 8 is the work the friction force of the last
+   evaluation does over the step's slip, sum mu lambda f1(|u_T|) |u_T| (the energy it
+   dissipates; with u = v dt under fix nve: the dissipated power times dt).
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_contact.h"
@@ -93,7 +109,9 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using Eigen::Vector3d;
 
-static constexpr int NVECTOR = 6;
+static constexpr int NVECTOR = 8;
+// default slip speed below which friction is smoothed (velocity units; IPC's 1e-3 m/s in SI)
+static constexpr double EPSV_DEFAULT = 1.0e-3;
 // Lmax = EDGE_FACTOR x the longest edge at the start of a run (or that edge + 2 skin when the skin
 // is large): edges may stretch by 50% less the skin (by a skin) before the candidates could be
 // incomplete (an error then)
@@ -112,23 +130,23 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
 }
 
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), edge_factor(EDGE_FACTOR),
+    Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), mu(0.0), epsv(EPSV_DEFAULT),
+    edge_factor(EDGE_FACTOR),
     longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), pair(nullptr),
     nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0),
-    ccd(1), xref(nullptr), nxref(0), distance_valid(0), reach_bound(0), reach_moved(0.0), reach_atom(0),
-    ccd_queries(0), ccd_capped(0), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
-    nactive{0, 0, 0}, ncandidates(0), reduced(0), all_energy_density(0.0), all_vector{}
-{
-  const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k] [ccd yes|no]";
+    ccd(1), xref(nullptr), nxref(0), distance_valid(0), reach_bound(0), reach_moved(0.0),
+    reach_atom(0), ccd_queries(0), ccd_capped(0), in_step(0), step_h(0.0), generation(0),
+    lagged_generation(-1), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
+    nactive{0, 0, 0}, ncandidates(0), nfriction(0), friction_work(0.0), reduced(0),
+    all_energy_density(0.0), all_vector{}
+
+  const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k] [friction mu] "
+                      "[epsv v] [ccd yes|no]";
   int iarg = 3;
   while (iarg < narg) {
     const std::string key(arg[iarg]);
-    if (key == "friction")
-      error->all(FLERR,
-                 "Illegal fix nosb/contact command: keyword '{}' is not available yet (this "
-                 "version has the barrier force only: doc/fix_nosb_contact.rst, Restrictions)",
-                 key);
-    if (key != "dhat" && key != "dmin" && key != "kappa" && key != "ccd")
+    if (key != "dhat" && key != "dmin" && key != "kappa" && key != "ccd" && key != "friction" &&
+        key != "epsv")
       error->all(FLERR, "Illegal fix nosb/contact command: unknown keyword '{}' ({})", key,
                  usage);
     if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix nosb/contact " + key, error);
@@ -139,6 +157,10 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
       dmin = positive_number(val, "dmin", true, error, lmp);
     else if (key == "ccd")
       ccd = utils::logical(FLERR, val, false, lmp);
+    else if (key == "friction")
+      mu = positive_number(val, "friction mu", true, error, lmp);
+    else if (key == "epsv")
+      epsv = positive_number(val, "epsv", false, error, lmp);
     else {
       if (strcmp(val, "auto") == 0)
         error->all(FLERR,
@@ -166,6 +188,7 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
   thermo_energy = 0;
   force_reneighbor = 1;
   next_reneighbor = -1;
+  comm_forward = 3;    // velocities of the ghost atoms (friction without fix sissm)
 }
 
 /* ---------------------------------------------------------------------- */
@@ -262,6 +285,9 @@ void FixNosbContact::init()
   auto req = neighbor->add_request(this, NeighConst::REQ_FULL | NeighConst::REQ_OCCASIONAL);
   req->set_cutoff(list_cutoff + neighbor->skin);
   stale = 1;
+  // the explicit friction recipe until fix sissm starts a step (begin_step())
+  in_step = 0;
+  lagged.clear();
 }
 
 /* ---------------------------------------------------------------------- */
@@ -537,6 +563,7 @@ void FixNosbContact::build_candidates()
   for (int i = 0; i < nlocal; i++)
     for (int d = 0; d < 3; d++) xbuild[i][d] = x[i][d];
   stale = 0;
+  generation++;
 }
 
 /* ----------------------------------------------------------------------
@@ -572,6 +599,46 @@ void FixNosbContact::check_motion()
   MPI_Allreduce(&most, &all, 1, MPI_DOUBLE, MPI_MAX, world);
   if (all > 0.25 * limit && next_reneighbor < update->ntimestep)
     next_reneighbor = update->ntimestep + 1;
+}
+
+/* ----------------------------------------------------------------------
+   the local indices of the owned vertices of a pair of nv vertices with the given tags (-1 for
+   the others) in own; returns whether this rank counts the pair (it owns the vertex with the
+   smallest ID), so that a pair counts once over all ranks
+------------------------------------------------------------------------- */
+
+static bool owned_vertices(Atom *atom, const tagint *tag, int nv, int *own)
+{
+  const int nlocal = atom->nlocal;
+  int smallest = 0;
+  for (int k = 0; k < nv; k++) {
+    const int m = atom->map(tag[k]);
+    own[k] = (m >= 0 && m < nlocal) ? m : -1;
+    if (tag[k] < tag[smallest]) smallest = k;
+  }
+  return own[smallest] >= 0;
+}
+
+/* ----------------------------------------------------------------------
+   the 3x3 diagonal blocks of a pair's Hessian H (nv vertices) divided by the volume of each
+   owned vertex (own: local indices, -1 for the others), added to block (xx yy zz xy xz yz)
+------------------------------------------------------------------------- */
+
+static void add_diagonal_blocks(const PeriSISSM::Matrix12d &H, int nv, const int *own,
+                                const double *vfrac, double **block)
+{
+  for (int k = 0; k < nv; k++) {
+    const int i = own[k];
+    if (i < 0) continue;
+    const double w = 1.0 / vfrac[i];
+    const int o = 3 * k;
+    block[i][0] += w * H(o, o);
+    block[i][1] += w * H(o + 1, o + 1);
+    block[i][2] += w * H(o + 2, o + 2);
+    block[i][3] += w * H(o, o + 1);
+    block[i][4] += w * H(o, o + 2);
+    block[i][5] += w * H(o + 1, o + 2);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -612,13 +679,7 @@ void FixNosbContact::post_force(int /*vflag*/)
     for (int k = 0; k < nv; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
     // the owned vertices of the pair, and whether this rank counts it (its smallest ID)
     int own[4];
-    int smallest = 0;
-    for (int k = 0; k < nv; k++) {
-      const int m = atom->map(c.tag[k]);
-      own[k] = (m >= 0 && m < nlocal) ? m : -1;
-      if (c.tag[k] < c.tag[smallest]) smallest = k;
-    }
-    const bool counts = own[smallest] >= 0;
+    const bool counts = owned_vertices(atom, c.tag, nv, own);
     if (counts) ncandidates++;
 
     const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
@@ -666,7 +727,128 @@ void FixNosbContact::post_force(int /*vflag*/)
     }
   }
   distance_valid = 1;
+  if (mu > 0.0) add_friction();
 }
+
+/* ----------------------------------------------------------------------
+   the lagged friction data of every active candidate pair at the current positions (x^n under
+   fix sissm), with those positions
+------------------------------------------------------------------------- */
+
+void FixNosbContact::build_lagged()
+{
+  double **x = atom->x;
+  const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
+  const double range = dmin + dhat;
+  lagged.clear();
+  for (const Candidate &c : candidates) {
+    const int nv = c.nv();
+    Vector3d y[4];
+    for (int k = 0; k < nv; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
+        : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
+                                  : PeriSISSM::point_point_distance2(y[0], y[1]);
+    // (a pair at or within dmin is an error of the force evaluation)
+    if (!(D < range * range) || !(D > dmin * dmin)) continue;
+    Lagged l;
+    l.type = c.type;
+    for (int k = 0; k < 4; k++) {
+      l.tag[k] = c.tag[k];
+      l.v[k] = c.v[k];
+      for (int d = 0; d < 3; d++) l.xn[3 * k + d] = k < nv ? y[k][d] : 0.0;
+    }
+    l.pair = c.type == PT
+        ? PeriSISSM::point_triangle_friction_pair(y[0], y[1], y[2], y[3], prm)
+        : c.type == EE ? PeriSISSM::edge_edge_friction_pair(y[0], y[1], y[2], y[3], c.eps, prm)
+                       : PeriSISSM::point_point_friction_pair(y[0], y[1], prm);
+    if (l.pair.lambda > 0.0) lagged.push_back(l);
+  }
+  lagged_generation = generation;
+}
+
+/* ----------------------------------------------------------------------
+   fix sissm starts a (sub-)step of length h at the current positions x^n (ghosts current): the
+   friction of its iterates is lagged here
+------------------------------------------------------------------------- */
+
+void FixNosbContact::begin_step(double h)
+{
+  in_step = 1;
+  step_h = h;
+  if (mu == 0.0) return;
+  if (stale) build_candidates();
+  build_lagged();
+}
+
+/* ----------------------------------------------------------------------
+   the friction force densities of the owned vertices of every lagged pair (the file's header:
+   the implicit recipe inside a step of fix sissm, the explicit one otherwise)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::add_friction()
+{
+  const bool implicit = in_step && lagged_generation == generation;
+  if (!implicit) {
+    comm->forward_comm(this);
+    build_lagged();
+  }
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  const double *vfrac = atom->vfrac;
+  const double dt = update->dt;
+  const PeriSISSM::FrictionParameters prm{mu, epsv * (implicit ? step_h : dt)};
+  nfriction = 0;
+  friction_work = 0.0;
+  for (const Lagged &p : lagged) {
+    const int nv = p.pair.count;
+    PeriSISSM::Vector12d u = PeriSISSM::Vector12d::Zero();
+    for (int k = 0; k < nv; k++)
+      for (int d = 0; d < 3; d++)
+        u[3 * k + d] = implicit ? x[p.v[k]][d] - p.xn[3 * k + d] : v[p.v[k]][d] * dt;
+    int own[4];
+    if (owned_vertices(atom, p.tag, nv, own)) {
+      const double y = PeriSISSM::tangential_displacement(p.pair, u).norm();
+      nfriction++;
+      friction_work += mu * p.pair.lambda * PeriSISSM::friction_f1(y, prm.slip_length) * y;
+    }
+    const PeriSISSM::Vector12d g = PeriSISSM::friction_gradient(p.pair, u, prm);
+    for (int k = 0; k < nv; k++) {
+      const int i = own[k];
+      if (i < 0) continue;
+      for (int d = 0; d < 3; d++) f[i][d] -= g[3 * k + d] / vfrac[i];
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   velocities of the ghost atoms (the explicit friction recipe)
+------------------------------------------------------------------------- */
+
+int FixNosbContact::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                      int * /*pbc*/)
+{
+  double **v = atom->v;
+  int m = 0;
+  for (int i = 0; i < n; i++) {
+    const int j = list[i];
+    buf[m++] = v[j][0];
+    buf[m++] = v[j][1];
+    buf[m++] = v[j][2];
+  }
+  return m;
+}
+
+void FixNosbContact::unpack_forward_comm(int n, int first, double *buf)
+{
+  double **v = atom->v;
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    v[i][0] = buf[m++];
+    v[i][1] = buf[m++];
+    v[i][2] = buf[m++];
+  }
+
 
 /* ----------------------------------------------------------------------
    global sums of the last evaluation (collective; once per evaluation)
@@ -675,10 +857,10 @@ void FixNosbContact::post_force(int /*vflag*/)
 void FixNosbContact::reduce()
 {
   if (reduced) return;
-  double local[4] = {energy_density, energy_pairs, 0.0, 0.0}, sums[4];
-  bigint counts[4] = {nactive[0], nactive[1], ncandidates, nactive[2]}, countsall[4];
-  MPI_Allreduce(local, sums, 2, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(counts, countsall, 4, MPI_LMP_BIGINT, MPI_SUM, world);
+  double local[3] = {energy_density, energy_pairs, friction_work}, sums[3];
+  bigint counts[5] = {nactive[0], nactive[1], ncandidates, nactive[2], nfriction}, countsall[5];
+  MPI_Allreduce(local, sums, 3, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(counts, countsall, 5, MPI_LMP_BIGINT, MPI_SUM, world);
   double mind;
   MPI_Allreduce(&mindist, &mind, 1, MPI_DOUBLE, MPI_MIN, world);
   all_energy_density = sums[0];
@@ -688,6 +870,8 @@ void FixNosbContact::reduce()
   all_vector[3] = sums[1];
   all_vector[4] = countsall[2];
   all_vector[5] = countsall[3];
+  all_vector[6] = countsall[4];
+  all_vector[7] = sums[2];
   reduced = 1;
 }
 
@@ -700,7 +884,8 @@ double FixNosbContact::compute_scalar()
 /* ----------------------------------------------------------------------
    1 active point-triangle pairs, 2 active edge-edge pairs (closer than dmin + dhat),
    3 smallest distance among the candidates (dmin + dhat + skin when there is none),
-   4 barrier energy sum_pairs E, 5 candidate pairs, 6 active point-point pairs
+   4 barrier energy sum_pairs E, 5 candidate pairs, 6 active point-point pairs,
+   7 friction pairs, 8 the work of their friction force over the step's slip (dissipated)
 ------------------------------------------------------------------------- */
 
 double FixNosbContact::compute_vector(int n)
@@ -876,7 +1061,6 @@ void FixNosbContact::add_blocks(double **block)
 {
   double **x = atom->x;
   const double *vfrac = atom->vfrac;
-  const int nlocal = atom->nlocal;
   const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
   const double range = dmin + dhat;
   for (std::size_t ic = 0; ic < candidates.size(); ic++) {
@@ -893,18 +1077,22 @@ void FixNosbContact::add_blocks(double **block)
       H = PeriSISSM::edge_edge_barrier_hessian(y[0], y[1], y[2], y[3], c.eps, prm, true);
     else
       H.topLeftCorner<6, 6>() = PeriSISSM::point_point_barrier_hessian(y[0], y[1], prm, true);
-    for (int k = 0; k < c.nv(); k++) {
-      const int i = atom->map(c.tag[k]);
-      if (i < 0 || i >= nlocal) continue;
-      const double w = 1.0 / vfrac[i];
-      const int o = 3 * k;
-      block[i][0] += w * H(o, o);
-      block[i][1] += w * H(o + 1, o + 1);
-      block[i][2] += w * H(o + 2, o + 2);
-      block[i][3] += w * H(o, o + 1);
-      block[i][4] += w * H(o, o + 2);
-      block[i][5] += w * H(o + 1, o + 2);
-    }
+    int own[4];
+    owned_vertices(atom, c.tag, c.nv(), own);
+    add_diagonal_blocks(H, c.nv(), own, vfrac, block);
+  }
+
+  // the friction's (positive semi-definite) blocks at the current slip of the step
+  if (!(mu > 0.0) || !in_step || lagged_generation != generation) return;
+  const PeriSISSM::FrictionParameters fprm{mu, epsv * step_h};
+  for (const Lagged &p : lagged) {
+    const int nv = p.pair.count;
+    PeriSISSM::Vector12d u = PeriSISSM::Vector12d::Zero();
+    for (int k = 0; k < nv; k++)
+      for (int d = 0; d < 3; d++) u[3 * k + d] = x[p.v[k]][d] - p.xn[3 * k + d];
+    int own[4];
+    owned_vertices(atom, p.tag, nv, own);
+    add_diagonal_blocks(PeriSISSM::friction_hessian(p.pair, u, fprm), nv, own, vfrac, block);
   }
 }
 
@@ -913,5 +1101,5 @@ void FixNosbContact::add_blocks(double **block)
 double FixNosbContact::memory_usage()
 {
   return (double) candidates.capacity() * sizeof(Candidate) +
-      3.0 * (nxbuild + nxref) * sizeof(double);
+      (double) lagged.capacity() * sizeof(Lagged) + 3.0 * (nxbuild + nxref) * sizeof(double);
 }

@@ -3,7 +3,7 @@
 
    fix nosb/contact: barrier contact (IPC log barrier with a thickness) between the
    point-triangle and edge-edge pairs of the meshes read by read_mesh and the point-point pairs
-   of volumetric particles (doc/fix_nosb_contact.rst).
+   of volumetric particles, with lagged smooth friction (doc/fix_nosb_contact.rst).
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -18,6 +18,8 @@ FixStyle(nosb/contact,FixNosbContact);
 #include "fix.h"
 
 #include "collision_limit.h"
+
+#include "contact/friction.h"
 
 #include <vector>
 
@@ -37,9 +39,12 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double compute_scalar() override;
   double compute_vector(int) override;
   double memory_usage() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
 
   // ---- CollisionLimit: the collision-free step of fix sissm (continuous collision detection)
   bool limits_moves() const override { return ccd != 0; }
+  void begin_step(double h) override;
   void begin_path() override;
   double limit_move(int groupbit) override;
   bool reach_limited() const override { return reach_bound; }
@@ -62,6 +67,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
   };
 
   double dhat, dmin, kappa;
+  double mu, epsv;             // friction coefficient (0: none) and slip speed
   double edge_factor;          // assumed longest edge = edge_factor x the longest at init
   double longest_edge;         // that assumption (this run)
   double list_cutoff;          // dmin + dhat + 1.5 longest_edge (neighbor skin added by LAMMPS)
@@ -86,20 +92,40 @@ class FixNosbContact : public Fix, public CollisionLimit {
   tagint reach_atom;           //   which one
   bigint ccd_queries, ccd_capped;    // CCD pair queries and those that hit the sub-step cap
 
+  // friction: the lagged data of the active pairs (each with an owned vertex), built at x^n by
+  // begin_step() under fix sissm, or at every evaluation from the current positions otherwise
+  struct Lagged {
+    int type;
+    tagint tag[4];
+    int v[4];                    // local indices of the images used at the build
+    double xn[12];               // their positions then
+    PeriSISSM::FrictionPair pair;
+  };
+  std::vector<Lagged> lagged;
+  int in_step;                 // begin_step() was called in this run: the implicit recipe
+  double step_h;               // the step of the last begin_step()
+  bigint generation;           // candidate builds so far (local indices change with them)
+  bigint lagged_generation;    // the generation the lagged data's local indices belong to
+
   // results of the last force evaluation (this rank)
   double energy_density;       // sum of the owned vertices' shares / their volumes
   double energy_pairs;         // sum of the pair energies (each pair once over all ranks)
   double mindist;              // smallest distance among the candidates
   bigint nactive[3];           // pairs within dmin + dhat by type (each once over all ranks)
   bigint ncandidates;          // candidates (each once over all ranks)
+  bigint nfriction;            // lagged friction pairs (each once over all ranks)
+  double friction_work;        // sum mu lambda f1(y) y over them (each once)
   int reduced;                 // the global sums below are current
-  double all_energy_density, all_vector[6];
+  double all_energy_density, all_vector[8];
 
   void build_candidates();
   void check_motion();
   double measure_longest_edge(bool owned_partners_only);
   double predicted_comm_cutoff() const;
   void reduce();
+  void build_lagged();
+  bool lagged_vertices(const Lagged &p, int *idx);
+  void add_friction();
 };
 
 }    // namespace LAMMPS_NS

@@ -376,11 +376,15 @@ void FixSissm::choose_external()
 
   // contact that limits the moves (collision-free steps) must be part of every iterate
   limiters.clear();
+  contacts.clear();
   for (Fix *f : fixes) {
     auto *limit = dynamic_cast<CollisionLimit *>(f);
-    if (!limit || !limit->limits_moves()) continue;
+    if (!limit) continue;
     const bool implicit = external_mode != EXT_LAGGED &&
         std::find(implicit_fixes.begin(), implicit_fixes.end(), f) != implicit_fixes.end();
+    // its lagged friction is built at the start of each (sub-)step when it is an iterate's force
+    if (implicit) contacts.push_back(limit);
+    if (!limit->limits_moves()) continue;
     if (!implicit)
       error->all(FLERR,
                  "Fix sissm {}: fix {} ({}) makes the implicit step collision-free, so its force "
@@ -397,12 +401,14 @@ void FixSissm::choose_external()
 /* ----------------------------------------------------------------------
    collision-free steps (collision_limit.h): the positions at the start of a (sub-)step are
    admissible; every later move of the group is limited so that no contact pair comes within
-   its thickness on the straight move from the last admissible positions
+   its thickness on the straight move from the last admissible positions. The contacts'
+   lagged friction is taken there too (begin_step, h the (sub-)step)
 ------------------------------------------------------------------------- */
 
-void FixSissm::begin_path()
+void FixSissm::begin_path(double h)
 {
   comm->forward_comm();
+  for (CollisionLimit *contact : contacts) contact->begin_step(h);
   for (CollisionLimit *limit : limiters) limit->begin_path();
 }
 
@@ -749,7 +755,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   const double tforce = t_end - (1.0 - scheme->force_time()) * h / dtv;
   const bool move_others = xstart && (tforce < 1.0);
   if (move_others) place_others(tforce);
-  if (!limiters.empty()) begin_path();
+  if (!contacts.empty()) begin_path(h);    // (the limiters are among the contacts)
   arrays.y = x;
   arrays.v = v;
   arrays.yn = yn;

@@ -119,6 +119,8 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   // contact that makes the step collision-free: every move of the atoms is limited by it
   // (collision_limit.h)
   std::vector<class CollisionLimit *> limiters;
+  // contact fixes re-evaluated at every iterate (lagged friction: begin_step), limiting or not
+  std::vector<class CollisionLimit *> contacts;
   int reach_cut;        // the last evaluation's move was cut short by a contact's reach
   std::string external_note;                  // what was last logged about them
   double dtv;
@@ -162,7 +164,7 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   void grow();
   void destroy_arrays();
   void choose_external();
-  void begin_path();
+  void begin_path(double h);
   void limit_path(bool end_of_step);
   void capture_internal_force();
   void lagged_external_force();
