@@ -139,7 +139,7 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     lagged_generation(-1), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
     nactive{0, 0, 0}, ncandidates(0), nfriction(0), friction_work(0.0), reduced(0),
     all_energy_density(0.0), all_vector{}
-
+{
   const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k] [friction mu] "
                       "[epsv v] [ccd yes|no]";
   int iarg = 3;
@@ -848,7 +848,7 @@ void FixNosbContact::unpack_forward_comm(int n, int first, double *buf)
     v[i][1] = buf[m++];
     v[i][2] = buf[m++];
   }
-
+}
 
 /* ----------------------------------------------------------------------
    global sums of the last evaluation (collective; once per evaluation)
