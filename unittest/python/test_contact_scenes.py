@@ -171,7 +171,7 @@ def test_twisting_cloth_under_fix_sissm(tmp_path, nprocs):
     assert t["f_integrate[2]"].max() <= 1e-6                      # every step converged
     assert t["f_contact[1]"][-1] + t["f_contact[2]"][-1] > 0       # in contact at the end
     assert t["f_contact[3]"].min() > DMIN
-    assert t["c_rmid"][-1] < 0.6 * 0.025                           # the middle has narrowed
+    assert t["c_rmid"][-1] < 0.75 * 0.025                          # the middle has narrowed
     x0 = np.array(vertices)
     ends = np.flatnonzero(np.abs(x0[:, 0]) >= 0.1 - 0.006)         # the deck's grip
     assert len(ends) == 20
