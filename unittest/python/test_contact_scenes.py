@@ -1,9 +1,11 @@
 """Contact scenes of issue 15 at CI size: layers of cloth dropped onto a held ball
-(examples/cloth-on-ball), run under fix nve on 1 and 2 ranks with every step dumped, and checked
-by the independent tools/mesh_gaps.py: no non-adjacent point-triangle or edge-edge pair of any
-mesh (the ball, each layer with itself, the layers with each other and with the ball) below
-dmin in any frame, no crossing triangles; and the physical outcome. Also the regression of the
-bond families under fix nosb/contact."""
+(examples/cloth-on-ball), run under fix nve and fix sissm, and a strip of cloth twisted by its
+two ends until it wraps onto itself (examples/twisting-cloth, fix sissm), on 1 and 2 ranks with
+every step dumped, and checked by the independent tools/mesh_gaps.py: no non-adjacent
+point-triangle or edge-edge pair of any mesh (the ball, each layer with itself, the layers with
+each other and with the ball; the strip with itself) below dmin in any frame, no crossing
+triangles; and the physical outcome. Also the regression of the bond families under fix
+nosb/contact."""
 import math
 import sys
 from pathlib import Path
@@ -19,6 +21,7 @@ import make_sheet  # noqa: E402
 import mesh_gaps  # noqa: E402
 
 BALL_DECK = REPO / "examples" / "cloth-on-ball" / "in.cloth-on-ball"
+TWIST_DECK = REPO / "examples" / "twisting-cloth" / "in.twisting-cloth"
 DMIN, DHAT, RADIUS = 0.001, 0.002, 0.05
 HORIZON = 2.0002 * 0.01
 
@@ -46,15 +49,18 @@ def ball_scene(workdir, layers=3, steps=300, nprocs=1, size=0.1, more=None):
     return run, vertices, faces, len(bv), len(cv)
 
 
-def check_every_frame(path, vertices, faces):
+def check_every_frame(path, vertices, faces, each=None):
     """mesh_gaps over every frame of the dump: (frames, smallest distance, last positions);
-    asserts that no frame has a pair below dmin or crossing triangles."""
+    asserts that no frame has a pair below dmin or crossing triangles. each(step, positions),
+    when given, is called on every frame (for the scene's own checks)."""
     checker = mesh_gaps.MeshGaps(vertices, faces, 1, 1)
     frames, smallest, x = 0, np.inf, None
     for frame in mesh_gaps.read_dump(path):
         x = mesh_gaps.mesh_positions(frame, len(vertices))
         gaps = checker.check(x, radius=DMIN + DHAT, dmin=DMIN)
         assert not gaps.fails, (frame.step, gaps)
+        if each is not None:
+            each(frame.step, x)
         for pair in (gaps.point_triangle, gaps.edge_edge):
             if pair is not None:
                 smallest = min(smallest, pair.distance)
@@ -135,4 +141,49 @@ def test_layers_on_a_ball_under_fix_sissm(tmp_path, nprocs):
     d, _ = mesh_gaps.point_triangle_distance(np.tile(x[centre], (len(ball), 1)),
                                              x[ball[:, 0]], x[ball[:, 1]], x[ball[:, 2]])
     assert DMIN < d.min() < DMIN + DHAT, d.min()
+    assert not [w for w in run.warnings if "collision-free" in w], run.warnings
+
+
+# The twisting cloth (examples/twisting-cloth): the example's 20 x 5 cm strip (150 vertices,
+# equilateral pattern, 1 cm edges), its ends (10 vertices each) turned about the strip's axis
+# in opposite senses by fix move rotate, here with a period of 0.1 s (twice the example's speed:
+# the shape depends on the angle, not on the speed) for 100 steps of 1 ms under fix sissm, one
+# full turn of each end. The stretched helicoid buckles at about 195 degrees per end (one step
+# then moves atoms by 4 mm: the deck's 16 mm skin) and wraps onto itself from 288 degrees (step
+# 80) on. Every step is dumped and checked by mesh_gaps: nothing within dmin, no crossing
+# (measured smallest 1.18 mm at the last step, the same to 9 digits on 1 and 2 ranks); every step
+# converged; in contact at the end; the middle of the strip narrowed (largest distance from the
+# axis 13.7 mm, from 25); and in every frame the ends are where fix move puts them: each end
+# vertex at its start turned by +-360 t / period degrees about the x axis. The pair of runs takes
+# about 50 s of CPU.
+TWIST_PERIOD, TWIST_STEPS, TWIST_DT = 0.1, 100, 1e-3
+
+
+@pytest.mark.parametrize("nprocs", [1, pytest.param(2, marks=pytest.mark.mpi)])
+def test_twisting_cloth_under_fix_sissm(tmp_path, nprocs):
+    vertices, faces = make_sheet.rectangle(0.2, 0.05, 0.01, pattern="equilateral")
+    make_sheet.write_obj(tmp_path / "strip.obj", vertices, faces)
+    run = run_deck(TWIST_DECK, tmp_path, nprocs=nprocs, variables={
+        "mesh": tmp_path / "strip.obj", "period": TWIST_PERIOD, "steps": TWIST_STEPS,
+        "every": 1, "dump": 1, "name": "ci"})
+    t = run.thermo[-1]
+    assert t["Step"][-1] == TWIST_STEPS
+    assert t["f_integrate[2]"].max() <= 1e-6                      # every step converged
+    assert t["f_contact[1]"][-1] + t["f_contact[2]"][-1] > 0       # in contact at the end
+    assert t["f_contact[3]"].min() > DMIN
+    assert t["c_rmid"][-1] < 0.75 * 0.025                          # the middle has narrowed
+    x0 = np.array(vertices)
+    ends = np.flatnonzero(np.abs(x0[:, 0]) >= 0.1 - 0.006)         # the deck's grip
+    assert len(ends) == 20
+    sense = -np.sign(x0[ends, 0])                                  # left end +x, right end -x
+
+    def ends_turned(step, x):
+        theta = 2 * math.pi * step * TWIST_DT / TWIST_PERIOD * sense
+        y0 = x0[ends, 1]
+        expected = np.column_stack([x0[ends, 0], y0 * np.cos(theta), y0 * np.sin(theta)])
+        assert np.abs(x[ends] - expected).max() < 1e-12, step
+
+    frames, smallest, x = check_every_frame(tmp_path / "dump.ci", vertices, faces, ends_turned)
+    assert frames == TWIST_STEPS + 1
+    assert DMIN < smallest < DMIN + DHAT, smallest                 # the barrier was reached
     assert not [w for w in run.warnings if "collision-free" in w], run.warnings
