@@ -10,13 +10,15 @@
 # By default the runs are explicit (fix nve, dt = 50 us: 30000 steps): at this size that is
 # 6.5 to 8 times cheaper than fix sissm at the authors' 1 ms (README.md, "Full size").
 # SOLVER=krylov DT=1e-3 STEPS=1500 EVERY=250 runs the sweep with fix sissm instead.
+# CONTACT=yes adds the cloth's self-contact (the deck's -var contact yes: fix nosb/contact with
+# dmin 1 mm, dhat = a/8 = 0.8 mm, kappa 10, skin 1 cm); its files are named full.contact.DX.
 #   ./run_full.sh                 all four
 #   ./run_full.sh no 1e-3         only these moduli
 # Environment: LMP (default ../../build/lmp), SOLVER (nve, or krylov / jacobi for fix sissm),
 #   DT (5e-5 s; fix nve with 1e-4 blew up after the landing with D = 1e-3), STEPS (30000),
 #   SETTLE (10000; 0 skips the settling), SETTLEDAMP (25 /s), EVERY (5000), JOBS (2), PRECOND (fix sissm's: block, with this light cloth the multigrid
 #   saves iterations, not time), WALL (2e9: the deck's 2e8 let an edge vertex of the cloth without
-#   bending through the table's surface at 6.5 mm, between 0.25 and 0.3 s).
+#   bending through the table's surface at 6.5 mm, between 0.25 and 0.3 s), CONTACT (no).
 set -e
 cd "$(dirname "$0")"
 LMP=${LMP:-../../build/lmp}
@@ -29,13 +31,16 @@ EVERY=${EVERY:-5000}
 JOBS=${JOBS:-2}
 PRECOND=${PRECOND:-block}
 WALL=${WALL:-2.0e9}
+CONTACT=${CONTACT:-no}
+tag=full
+[ "$CONTACT" = no ] || tag=full.contact
 [ $# -gt 0 ] || set -- no 1e-5 1e-4 1e-3
 [ -f cloth_full.obj ] || ./make_meshes.sh full
 
 run_one() {
-  name=full.D$1
+  name=$tag.D$1
   common="-var mesh cloth_full.obj -var a 0.0065 -var every $EVERY -var bend $1 -var solver $SOLVER
-    -var dt $DT -var precond $PRECOND -var wall $WALL -var name $name"
+    -var dt $DT -var precond $PRECOND -var wall $WALL -var contact $CONTACT -var name $name"
   # shellcheck disable=SC2086
   "$LMP" -in in.tablecloth $common -var steps "$STEPS" -log "log.$name" > /dev/null 2>&1 ||
     { echo "run $name failed: see log.$name" >&2; return; }
@@ -63,9 +68,9 @@ printf '%-6s %-24s %-24s\n' D "drape at STEPS (hull)" "settled (hull)"
 for d in "$@"; do
   line=$(printf '%-6s' "$d")
   for step in "$STEPS" "$last"; do
-    dump=dump.full.D$d.$step
+    dump=dump.$tag.D$d.$step
     if [ ! -f "$dump" ]; then line="$line $(printf '%-24s' "no $dump")"; continue; fi
-    svg=drape.full.D$d.svg
+    svg=drape.$tag.D$d.svg
     [ "$step" = "$last" ] || svg=/dev/null
     r=$(python3 drape.py cloth_full.obj "$dump" --svg "$svg" --json |
       python3 -c 'import json, sys; r = json.load(sys.stdin)

@@ -1,10 +1,13 @@
 """The tablecloth scene (examples/tablecloth) at its CI size through LAMMPS: a 1.2 m square cloth
 (1134 vertices) dropped 2 cm onto a 0.8 m square table falls as backward Euler says a free body
 falls, lands on the table top at the wall's cutoff, drapes over the edges symmetrically, and
-drape.py gives it a drape coefficient between 0 and 1."""
+drape.py gives it a drape coefficient between 0 and 1. With self-contact (`-var contact yes`,
+fix nosb/contact) under fix sissm every step is checked by tools/mesh_gaps.py on 1 and 2 ranks,
+and the drape is that of the run without contact."""
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from lammps_run import run_deck
@@ -12,12 +15,16 @@ from lammps_run import run_deck
 REPO = Path(__file__).resolve().parents[2]
 SCENE = REPO / "examples" / "tablecloth"
 sys.path.insert(0, str(SCENE))
+sys.path.insert(0, str(REPO / "tools"))
 import drape  # noqa: E402
+import make_sheet  # noqa: E402
+import mesh_gaps  # noqa: E402
 
 RHO, GRAV, DAMP, DT = 300.0, 9.81, 2.0, 1.0e-3
 EPS, RC = 2.0e8, 0.005          # the deck's harmonic wall: force density 2 eps (rc - r)
 DROP = 0.02                     # the cloth starts DROP + RC above the table top
 STEPS, EVERY = 160, 20
+DMIN, DHAT, SKIN = 0.001, 0.005, 0.01   # the deck's contact defaults at a = 4 cm (dhat = a/8)
 
 
 @pytest.fixture(scope="module")
@@ -128,3 +135,60 @@ def test_settling_continues_from_the_dump_at_rest(scene, tmp_path):
     last = {k: v[-1] for k, v in table.items()}
     assert last["Step"] == STEPS + 40 and last["f_integrate[2]"] < 1e-6, last
     assert abs(last["c_zc"] - (RC - RHO * GRAV / (2.0 * EPS))) < 5e-4, last
+
+
+# Self-contact under fix sissm (1 ms steps), every step dumped and checked by the independent
+# mesh_gaps (the fix's rule: pairs sharing a vertex are left out): no pair below dmin and no
+# crossing triangles in any of the 161 frames, on 1 and 2 ranks. In these 0.16 s (the fall, the
+# landing at 0.064 s and the overhang falling at up to 2 m/s) the cloth does not come near
+# itself: the closest pairs are those of the flat mesh, a vertex and the far side of its
+# neighbours' half triangles at the ends of the equilateral rows (a sqrt(3)/4 = 17.3 mm flat,
+# measured >= 16.8 mm while draping; asked: > dmin + dhat + skin = 16 mm, where the fix takes
+# candidates), so the fix has no pair (f_contact[3] reports dmin + dhat + skin, its "none"), adds
+# no force and its motion limit (half the skin) never binds: the positions at 0.16 s equal those
+# of the run without contact (the module's scene) to the dump's 8 digits, asked 1e-7 m, and so
+# do the drape coefficients. The file's contact tests take about a minute on one core.
+@pytest.mark.parametrize("nprocs", [1, pytest.param(2, marks=pytest.mark.mpi)])
+def test_self_contact_under_fix_sissm_keeps_the_drape(scene, tmp_path, nprocs):
+    run = run_deck(SCENE / "in.tablecloth", tmp_path, nprocs=nprocs, variables={
+        "mesh": SCENE / "cloth_ci.obj", "steps": STEPS, "every": EVERY, "dump": 1, "image": 0,
+        "contact": "yes"})
+    table = run.thermo[-1]
+    assert table["Step"][-1] == STEPS and table["f_integrate[2]"].max() < 1e-6, table
+    assert (table["f_contact[1]"] == 0).all() and (table["f_contact[2]"] == 0).all(), table
+    assert abs(table["f_contact[3]"] - (DMIN + DHAT + SKIN)).max() < 1e-12, table["f_contact[3]"]
+    vertices, faces = make_sheet.read_obj(SCENE / "cloth_ci.obj")
+    checker = mesh_gaps.MeshGaps(vertices, faces, 1, 1)
+    smallest, frames = np.inf, 0
+    for step in range(STEPS + 1):
+        frame = next(mesh_gaps.read_dump(tmp_path / f"dump.ci.{step}"))
+        x = mesh_gaps.mesh_positions(frame, len(vertices))
+        gaps = checker.check(x, radius=0.02, dmin=DMIN)
+        assert not gaps.fails and not gaps.intersections, (step, gaps)
+        for pair in (gaps.point_triangle, gaps.edge_edge):
+            if pair is not None:
+                smallest = min(smallest, pair.distance)
+        frames += 1
+    assert frames == STEPS + 1
+    assert DMIN + DHAT + SKIN < smallest < 0.0174, smallest
+    _, work = scene
+    plain = drape.read_dump(work / f"dump.ci.{STEPS}")
+    touched = drape.read_dump(tmp_path / f"dump.ci.{STEPS}")
+    worst = max(abs(p - q) for k in plain for p, q in zip(plain[k], touched[k]))
+    assert worst < 1e-7, worst
+    r0 = drape.drape(SCENE / "cloth_ci.obj", work / f"dump.ci.{STEPS}", 0.4, 0.0)
+    r1 = drape.drape(SCENE / "cloth_ci.obj", tmp_path / f"dump.ci.{STEPS}", 0.4, 0.0)
+    assert abs(r0["drape_coefficient"] - r1["drape_coefficient"]) < 1e-6, (r0, r1)
+
+
+def test_contact_range_beyond_the_half_triangles_repels_the_flat_cloth(tmp_path):
+    """The deck's dhat = a/8 keeps dmin + dhat (6 mm) below the distance of a vertex to the far
+    side of its neighbours' half triangles (a sqrt(3)/4 = 17.3 mm, doc/fix_nosb_contact.rst):
+    the flat cloth has no pair in the barrier's range (the test above). With dhat = 2 cm the
+    same flat cloth at rest has pairs in range: the row ends repel themselves, which the
+    deck's choice avoids."""
+    run = run_deck(SCENE / "in.tablecloth", tmp_path, variables={
+        "mesh": SCENE / "cloth_ci.obj", "steps": 0, "dump": 0, "image": 0, "contact": "yes",
+        "dhat": 0.02})
+    first = {k: v[0] for k, v in run.thermo[-1].items()}
+    assert first["f_contact[1]"] > 0 and first["f_contact[3]"] < 0.0174, first
