@@ -2,7 +2,7 @@
 # Wall time per simulated frame of the twisting cloth on 1 and 2 MPI ranks, under fix sissm
 # (1 ms steps, the deck's default) and fix nve (20 us steps, kappa 100: at the deck's kappa
 # 10 the explicit run goes through the barrier after the buckle, see README.md). A frame is
-# 1/30 s here (the talk's videos; the authors report 1/8 s of GPU time per frame of their cloth
+# 1/30 s here (a video frame; the authors report 1/8 s of GPU time per frame of their cloth
 # scene): the run is `steps` steps and the time per frame is the loop time x (1/30) / (steps x
 # dt). The sissm lines also give the mean force evaluations per step (the log's "Fix sissm ...
 # run" line). Prints one line per run. Usage (from this folder):
