@@ -449,6 +449,18 @@ void FixNosbContact::build_candidates()
   auto near = [&](const Candidate &c) {
     Vector3d y[4];
     for (int k = 0; k < c.nv(); k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    // first a bound from the primitives' bounding spheres (the distance of two primitives is at
+    // least the distance of the centres less the radii): most pairs the list finds are far
+    if (c.type == PT) {
+      const Vector3d centre = (y[1] + y[2] + y[3]) / 3.0;
+      const double r = std::sqrt(std::max({(y[1] - centre).squaredNorm(),
+                                           (y[2] - centre).squaredNorm(),
+                                           (y[3] - centre).squaredNorm()}));
+      if ((y[0] - centre).norm() - r >= reach) return false;
+    } else if (c.type == EE) {
+      const double ra = 0.5 * (y[1] - y[0]).norm(), rb = 0.5 * (y[3] - y[2]).norm();
+      if ((0.5 * (y[0] + y[1] - y[2] - y[3])).norm() - ra - rb >= reach) return false;
+    }
     const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
         : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
                                   : PeriSISSM::point_point_distance2(y[0], y[1]);
