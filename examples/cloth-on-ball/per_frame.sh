@@ -3,7 +3,8 @@
 # under fix nve (dt 20 us) or fix sissm (dt 1 ms, collision-free steps: skin 8 mm, ghost cutoff
 # 9 cm). A frame is 1/30 s here (a video frame; the authors report 1/8 s of GPU time per
 # frame of the cloth): the run is `steps` steps and the time per frame is the loop time x (1/30)
-# / (steps x dt). Under fix sissm it also prints the force evaluations per step (f_integrate[3]).
+# / (steps x dt). Under fix sissm it also prints the force evaluations per step (fix sissm's
+# run summary).
 # Prints one line per run. Usage (from this folder):
 #   ./per_frame.sh [steps] [nve|sissm]     (default 500 nve; 33 steps of 1 ms = one frame)
 steps=${1:-500}
@@ -23,7 +24,7 @@ for layers in 1 3 6; do
     seconds=$(echo "$loop" | awk '{print $4}')
     frame=$(python3 -c "print(f'{$seconds / ($steps * $dt) / 30:.1f} s')")
     if [ "$solver" = sissm ]; then
-      evals=$(echo "$out" | grep -B1 "^Loop time" | head -1 | awk '{print $(NF-1)}')
+      evals=$(echo "$out" | grep "iterations per step" | sed 's/.* \([0-9.]*\) iterations per step.*/\1/')
       echo "layers $layers ranks $np: $loop; per frame of 1/30 s: $frame; evaluations per step $evals"
     else
       echo "layers $layers ranks $np: $loop; per frame of 1/30 s: $frame"
