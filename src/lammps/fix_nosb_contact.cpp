@@ -135,7 +135,7 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), pair(nullptr),
     nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0),
     ccd(1), xref(nullptr), nxref(0), distance_valid(0), reach_bound(0), reach_moved(0.0),
-    reach_atom(0), ccd_queries(0), ccd_capped(0), in_step(0), step_h(0.0), generation(0),
+    reach_atom(0), in_step(0), step_h(0.0), generation(0),
     lagged_generation(-1), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
     nactive{0, 0, 0}, ncandidates(0), nfriction(0), friction_work(0.0), reduced(0),
     all_energy_density(0.0), all_vector{}
@@ -966,17 +966,13 @@ double FixNosbContact::limit_move(int groupbit)
       }
       if ((la + lb) * t_pairs <= (1.0 - opt.s) * (distance[ic] - dmin)) continue;
     }
+    // (a query that reaches ACCD's sub-step cap returns the last safe time: still conservative)
     opt.t_max = t_pairs;
-    PeriSISSM::CcdReport report;
     const double t = c.type == PT
-        ? PeriSISSM::point_triangle_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt,
-                                        &report)
+        ? PeriSISSM::point_triangle_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt)
         : c.type == EE
-        ? PeriSISSM::edge_edge_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt,
-                                   &report)
-        : PeriSISSM::point_point_ccd(y[0], y[1], dy[0], dy[1], opt, &report);
-    ccd_queries++;
-    if (report.capped) ccd_capped++;
+        ? PeriSISSM::edge_edge_ccd(y[0], y[1], y[2], y[3], dy[0], dy[1], dy[2], dy[3], opt)
+        : PeriSISSM::point_point_ccd(y[0], y[1], dy[0], dy[1], opt);
     t_pairs = std::min(t_pairs, t);
   }
 

@@ -90,7 +90,6 @@ class FixNosbContact : public Fix, public CollisionLimit {
   int reach_bound;             // the last limit_move() was cut short by the candidates' reach
   double reach_moved;          // then: how far an atom had moved from the list build
   tagint reach_atom;           //   which one
-  bigint ccd_queries, ccd_capped;    // CCD pair queries and those that hit the sub-step cap
 
   // friction: the lagged data of the active pairs (each with an owned vertex), built at x^n by
   // begin_step() under fix sissm, or at every evaluation from the current positions otherwise
