@@ -129,6 +129,24 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
   return v;
 }
 
+/* ----------------------------------------------------------------------
+   a candidate's points (gather) and their squared distance (distance2)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::gather(const Candidate &c, double **x, Vector3d *y)
+{
+  for (int k = 0; k < c.nv(); k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+}
+
+double FixNosbContact::distance2(const Candidate &c, const Vector3d *y)
+{
+  return c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
+      : c.type == EE  ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
+                      : PeriSISSM::point_point_distance2(y[0], y[1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), mu(0.0), epsv(EPSV_DEFAULT),
     edge_factor(EDGE_FACTOR),
@@ -448,7 +466,7 @@ void FixNosbContact::build_candidates()
   const double reach = dmin + dhat + neighbor->skin;
   auto near = [&](const Candidate &c) {
     Vector3d y[4];
-    for (int k = 0; k < c.nv(); k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    gather(c, x, y);
     // first a bound from the primitives' bounding spheres (the distance of two primitives is at
     // least the distance of the centres less the radii): most pairs the list finds are far
     if (c.type == PT) {
@@ -461,9 +479,7 @@ void FixNosbContact::build_candidates()
       const double ra = 0.5 * (y[1] - y[0]).norm(), rb = 0.5 * (y[3] - y[2]).norm();
       if ((0.5 * (y[0] + y[1] - y[2] - y[3])).norm() - ra - rb >= reach) return false;
     }
-    const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
-        : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
-                                  : PeriSISSM::point_point_distance2(y[0], y[1]);
+    const double D = distance2(c, y);
     return D < reach * reach;
   };
   // a point-triangle pair in canonical order (the triangle's vertices by ID); none if p is one
@@ -585,24 +601,35 @@ void FixNosbContact::build_candidates()
    the next step (collective: every force evaluation calls it on all ranks)
 ------------------------------------------------------------------------- */
 
-void FixNosbContact::check_motion()
+double FixNosbContact::moved_since_build(int &farthest) const
 {
   double **x = atom->x;
-  const double limit = 0.25 * neighbor->skin * neighbor->skin;
   double most = 0.0;
+  farthest = -1;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     double r2 = 0.0;
     for (int d = 0; d < 3; d++) r2 += (x[i][d] - xbuild[i][d]) * (x[i][d] - xbuild[i][d]);
-    most = std::max(most, r2);
-    if (r2 > limit)
-      error->one(FLERR,
-                 "Fix nosb/contact {}: atom {} moved {:.6g} since the last neighbor list build "
-                 "at step {}, more than half the neighbor skin: contact pairs may be missing; "
-                 "let LAMMPS rebuild the lists when needed (neigh_modify every 1 delay 0 check "
-                 "yes), use a larger skin or a smaller time step",
-                 id, atom->tag[i], std::sqrt(r2), neighbor->lastcall);
+    if (r2 > most) {
+      most = r2;
+      farthest = i;
+    }
   }
+  return most;
+}
+
+void FixNosbContact::check_motion()
+{
+  const double limit = 0.25 * neighbor->skin * neighbor->skin;
+  int i;
+  const double most = moved_since_build(i);
+  if (most > limit)
+    error->one(FLERR,
+               "Fix nosb/contact {}: atom {} moved {:.6g} since the last neighbor list build at "
+               "step {}, more than half the neighbor skin: contact pairs may be missing; let "
+               "LAMMPS rebuild the lists when needed (neigh_modify every 1 delay 0 check yes), "
+               "use a larger skin or a smaller time step",
+               id, atom->tag[i], std::sqrt(most), neighbor->lastcall);
   // LAMMPS checks the motion only once per step; fix sissm's iterates move the atoms inside the
   // step (its post_integrate, before that check): beyond a quarter of the skin, the next step
   // builds a new list (decided on all ranks alike). A pending request is not moved: fix sissm
@@ -688,15 +715,13 @@ void FixNosbContact::post_force(int /*vflag*/)
     const Candidate &c = candidates[ic];
     const int nv = c.nv();
     Vector3d y[4];
-    for (int k = 0; k < nv; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    gather(c, x, y);
     // the owned vertices of the pair, and whether this rank counts it (its smallest ID)
     int own[4];
     const bool counts = owned_vertices(atom, c.tag, nv, own);
     if (counts) ncandidates++;
 
-    const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
-        : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
-                                  : PeriSISSM::point_point_distance2(y[0], y[1]);
+    const double D = distance2(c, y);
     const double d = std::sqrt(D);
     distance[ic] = d;
     mindist = std::min(mindist, d);
@@ -756,10 +781,8 @@ void FixNosbContact::build_lagged()
   for (const Candidate &c : candidates) {
     const int nv = c.nv();
     Vector3d y[4];
-    for (int k = 0; k < nv; k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
-    const double D = c.type == PT ? PeriSISSM::point_triangle_distance2(y[0], y[1], y[2], y[3])
-        : c.type == EE            ? PeriSISSM::edge_edge_distance2(y[0], y[1], y[2], y[3])
-                                  : PeriSISSM::point_point_distance2(y[0], y[1]);
+    gather(c, x, y);
+    const double D = distance2(c, y);
     // (a pair at or within dmin is an error of the force evaluation)
     if (!(D < range * range) || !(D > dmin * dmin)) continue;
     Lagged l;
@@ -1045,14 +1068,8 @@ void FixNosbContact::reach_error(const char *integrator)
 
 bool FixNosbContact::rebuild_wanted()
 {
-  double **x = atom->x;
-  double most = 0.0;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(atom->mask[i] & groupbit)) continue;
-    double r2 = 0.0;
-    for (int d = 0; d < 3; d++) r2 += (x[i][d] - xbuild[i][d]) * (x[i][d] - xbuild[i][d]);
-    most = std::max(most, r2);
-  }
+  int farthest;
+  const double most = moved_since_build(farthest);
   double all;
   MPI_Allreduce(&most, &all, 1, MPI_DOUBLE, MPI_MAX, world);
   const double trigger = 0.125 * neighbor->skin;
@@ -1077,7 +1094,7 @@ void FixNosbContact::add_blocks(double **block)
     // after post_force)
     if (!(distance_valid && distance[ic] < range)) continue;
     Vector3d y[4];
-    for (int k = 0; k < c.nv(); k++) y[k] = Vector3d(x[c.v[k]][0], x[c.v[k]][1], x[c.v[k]][2]);
+    gather(c, x, y);
     PeriSISSM::Matrix12d H;
     if (c.type == PT)
       H = PeriSISSM::point_triangle_barrier_hessian(y[0], y[1], y[2], y[3], prm, true);

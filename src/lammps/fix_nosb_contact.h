@@ -119,6 +119,12 @@ class FixNosbContact : public Fix, public CollisionLimit {
 
   void build_candidates();
   void check_motion();
+  // the largest squared distance of an owned atom of the group from where it was at the last
+  // candidate build (this rank), and that atom's local index (-1: none)
+  double moved_since_build(int &farthest) const;
+  // the positions in x of candidate c's points into y[0 .. c.nv() - 1]; their squared distance
+  static void gather(const Candidate &c, double **x, Eigen::Vector3d *y);
+  static double distance2(const Candidate &c, const Eigen::Vector3d *y);
   double measure_longest_edge(bool owned_partners_only);
   double predicted_comm_cutoff() const;
   void reduce();
