@@ -57,6 +57,37 @@ def dump_frames(path):
     return frames
 
 
+# ---- forces against central differences of the energy ----
+
+def displaced_runs(frame, ids, h):
+    """LAMMPS commands that move each atom of ids (1-based IDs; frame sorted by id, columns
+    id x y z ...) by +h and -h along x, y, z in turn, with a `run 0` after each move and the atom
+    put back after each direction; and the (id, direction, sign) of each run, in order."""
+    commands, order = [], []
+    for i in ids:
+        for k, name in enumerate("xyz"):
+            for sign in (1, -1):
+                commands += [f"set atom {i} {name} {frame[i - 1, 1 + k] + sign * h!r}", "run 0"]
+                order.append((i, k, sign))
+            commands.append(f"set atom {i} {name} {frame[i - 1, 1 + k]!r}")
+    return commands, order
+
+
+def gradient_error(frame, ids, order, energies, h):
+    """The largest |-dE/dx (central differences of the runs' energies) - V f| over ids and
+    directions, relative to the largest V f of the frame (columns 4-6 f, 7 V)."""
+    assert len(energies) == len(order)
+    E = dict(zip(order, energies))
+    V = frame[:, 7]
+    scale = np.abs(frame[:, 4:7] * V[:, None]).max()
+    worst = 0.0
+    for i in ids:
+        for k in range(3):
+            fd = -(E[(i, k, 1)] - E[(i, k, -1)]) / (2 * h)
+            worst = max(worst, abs(fd - frame[i - 1, 4 + k] * V[i - 1]) / scale)
+    return worst
+
+
 # ---- an independent sum of the barrier (doc/fix_nosb_contact.rst, src/core/contact) ----
 
 def barrier(g, dhat):
@@ -161,25 +192,10 @@ def test_forces_are_minus_the_energy_gradient(tmp_path):
     base = two_cloths(tmp_path / "base", gap)
     frame = dump_frames(tmp_path / "base" / "dump.contact")[0]
     ids = [8, 10, 1, 44, 51]
-    commands, order = [], []
-    for i in ids:
-        for k, name in enumerate("xyz"):
-            for sign in (1, -1):
-                value = frame[i - 1, 1 + k] + sign * h
-                commands += [f"set atom {i} {name} {value!r}", "run 0"]
-                order.append((i, k, sign))
-            commands.append(f"set atom {i} {name} {frame[i - 1, 1 + k]!r}")
+    commands, order = displaced_runs(frame, ids, h)
     run = two_cloths(tmp_path / "fd", gap, more="\n".join(commands) + "\n")
     energies = [t["f_c[4]"][-1] for t in run.thermo[1:]]
-    assert len(energies) == len(order)
-    E = dict(zip(order, energies))
-    V = frame[:, 7]
-    scale = np.abs(frame[:, 4:7] * V[:, None]).max()
-    worst = 0.0
-    for i in ids:
-        for k in range(3):
-            fd = -(E[(i, k, 1)] - E[(i, k, -1)]) / (2 * h)
-            worst = max(worst, abs(fd - frame[i - 1, 4 + k] * V[i - 1]) / scale)
+    worst = gradient_error(frame, ids, order, energies, h)
     assert worst < 1e-6, worst
     assert base.thermo[-1]["f_c[4]"][-1] > 0
 

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from lammps_run import run_deck
-from test_contact import DHAT, DMIN, KAPPA, barrier, barrier_sum, cloth, dump_frames, \
-    mesh_primitives
+from test_contact import DHAT, DMIN, KAPPA, barrier, barrier_sum, cloth, displaced_runs, \
+    dump_frames, gradient_error, mesh_primitives
 
 DECKS = Path(__file__).parent / "decks"
 PARTICLES = DECKS / "contact_particles.lmp"
@@ -120,24 +120,11 @@ def test_forces_are_minus_the_energy_gradient(tmp_path):
     below = np.argsort(np.linalg.norm(frame[:n, 1:3], axis=1))[:2] + 1
     ids = [n + 1, n + 4, n + 8] + [int(i) for i in below]
     h = 1e-8
-    commands, order = [], []
-    for i in ids:
-        for k, name in enumerate("xyz"):
-            for sign in (1, -1):
-                commands += [f"set atom {i} {name} {frame[i - 1, 1 + k] + sign * h!r}", "run 0"]
-                order.append((i, k, sign))
-            commands.append(f"set atom {i} {name} {frame[i - 1, 1 + k]!r}")
+    commands, order = displaced_runs(frame, ids, h)
     run = particles_run(tmp_path / "fd", points, volumes, mesh=True,
                         more="\n".join(commands) + "\n")
-    E = dict(zip(order, [t["f_c[4]"][-1] for t in run.thermo[1:]]))
-    assert len(E) == len(order)
-    V = frame[:, 7]
-    scale = np.abs(frame[:, 4:7] * V[:, None]).max()
-    worst = 0.0
-    for i in ids:
-        for k in range(3):
-            fd = -(E[(i, k, 1)] - E[(i, k, -1)]) / (2 * h)
-            worst = max(worst, abs(fd - frame[i - 1, 4 + k] * V[i - 1]) / scale)
+    energies = [t["f_c[4]"][-1] for t in run.thermo[1:]]
+    worst = gradient_error(frame, ids, order, energies, h)
     assert worst < 1e-6, worst
     assert base.thermo[-1]["f_c[6]"][-1] > 0
 
