@@ -19,6 +19,15 @@
    start of every (sub-)step solve, right before begin_path(), for every such contact whose force
    it re-evaluates at every iterate (whether or not it limits the moves). The positions then
    are the step's start x^n; the step lasts h.
+
+   A contact that adapts its stiffness to the step (kappa auto: IPC's adaptive barrier
+   stiffness) needs two more things of the integrator: which force evaluations are iterates of
+   its solver (next_iterate() before each; a probe of a Jacobian-vector product is none, and the
+   stiffness may change only at an iterate), and the residual of the first iterate of every
+   (sub-)step, against which the barrier's stiffness is balanced (balance_stiffness()). The
+   residual is r_i = rho_i (yhat_i - y_i) + c f_i (rho the mass density, f the force density of
+   everything the step includes, the contact too; c the scheme's force factor, h^2 for backward
+   Euler), so that -r_i V_i / c is the gradient of the step's incremental potential at atom i.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_PERISISSM_COLLISION_LIMIT_H
@@ -34,7 +43,8 @@ class CollisionLimit {
   // the start of an implicit (sub-)step of length h (> 0): the current positions (owned and
   // ghost, current) are x^n, and the force evaluations up to the next begin_step() are the
   // iterates of this step (and the one after it, at its result). Collective.
-  virtual void begin_step(double h) = 0;
+  // c is the scheme's force factor (see above): the step's inertial scale is rho / c.
+  virtual void begin_step(double h, double c) = 0;
   // the current positions (owned and ghost, current) are admissible: the reference of the next
   // move. Collective.
   virtual void begin_path() = 0;
@@ -56,6 +66,17 @@ class CollisionLimit {
   // add the positive semi-definite diagonal blocks of the contact's stiffness at the last
   // force evaluation, per unit volume of each owned atom (xx yy zz xy xz yz), to block
   virtual void add_blocks(double **block) = 0;
+
+  // true when the contact adapts its stiffness (then the two calls below are made, and the
+  // contact must be re-evaluated at every iterate)
+  virtual bool adapts_stiffness() const = 0;
+  // the next force evaluation is at an iterate of the solver (not a probe): the contact may
+  // change its stiffness there. Collective.
+  virtual void next_iterate() = 0;
+  // after the first evaluation of a (sub-)step: res the residual of the integrator's group
+  // (owned atoms of groupbit), c the force factor. Returns true (all ranks) when the
+  // stiffness changed: the evaluation must then be redone. Collective.
+  virtual bool balance_stiffness(double **res, double c, int groupbit) = 0;
 
  protected:
   ~CollisionLimit() = default;

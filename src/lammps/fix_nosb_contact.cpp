@@ -56,6 +56,16 @@
    is that sum of densities (fix_modify energy yes adds it to pe); vector element 4 is the
    energy itself, sum_pairs E; element 6 counts the active point-point pairs.
 
+   Stiffness (kappa auto, doc "Choosing kappa"): IPC's adaptive barrier stiffness, kept as
+   kappa_ip in the units of the step's incremental potential (the forces use kappa = kappa_ip / c,
+   c the force factor of fix sissm's scheme, from begin_step(); dt^2 before the first step). Its
+   bounds come from the group's bounding box and mean mass at the first setup (measure_scene(),
+   kept in restart files); it is balanced against the rest of the residual at the first iterate
+   of every (sub-)step (balance_stiffness(), called by fix sissm, which redoes that evaluation
+   when it changed) and doubled at later iterates while the smallest gap is tiny and shrinking
+   (adapt_at_iterate(), at the evaluations fix sissm announces with next_iterate(): never at a
+   probe of a Jacobian product, whose difference quotient needs the same stiffness as its base).
+
    Friction (keyword friction mu > 0): the lagged smooth friction of the core
    (contact/friction.h) on every active pair (within dmin + dhat, lambda > 0). Under fix sissm
    (which calls begin_step() at the start of each (sub-)step solve, collision_limit.h) the pairs'
@@ -109,7 +119,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using Eigen::Vector3d;
 
-static constexpr int NVECTOR = 8;
+static constexpr int NVECTOR = 9;
 // default slip speed below which friction is smoothed (velocity units; IPC's 1e-3 m/s in SI)
 static constexpr double EPSV_DEFAULT = 1.0e-3;
 // Lmax = EDGE_FACTOR x the longest edge at the start of a run (or that edge + 2 skin when the skin
@@ -130,7 +140,26 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
 }
 
 /* ----------------------------------------------------------------------
-   a candidate's points (gather) and their squared distance (distance2)
+   the local indices of the owned vertices of a pair of nv vertices with the given tags (-1 for
+   the others) in own; returns whether this rank counts the pair (it owns the vertex with the
+   smallest ID), so that a pair counts once over all ranks
+------------------------------------------------------------------------- */
+
+static bool owned_vertices(Atom *atom, const tagint *tag, int nv, int *own)
+{
+  const int nlocal = atom->nlocal;
+  int smallest = 0;
+  for (int k = 0; k < nv; k++) {
+    const int m = atom->map(tag[k]);
+    own[k] = (m >= 0 && m < nlocal) ? m : -1;
+    if (tag[k] < tag[smallest]) smallest = k;
+  }
+  return own[smallest] >= 0;
+}
+
+/* ----------------------------------------------------------------------
+   a candidate's points (gather), their squared distance (distance2) and the gradient of its
+   barrier energy (barrier_gradient)
 ------------------------------------------------------------------------- */
 
 void FixNosbContact::gather(const Candidate &c, double **x, Vector3d *y)
@@ -145,10 +174,25 @@ double FixNosbContact::distance2(const Candidate &c, const Vector3d *y)
                       : PeriSISSM::point_point_distance2(y[0], y[1]);
 }
 
+PeriSISSM::Vector12d FixNosbContact::barrier_gradient(const Candidate &c, const Vector3d *y,
+                                                      const PeriSISSM::BarrierParameters &prm)
+{
+  PeriSISSM::Vector12d g = PeriSISSM::Vector12d::Zero();
+  if (c.type == PT)
+    g = PeriSISSM::point_triangle_barrier_gradient(y[0], y[1], y[2], y[3], prm);
+  else if (c.type == EE)
+    g = PeriSISSM::edge_edge_barrier_gradient(y[0], y[1], y[2], y[3], c.eps, prm);
+  else
+    g.head<6>() = PeriSISSM::point_point_barrier_gradient(y[0], y[1], prm);
+  return g;
+}
+
 /* ---------------------------------------------------------------------- */
 
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), mu(0.0), epsv(EPSV_DEFAULT),
+    Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), kappa_auto(0), kappa_ip(0.0),
+    kappa_ip_min(0.0), kappa_ip_max(0.0), inertia_c(0.0), bbox_diagonal(0.0), mean_mass(0.0),
+    iterate_pending(0), prev_min_gap(HUGE_VAL), mu(0.0), epsv(EPSV_DEFAULT),
     edge_factor(EDGE_FACTOR),
     longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), pair(nullptr),
     nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0),
@@ -158,7 +202,7 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     nactive{0, 0, 0}, ncandidates(0), nfriction(0), friction_work(0.0), reduced(0),
     all_energy_density(0.0), all_vector{}
 {
-  const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k] [friction mu] "
+  const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k|auto] [friction mu] "
                       "[epsv v] [ccd yes|no]";
   int iarg = 3;
   while (iarg < narg) {
@@ -179,21 +223,21 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
       mu = positive_number(val, "friction mu", true, error, lmp);
     else if (key == "epsv")
       epsv = positive_number(val, "epsv", false, error, lmp);
-    else {
-      if (strcmp(val, "auto") == 0)
-        error->all(FLERR,
-                   "Illegal fix nosb/contact command: kappa auto is not available yet; give the "
-                   "barrier stiffness as a number (energy / length^2)");
+    else if (strcmp(val, "auto") == 0) {
+      kappa_auto = 1;
+      kappa = -1.0;
+    } else {
+      kappa_auto = 0;
       kappa = positive_number(val, "kappa", false, error, lmp);
     }
     iarg += 2;
   }
   if (dhat < 0.0)
     error->all(FLERR, "Illegal fix nosb/contact command: keyword dhat is required ({})", usage);
-  if (kappa < 0.0)
+  if (kappa < 0.0 && !kappa_auto)
     error->all(FLERR,
-               "Illegal fix nosb/contact command: keyword kappa is required (kappa auto is not "
-               "available yet) ({})",
+               "Illegal fix nosb/contact command: keyword kappa is required (a number, or auto "
+               "under fix sissm) ({})",
                usage);
 
   scalar_flag = 1;
@@ -207,6 +251,8 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
   force_reneighbor = 1;
   next_reneighbor = -1;
   comm_forward = 3;    // velocities of the ghost atoms (friction without fix sissm)
+  // kappa auto: the adapted stiffness and the scales it comes from are kept in restart files
+  restart_global = kappa_auto;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -293,6 +339,18 @@ void FixNosbContact::init()
                      "dhat",
                      id);
     warned_sissm = 1;
+  }
+
+  // kappa auto: the stiffness is set against the implicit step's inertia (the file's header)
+  if (kappa_auto && modify->get_fix_by_style("^sissm$").empty())
+    error->all(FLERR,
+               "Fix nosb/contact {}: kappa auto needs fix sissm (the barrier's stiffness is "
+               "set against the inertia of its implicit step, as in IPC); under an explicit "
+               "integrator give kappa as a number (doc/fix_nosb_contact.rst, 'Choosing kappa')",
+               id);
+  if (kappa_auto) {
+    inertia_c = update->dt * update->dt;
+    iterate_pending = 0;
   }
 
   // an occasional list, built by this fix at every neighbor list build (build_candidates):
@@ -386,7 +444,136 @@ void FixNosbContact::post_neighbor()
 
 void FixNosbContact::setup(int vflag)
 {
+  if (kappa_auto) {
+    if (!(bbox_diagonal > 0.0)) measure_scene();
+    kappa = kappa_ip / inertia_c;
+  }
   post_force(vflag);
+}
+
+/* ----------------------------------------------------------------------
+   kappa auto, at the first setup (not after a restart, which brings them): the diagonal of the
+   group's bounding box and its atoms' mean mass, the bounds of the stiffness they give, and
+   the stiffness to start from (the lower bound)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::measure_scene()
+{
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  double mass[2] = {0.0, 0.0};
+  for (int i = 0; i < nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    for (int d = 0; d < 3; d++) {
+      lo[d] = std::min(lo[d], x[i][d]);
+      hi[d] = std::max(hi[d], x[i][d]);
+    }
+    mass[0] += atom->rmass[i] * atom->vfrac[i];
+    mass[1] += 1.0;
+  }
+  double alllo[3], allhi[3], allmass[2];
+  MPI_Allreduce(lo, alllo, 3, MPI_DOUBLE, MPI_MIN, world);
+  MPI_Allreduce(hi, allhi, 3, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(mass, allmass, 2, MPI_DOUBLE, MPI_SUM, world);
+  double diag2 = 0.0;
+  for (int d = 0; d < 3; d++) diag2 += (allhi[d] - alllo[d]) * (allhi[d] - alllo[d]);
+  bbox_diagonal = std::sqrt(diag2);
+  mean_mass = allmass[0] / allmass[1];
+  if (!(bbox_diagonal > 0.0) || !(mean_mass > 0.0))
+    error->all(FLERR,
+               "Fix nosb/contact {}: kappa auto needs a group of atoms with mass that spans a "
+               "box (its diagonal {:.6g}, the mean mass {:.6g})",
+               id, bbox_diagonal, mean_mass);
+  kappa_ip_min = PeriSISSM::initial_barrier_stiffness(bbox_diagonal, dhat, mean_mass, 0.0, 0.0,
+                                                      kappa_ip_max);
+  kappa_ip = kappa_ip_min;
+}
+
+/* ----------------------------------------------------------------------
+   kappa auto: a new stiffness (incremental-potential units); the lagged friction's normal
+   forces, proportional to it, follow
+------------------------------------------------------------------------- */
+
+void FixNosbContact::set_kappa_ip(double k)
+{
+  const double ratio = k / kappa_ip;
+  kappa_ip = k;
+  kappa = kappa_ip / inertia_c;
+  for (Lagged &p : lagged) p.pair.lambda *= ratio;
+}
+
+/* ----------------------------------------------------------------------
+   kappa auto, at an iterate of fix sissm (the distances of the candidates are current):
+   IPC's update, the stiffness doubles (up to its upper bound) while the smallest gap is below
+   1e-9 of the box's diagonal and still shrinking from the last iterate of the step
+------------------------------------------------------------------------- */
+
+void FixNosbContact::adapt_at_iterate()
+{
+  iterate_pending = 0;
+  double gap = HUGE_VAL;
+  for (double d : distance) gap = std::min(gap, d - dmin);
+  double all;
+  MPI_Allreduce(&gap, &all, 1, MPI_DOUBLE, MPI_MIN, world);
+  const double k =
+      PeriSISSM::update_barrier_stiffness(prev_min_gap, all, kappa_ip_max, kappa_ip, bbox_diagonal);
+  prev_min_gap = all;
+  if (k != kappa_ip) set_kappa_ip(k);
+}
+
+/* ----------------------------------------------------------------------
+   kappa auto, after the first evaluation of a fix sissm (sub-)step: IPC's balance, the
+   stiffness that minimises |grad E + kappa grad B| (E the step's incremental potential without
+   the barrier, B the barrier sum at unit stiffness) over the atoms the step moves, clamped to
+   its bounds. -res_i V_i is the gradient of the whole incremental potential (collision_limit.h,
+   in units where the inertia's Hessian is the mass), so grad E = -res V - kappa_ip grad B.
+   When no pair is active the stiffness is the lower bound (no force depends on it then).
+------------------------------------------------------------------------- */
+
+bool FixNosbContact::balance_stiffness(double **res, double force_factor, int igroupbit)
+{
+  double **x = atom->x;
+  const double *vfrac = atom->vfrac;
+  const int nlocal = atom->nlocal;
+  inertia_c = force_factor;
+  const PeriSISSM::BarrierParameters unit{1.0, dhat, dmin};
+  const double range = dmin + dhat;
+  std::vector<double> grad(3 * (std::size_t) nlocal, 0.0);
+  int active = 0;
+  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+    const Candidate &c = candidates[ic];
+    if (!(distance_valid && distance[ic] < range)) continue;
+    Vector3d y[4];
+    gather(c, x, y);
+    const PeriSISSM::Vector12d g = barrier_gradient(c, y, unit);
+    int own[4];
+    owned_vertices(atom, c.tag, c.nv(), own);
+    for (int k = 0; k < c.nv(); k++) {
+      const int i = own[k];
+      if (i < 0 || !(atom->mask[i] & igroupbit)) continue;
+      active = 1;
+      for (int d = 0; d < 3; d++) grad[3 * i + d] += g[3 * k + d];
+    }
+  }
+  // sums over the atoms: res V . grad B, |grad B|^2; lagged friction pairs
+  double local[3] = {0.0, 0.0, (double) lagged.size()}, sums[3];
+  if (active)
+    for (int i = 0; i < nlocal; i++) {
+      if (!(atom->mask[i] & igroupbit)) continue;
+      for (int d = 0; d < 3; d++) {
+        local[0] += res[i][d] * vfrac[i] * grad[3 * i + d];
+        local[1] += grad[3 * i + d] * grad[3 * i + d];
+      }
+    }
+  MPI_Allreduce(local, sums, 3, MPI_DOUBLE, MPI_SUM, world);
+  double kmax;
+  const double k = PeriSISSM::initial_barrier_stiffness(
+      bbox_diagonal, dhat, mean_mass, -sums[0] - kappa_ip * sums[1], sums[1], kmax);
+  if (k == kappa_ip) return false;
+  set_kappa_ip(k);
+  // (no active pair and no friction: no force depends on the stiffness, the evaluation stands)
+  return sums[1] > 0.0 || sums[2] > 0.0;
 }
 
 /* ----------------------------------------------------------------------
@@ -640,23 +827,6 @@ void FixNosbContact::check_motion()
     next_reneighbor = update->ntimestep + 1;
 }
 
-/* ----------------------------------------------------------------------
-   the local indices of the owned vertices of a pair of nv vertices with the given tags (-1 for
-   the others) in own; returns whether this rank counts the pair (it owns the vertex with the
-   smallest ID), so that a pair counts once over all ranks
-------------------------------------------------------------------------- */
-
-static bool owned_vertices(Atom *atom, const tagint *tag, int nv, int *own)
-{
-  const int nlocal = atom->nlocal;
-  int smallest = 0;
-  for (int k = 0; k < nv; k++) {
-    const int m = atom->map(tag[k]);
-    own[k] = (m >= 0 && m < nlocal) ? m : -1;
-    if (tag[k] < tag[smallest]) smallest = k;
-  }
-  return own[smallest] >= 0;
-}
 
 /* ----------------------------------------------------------------------
    the 3x3 diagonal blocks of a pair's Hessian H (nv vertices) divided by the volume of each
@@ -698,7 +868,6 @@ void FixNosbContact::post_force(int /*vflag*/)
   double **f = atom->f;
   const double *vfrac = atom->vfrac;
   const int nlocal = atom->nlocal;
-  const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
   const double range = dmin + dhat;
 
   energy_density = energy_pairs = 0.0;
@@ -713,19 +882,33 @@ void FixNosbContact::post_force(int /*vflag*/)
   distance_valid = 0;
   for (std::size_t ic = 0; ic < candidates.size(); ic++) {
     const Candidate &c = candidates[ic];
-    const int nv = c.nv();
     Vector3d y[4];
     gather(c, x, y);
+    distance[ic] = std::sqrt(distance2(c, y));
+  }
+  distance_valid = 1;
+  if (kappa_auto) {
+    if (!in_step && !update->setupflag)
+      error->all(FLERR,
+                 "Fix nosb/contact {}: kappa auto, but no fix sissm step re-evaluates this "
+                 "contact at its iterates (the barrier's stiffness is set there)",
+                 id);
+    if (iterate_pending) adapt_at_iterate();
+  }
+  const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
+
+  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+    const Candidate &c = candidates[ic];
+    const int nv = c.nv();
     // the owned vertices of the pair, and whether this rank counts it (its smallest ID)
     int own[4];
     const bool counts = owned_vertices(atom, c.tag, nv, own);
     if (counts) ncandidates++;
-
-    const double D = distance2(c, y);
-    const double d = std::sqrt(D);
-    distance[ic] = d;
+    const double d = distance[ic];
     mindist = std::min(mindist, d);
     if (!(d < range)) continue;
+    Vector3d y[4];
+    gather(c, x, y);
     if (!(d > dmin)) {
       static const char *const kind[3] = {"point-triangle", "edge-edge", "point-point"};
       std::string atoms = std::to_string(c.tag[0]);
@@ -737,18 +920,11 @@ void FixNosbContact::post_force(int /*vflag*/)
                  id, update->ntimestep, kind[c.type], atoms, d, dmin);
     }
 
-    double E;
-    PeriSISSM::Vector12d g;
-    if (c.type == PT) {
-      E = PeriSISSM::point_triangle_barrier_energy(y[0], y[1], y[2], y[3], prm);
-      g = PeriSISSM::point_triangle_barrier_gradient(y[0], y[1], y[2], y[3], prm);
-    } else if (c.type == EE) {
-      E = PeriSISSM::edge_edge_barrier_energy(y[0], y[1], y[2], y[3], c.eps, prm);
-      g = PeriSISSM::edge_edge_barrier_gradient(y[0], y[1], y[2], y[3], c.eps, prm);
-    } else {
-      E = PeriSISSM::point_point_barrier_energy(y[0], y[1], prm);
-      g.head<6>() = PeriSISSM::point_point_barrier_gradient(y[0], y[1], prm);
-    }
+    const double E = c.type == PT
+        ? PeriSISSM::point_triangle_barrier_energy(y[0], y[1], y[2], y[3], prm)
+        : c.type == EE ? PeriSISSM::edge_edge_barrier_energy(y[0], y[1], y[2], y[3], c.eps, prm)
+                       : PeriSISSM::point_point_barrier_energy(y[0], y[1], prm);
+    const PeriSISSM::Vector12d g = barrier_gradient(c, y, prm);
     if (counts) {
       nactive[c.type]++;
       energy_pairs += E;
@@ -763,7 +939,6 @@ void FixNosbContact::post_force(int /*vflag*/)
       energy_density += share * E / vi;
     }
   }
-  distance_valid = 1;
   if (mu > 0.0) add_friction();
 }
 
@@ -806,10 +981,15 @@ void FixNosbContact::build_lagged()
    friction of its iterates is lagged here
 ------------------------------------------------------------------------- */
 
-void FixNosbContact::begin_step(double h)
+void FixNosbContact::begin_step(double h, double c)
 {
   in_step = 1;
   step_h = h;
+  if (kappa_auto) {
+    inertia_c = c;
+    kappa = kappa_ip / inertia_c;
+    prev_min_gap = HUGE_VAL;
+  }
   if (mu == 0.0) return;
   if (stale) build_candidates();
   build_lagged();
@@ -886,6 +1066,31 @@ void FixNosbContact::unpack_forward_comm(int n, int first, double *buf)
 }
 
 /* ----------------------------------------------------------------------
+   kappa auto: the adapted stiffness (incremental-potential units) and the scene's scales its
+   bounds come from travel in restart files (restart_global is set only then)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  const double list[4] = {3.0, kappa_ip, bbox_diagonal, mean_mass};
+  const int size = 4 * sizeof(double);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 4, fp);
+}
+
+void FixNosbContact::restart(char *buf)
+{
+  const auto *list = (const double *) buf;
+  if (!kappa_auto || list[0] != 3.0) return;
+  bbox_diagonal = list[2];
+  mean_mass = list[3];
+  kappa_ip_min =
+      PeriSISSM::initial_barrier_stiffness(bbox_diagonal, dhat, mean_mass, 0.0, 0.0, kappa_ip_max);
+  kappa_ip = std::min(kappa_ip_max, std::max(kappa_ip_min, list[1]));
+}
+
+/* ----------------------------------------------------------------------
    global sums of the last evaluation (collective; once per evaluation)
 ------------------------------------------------------------------------- */
 
@@ -907,6 +1112,7 @@ void FixNosbContact::reduce()
   all_vector[5] = countsall[3];
   all_vector[6] = countsall[4];
   all_vector[7] = sums[2];
+  all_vector[8] = kappa;
   reduced = 1;
 }
 
@@ -920,7 +1126,8 @@ double FixNosbContact::compute_scalar()
    1 active point-triangle pairs, 2 active edge-edge pairs (closer than dmin + dhat),
    3 smallest distance among the candidates (dmin + dhat + skin when there is none),
    4 barrier energy sum_pairs E, 5 candidate pairs, 6 active point-point pairs,
-   7 friction pairs, 8 the work of their friction force over the step's slip (dissipated)
+   7 friction pairs, 8 the work of their friction force over the step's slip (dissipated),
+   9 the barrier stiffness kappa of the evaluation (kappa auto: the adapted one)
 ------------------------------------------------------------------------- */
 
 double FixNosbContact::compute_vector(int n)

@@ -19,6 +19,7 @@ FixStyle(nosb/contact,FixNosbContact);
 
 #include "collision_limit.h"
 
+#include "contact/barrier.h"
 #include "contact/friction.h"
 
 #include <vector>
@@ -41,16 +42,21 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double memory_usage() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
 
   // ---- CollisionLimit: the collision-free step of fix sissm (continuous collision detection)
   bool limits_moves() const override { return ccd != 0; }
-  void begin_step(double h) override;
+  void begin_step(double h, double c) override;
   void begin_path() override;
   double limit_move(int groupbit) override;
   bool reach_limited() const override { return reach_bound; }
   void reach_error(const char *integrator) override;
   bool rebuild_wanted() override;
   void add_blocks(double **block) override;
+  bool adapts_stiffness() const override { return kappa_auto != 0; }
+  void next_iterate() override { iterate_pending = kappa_auto; }
+  bool balance_stiffness(double **res, double c, int groupbit) override;
 
  private:
   // a candidate pair: a point and a triangle (PT: v = p, t0, t1, t2), two edges (EE:
@@ -66,7 +72,17 @@ class FixNosbContact : public Fix, public CollisionLimit {
     int nv() const { return type == PP ? 2 : 4; }
   };
 
-  double dhat, dmin, kappa;
+  double dhat, dmin, kappa;    // kappa: the barrier stiffness the forces use (energy / length^2)
+  // kappa auto (IPC's adaptive barrier stiffness, the file's header): the stiffness kept in the
+  // units of the step's incremental potential, kappa_ip = c kappa (c the scheme's force factor,
+  // h^2 for backward Euler), with its bounds, and the scene's scales they come from
+  int kappa_auto;
+  double kappa_ip, kappa_ip_min, kappa_ip_max;
+  double inertia_c;            // c of the step being solved (dt^2 before the first)
+  double bbox_diagonal;        // of the group at the first run's setup (0: not yet measured)
+  double mean_mass;            // of the group's atoms, then
+  int iterate_pending;         // the next evaluation is an iterate of fix sissm (next_iterate())
+  double prev_min_gap;         // the smallest gap at the last iterate of this step
   double mu, epsv;             // friction coefficient (0: none) and slip speed
   double edge_factor;          // assumed longest edge = edge_factor x the longest at init
   double longest_edge;         // that assumption (this run)
@@ -115,9 +131,12 @@ class FixNosbContact : public Fix, public CollisionLimit {
   bigint nfriction;            // lagged friction pairs (each once over all ranks)
   double friction_work;        // sum mu lambda f1(y) y over them (each once)
   int reduced;                 // the global sums below are current
-  double all_energy_density, all_vector[8];
+  double all_energy_density, all_vector[9];
 
   void build_candidates();
+  void measure_scene();
+  void set_kappa_ip(double k);
+  void adapt_at_iterate();
   void check_motion();
   // the largest squared distance of an owned atom of the group from where it was at the last
   // candidate build (this rank), and that atom's local index (-1: none)
@@ -125,6 +144,9 @@ class FixNosbContact : public Fix, public CollisionLimit {
   // the positions in x of candidate c's points into y[0 .. c.nv() - 1]; their squared distance
   static void gather(const Candidate &c, double **x, Eigen::Vector3d *y);
   static double distance2(const Candidate &c, const Eigen::Vector3d *y);
+  // the gradient of the pair's barrier energy (12 values; zeros past the pair's vertices)
+  static PeriSISSM::Vector12d barrier_gradient(const Candidate &c, const Eigen::Vector3d *y,
+                                               const PeriSISSM::BarrierParameters &prm);
   double measure_longest_edge(bool owned_partners_only);
   double predicted_comm_cutoff() const;
   void reduce();

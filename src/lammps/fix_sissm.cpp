@@ -377,6 +377,7 @@ void FixSissm::choose_external()
   // contact that limits the moves (collision-free steps) must be part of every iterate
   limiters.clear();
   contacts.clear();
+  adapting.clear();
   for (Fix *f : fixes) {
     auto *limit = dynamic_cast<CollisionLimit *>(f);
     if (!limit) continue;
@@ -384,6 +385,18 @@ void FixSissm::choose_external()
         std::find(implicit_fixes.begin(), implicit_fixes.end(), f) != implicit_fixes.end();
     // its lagged friction is built at the start of each (sub-)step when it is an iterate's force
     if (implicit) contacts.push_back(limit);
+    if (limit->adapts_stiffness()) {
+      if (!implicit)
+        error->all(FLERR,
+                   "Fix sissm {}: fix {} ({}) adapts its stiffness to the implicit step (kappa "
+                   "auto), so its force must be re-evaluated at every iterate, but the forces of "
+                   "the other fixes are lagged here ({}): remove that, or give kappa as a number",
+                   id, f->id, f->style,
+                   implicit_external ? "a fix that rewrites forces is present; hold atoms by "
+                                       "leaving them out of fix sissm's group instead"
+                                     : "keyword external lagged");
+      adapting.push_back(limit);
+    }
     if (!limit->limits_moves()) continue;
     if (!implicit)
       error->all(FLERR,
@@ -402,13 +415,15 @@ void FixSissm::choose_external()
    collision-free steps (collision_limit.h): the positions at the start of a (sub-)step are
    admissible; every later move of the group is limited so that no contact pair comes within
    its thickness on the straight move from the last admissible positions. The contacts'
-   lagged friction is taken there too (begin_step, h the (sub-)step)
+   lagged friction is taken there too (begin_step, h the (sub-)step), and the stiffness of
+   those that adapt it is balanced at the first evaluation of the step (balance_first)
 ------------------------------------------------------------------------- */
 
 void FixSissm::begin_path(double h)
 {
   comm->forward_comm();
-  for (CollisionLimit *contact : contacts) contact->begin_step(h);
+  for (CollisionLimit *contact : contacts) contact->begin_step(h, scheme->force_factor());
+  balance_first = !adapting.empty();
   for (CollisionLimit *limit : limiters) limit->begin_path();
 }
 
@@ -595,6 +610,10 @@ void FixSissm::evaluate(bool blocks)
   evaluations_++;
   comm->forward_comm();
   if (!limiters.empty()) limit_path(false);
+  // an iterate of the solver (a probe of a Jacobian product has no blocks): a contact may
+  // change its stiffness here
+  if (blocks)
+    for (CollisionLimit *contact : adapting) contact->next_iterate();
   double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;
@@ -634,6 +653,16 @@ void FixSissm::evaluate(bool blocks)
     if (!std::isfinite(r2))
       error->one(FLERR, "Fix sissm: non-finite position or force of atom {} at step {}",
                  atom->tag[i], update->ntimestep);
+  }
+
+  // kappa auto: the barrier's stiffness balanced against the rest of the step's residual at
+  // its first evaluation, which is redone when the stiffness changed
+  if (balance_first) {
+    balance_first = 0;
+    bool changed = false;
+    for (CollisionLimit *contact : adapting)
+      changed = contact->balance_stiffness(res, scheme->force_factor(), groupbit) || changed;
+    if (changed) evaluate(blocks);
   }
 }
 

@@ -121,6 +121,9 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   std::vector<class CollisionLimit *> limiters;
   // contact fixes re-evaluated at every iterate (lagged friction: begin_step), limiting or not
   std::vector<class CollisionLimit *> contacts;
+  // contact fixes that adapt their stiffness to the step (kappa auto; among the contacts)
+  std::vector<class CollisionLimit *> adapting;
+  int balance_first = 0;    // the next evaluation is the first of a (sub-)step: balance them
   int reach_cut;        // the last evaluation's move was cut short by a contact's reach
   std::string external_note;                  // what was last logged about them
   double dtv;

@@ -284,7 +284,7 @@ def test_implicit_drop_under_fix_sissm(tmp_path):
     ("dhat -0.005 kappa 1", "dhat must be > 0"),
     ("dhat 0.005 dmin -1 kappa 1", "dmin must be >= 0"),
     ("dhat 0.005 kappa 0", "kappa must be > 0"),
-    ("dhat 0.005 kappa auto", "kappa auto is not available yet"),
+    ("dhat 0.005 kappa auto", "kappa auto needs fix sissm"),
     ("dhat 0.005 kappa 1 ccd maybe", "Expected boolean parameter instead of 'maybe'"),
     ("dhat 0.005 kappa 1 stiff 3", "unknown keyword 'stiff'"),
     ("dhat 0.005 kappa", "fix nosb/contact kappa"),

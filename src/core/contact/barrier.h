@@ -92,14 +92,18 @@ Matrix6d project_to_psd(const Matrix6d &H);
 
 // ---- barrier stiffness (IPC supplement, "Adaptive barrier stiffness") ----
 
-// Initial kappa. Inputs: bbox_diagonal (length) of the scene; dhat; average_mass of the nodes;
-// energy_dot_barrier = grad E . grad B and barrier_dot_barrier = grad B . grad B, the dot
-// products (summed over all ranks by the caller) of the incremental potential's gradient E and
-// the barrier sum's gradient at kappa = 1. Outputs: kappa = -(grad E . grad B) / |grad B|^2
-// clamped to [kappa_min, kappa_max], kappa_max = 100 kappa_min, where kappa_min makes the
-// barrier's normal stiffness kappa b''(g0) at the gap g0 = 1e-8 bbox_diagonal equal to
-// 1e11 average_mass (IPC's choice; 1e11 is in s^-2, so it presumes SI-like units). kappa_max is
-// returned through the reference.
+// Initial kappa, in the units of IPC's incremental potential, whose inertia term has the mass
+// matrix as its Hessian (a force-balance residual r = rho (yhat - y) + c f is that potential's
+// gradient scaled by -1/c per unit volume, so the force-based stiffness is this kappa / c, c = h^2
+// for backward Euler). Inputs: bbox_diagonal (length) of the scene; dhat; average_mass of the
+// nodes; energy_dot_barrier = grad E . grad B and barrier_dot_barrier = grad B . grad B, the dot
+// products (summed over all ranks by the caller) of the gradient of the incremental potential
+// without the barrier, E, and of the barrier sum at kappa = 1, B. Outputs: kappa =
+// -(grad E . grad B) / |grad B|^2 clamped to [kappa_min, kappa_max], kappa_max = 100 kappa_min,
+// where kappa_min makes the barrier's normal stiffness kappa b''(g0) at the gap
+// g0 = min(1e-8 bbox_diagonal, dhat / 2) equal to 1e11 average_mass (IPC's choice: a ratio of
+// two Hessians of the incremental potential, free of units). kappa_max is returned through the
+// reference.
 double initial_barrier_stiffness(double bbox_diagonal, double dhat, double average_mass,
                                  double energy_dot_barrier, double barrier_dot_barrier,
                                  double &kappa_max);

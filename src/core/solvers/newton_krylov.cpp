@@ -25,10 +25,12 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
         for (int k = 0; k < 3; k++) x[i][k] = base[i][k] + c * dir[i][k];
   };
 
+  bool first = true;
   while (true) {
     sys.evaluate(true);
     out.measure = scaled_max(sys, res, true);
-    if (sys.evaluations() == 1) out.tolerance = sys.step_tolerance();
+    if (first) out.tolerance = sys.step_tolerance();
+    first = false;
     if (out.measure <= out.tolerance && sys.evaluation_complete()) {
       // as jacobi does: the evaluation that meets the tolerance still gives its SISSM
       // correction (free, and at small steps, where the start may already meet a loose
