@@ -67,9 +67,12 @@ class CollisionLimit {
   // force evaluation, per unit volume of each owned atom (xx yy zz xy xz yz), to block
   virtual void add_blocks(double **block) = 0;
 
-  // true when the contact adapts its stiffness (then the two calls below are made, and the
+  // true when the contact adapts its stiffness (then the three calls below are made, and the
   // contact must be re-evaluated at every iterate)
   virtual bool adapts_stiffness() const = 0;
+  // at the integrator's init (every run): the force factor of its steps of the run's time step,
+  // for the force evaluations before the first step
+  virtual void set_force_factor(double c) = 0;
   // the next force evaluation is at an iterate of the solver (not a probe): the contact may
   // change its stiffness there. Collective.
   virtual void next_iterate() = 0;

@@ -58,7 +58,8 @@
 
    Stiffness (kappa auto, doc "Choosing kappa"): IPC's adaptive barrier stiffness, kept as
    kappa_ip in the units of the step's incremental potential (the forces use kappa = kappa_ip / c,
-   c the force factor of fix sissm's scheme, from begin_step(); dt^2 before the first step). Its
+   c the force factor of fix sissm's scheme, from begin_step(), and from set_force_factor() at
+   fix sissm's init for the evaluations before the first step). Its
    bounds come from the group's bounding box and mean mass at the first setup (measure_scene(),
    kept in restart files); it is balanced against the rest of the residual at the first iterate
    of every (sub-)step (balance_stiffness(), called by fix sissm, which redoes that evaluation
@@ -348,10 +349,8 @@ void FixNosbContact::init()
                "set against the inertia of its implicit step, as in IPC); under an explicit "
                "integrator give kappa as a number (doc/fix_nosb_contact.rst, 'Choosing kappa')",
                id);
-  if (kappa_auto) {
-    inertia_c = update->dt * update->dt;
-    iterate_pending = 0;
-  }
+  // (fix sissm's init, before or after this one, sets inertia_c for the run: set_force_factor())
+  iterate_pending = 0;
 
   // an occasional list, built by this fix at every neighbor list build (build_candidates):
   // LAMMPS 4Feb2025 would make fix nosb/family's occasional list (no custom cutoff) a trimmed
@@ -446,6 +445,7 @@ void FixNosbContact::setup(int vflag)
 {
   if (kappa_auto) {
     if (!(bbox_diagonal > 0.0)) measure_scene();
+    if (!(inertia_c > 0.0)) inertia_c = update->dt * update->dt;    // (no fix sissm: an error)
     kappa = kappa_ip / inertia_c;
   }
   post_force(vflag);
@@ -887,14 +887,7 @@ void FixNosbContact::post_force(int /*vflag*/)
     distance[ic] = std::sqrt(distance2(c, y));
   }
   distance_valid = 1;
-  if (kappa_auto) {
-    if (!in_step && !update->setupflag)
-      error->all(FLERR,
-                 "Fix nosb/contact {}: kappa auto, but no fix sissm step re-evaluates this "
-                 "contact at its iterates (the barrier's stiffness is set there)",
-                 id);
-    if (iterate_pending) adapt_at_iterate();
-  }
+  if (iterate_pending) adapt_at_iterate();
   const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
 
   for (std::size_t ic = 0; ic < candidates.size(); ic++) {

@@ -55,6 +55,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
   bool rebuild_wanted() override;
   void add_blocks(double **block) override;
   bool adapts_stiffness() const override { return kappa_auto != 0; }
+  void set_force_factor(double c) override { inertia_c = c; }
   void next_iterate() override { iterate_pending = kappa_auto; }
   bool balance_stiffness(double **res, double c, int groupbit) override;
 
@@ -78,7 +79,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
   // h^2 for backward Euler), with its bounds, and the scene's scales they come from
   int kappa_auto;
   double kappa_ip, kappa_ip_min, kappa_ip_max;
-  double inertia_c;            // c of the step being solved (dt^2 before the first)
+  double inertia_c;            // c of the step being solved (set_force_factor() before the first)
   double bbox_diagonal;        // of the group at the first run's setup (0: not yet measured)
   double mean_mass;            // of the group's atoms, then
   int iterate_pending;         // the next evaluation is an iterate of fix sissm (next_iterate())

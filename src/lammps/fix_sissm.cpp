@@ -272,6 +272,17 @@ void FixSissm::init()
   dtv = update->dt;
   comm_reverse = 3;
   choose_external();
+  // contacts that adapt their stiffness to the step (kappa auto) need the scheme's force factor
+  // before the first step, for the run's setup evaluation; one integrator may set it
+  if (!adapting.empty()) {
+    if (modify->get_fix_by_style("^sissm$").size() > 1)
+      error->all(FLERR,
+                 "Fix sissm {}: a contact fix adapts its stiffness to the implicit step (kappa "
+                 "auto), but there is more than one fix sissm: give kappa as a number",
+                 id);
+    scheme->set_step(dtv);
+    for (CollisionLimit *contact : adapting) contact->set_force_factor(scheme->force_factor());
+  }
   forces->track_contact_motion(1);
   // membranes without bending: the coarse level's matrix has no stiffness out of their plane
   // but the mass (with bending, the hinges give it one), and amg lets such a flat membrane
@@ -662,7 +673,12 @@ void FixSissm::evaluate(bool blocks)
     bool changed = false;
     for (CollisionLimit *contact : adapting)
       changed = contact->balance_stiffness(res, scheme->force_factor(), groupbit) || changed;
-    if (changed) evaluate(blocks);
+    if (changed) {
+      // (the redo's move is empty: a cut of the first move still makes the iterate incomplete)
+      const int incomplete = contact_incomplete;
+      evaluate(blocks);
+      contact_incomplete = contact_incomplete || incomplete;
+    }
   }
 }
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from lammps_run import run_deck
-from test_contact_ccd import DHAT, DMIN, checker, throw
+from test_contact_ccd import DECK, DHAT, DMIN, checker, throw
 
 import mesh_gaps
 
@@ -141,3 +141,45 @@ def test_kappa_auto_with_lagged_forces_is_refused(tmp_path):
                       steps=1)
     assert any("adapts its stiffness" in e and "external lagged" in e for e in run.errors), \
         run.errors
+
+
+def test_setup_uses_the_schemes_force_factor(tmp_path):
+    """Before the first step the stiffness is the lower bound over the force factor c of fix
+    sissm's scheme at the run's time step, the c of its steps: generalized-alpha's c is not h^2
+    (the setup force starts its acceleration)."""
+    run, _, _ = throw(tmp_path, kappa="auto", scheme="genalpha", steps=2)
+    k = run.thermo[-1]["f_c[9]"]
+    assert k[0] == pytest.approx(k[1], rel=1e-12) and k[1] == pytest.approx(k[2], rel=1e-12)
+    euler, _, _ = throw(tmp_path / "euler", kappa="auto", steps=0)
+    assert abs(k[0] / euler.thermo[-1]["f_c[9]"][0] - 1.0) > 0.1
+
+
+def copy_meshes(workdir):
+    """The two cloths of the throw in workdir (for a deck edited from test_contact_ccd.py's)."""
+    throw(workdir / "meshes", steps=0)
+    for name in ("lower.obj", "upper.obj"):
+        (workdir / name).write_text((workdir / "meshes" / name).read_text())
+
+
+def test_mixed_external_forces(tmp_path):
+    """A lagged fix beside the contact (fix langevin: external mixed, the contact still
+    re-evaluated at every iterate): kappa auto runs and the throw stays collision-free."""
+    deck = DECK.read_text().replace(
+        "fix             integrate upper sissm",
+        "fix             lang upper langevin 0.0 0.0 1.0 48279\n"
+        "fix             integrate upper sissm")
+    copy_meshes(tmp_path)
+    run = run_deck(deck, tmp_path, variables={"kappa": "auto", "steps": 6})
+    t = run.thermo[-1]
+    assert (t["f_c[1]"] > 0).any()
+    assert t["f_c[3]"].min() > DMIN
+    assert "lagged" in run.log
+
+
+def test_kappa_auto_with_two_fix_sissm_is_refused(tmp_path):
+    deck = DECK.read_text().replace(
+        "fix             integrate upper sissm scheme ${scheme} ${more}",
+        "fix             integrate upper sissm\nfix             other lower sissm")
+    copy_meshes(tmp_path)
+    run = run_deck(deck, tmp_path, check=False, variables={"kappa": "auto", "steps": 1})
+    assert any("more than one fix sissm" in e for e in run.errors), run.errors
