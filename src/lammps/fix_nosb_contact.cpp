@@ -121,8 +121,8 @@ using namespace FixConst;
 using Eigen::Vector3d;
 
 static constexpr int NVECTOR = 9;
-// default slip speed below which friction is smoothed (velocity units; IPC's 1e-3 m/s in SI)
-static constexpr double EPSV_DEFAULT = 1.0e-3;
+// default slip speed below which friction is smoothed: IPC's 1e-3 m/s, in the units' velocity
+static constexpr double EPSV_DEFAULT_SI = 1.0e-3;
 // Lmax = EDGE_FACTOR x the longest edge at the start of a run (or that edge + 2 skin when the skin
 // is large): edges may stretch by 50% less the skin (by a skin) before the candidates could be
 // incomplete (an error then)
@@ -193,7 +193,7 @@ PeriSISSM::Vector12d FixNosbContact::barrier_gradient(const Candidate &c, const 
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), kappa_auto(0), kappa_ip(0.0),
     kappa_ip_min(0.0), kappa_ip_max(0.0), inertia_c(0.0), bbox_diagonal(0.0), mean_mass(0.0),
-    iterate_pending(0), prev_min_gap(HUGE_VAL), mu(0.0), epsv(EPSV_DEFAULT),
+    iterate_pending(0), prev_min_gap(HUGE_VAL), mu(0.0), epsv(-1.0),
     edge_factor(EDGE_FACTOR),
     longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), pair(nullptr),
     nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0),
@@ -235,6 +235,15 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
   }
   if (dhat < 0.0)
     error->all(FLERR, "Illegal fix nosb/contact command: keyword dhat is required ({})", usage);
+  // epsv: IPC's 1e-3 m/s in the deck's units (force->angstrom and force->femtosecond are 1 A and
+  // 1 fs in them: 1 m/s = 1e10 A / 1e15 fs); lj units have no metre: it must be given there
+  if (epsv < 0.0) {
+    if (mu > 0.0 && strcmp(update->unit_style, "lj") == 0)
+      error->all(FLERR,
+                 "Illegal fix nosb/contact command: with friction in lj units give the slip speed "
+                 "epsv (velocity units; IPC's default is 1e-3 m/s, which lj units cannot convert)");
+    epsv = EPSV_DEFAULT_SI * 1.0e10 * force->angstrom / (1.0e15 * force->femtosecond);
+  }
   if (kappa < 0.0 && !kappa_auto)
     error->all(FLERR,
                "Illegal fix nosb/contact command: keyword kappa is required (a number, or auto "
