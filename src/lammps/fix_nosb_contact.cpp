@@ -628,12 +628,29 @@ void FixNosbContact::build_candidates()
   auto member = [&](int k) { return k >= 0 && (mask[k] & groupbit) && mesh && mesh[k]; };
   auto particle = [&](int k) { return (mask[k] & groupbit) && !(mesh && mesh[k]); };
   tagint missing = 0;
-  // triangles and edges at atom i (owned or ghost), vertices at their images closest to i
-  using Tri = std::array<int, 3>;
-  using Edge = std::array<int, 2>;
-  auto primitives = [&](int i, std::vector<Tri> &tris, std::vector<Edge> &edges) {
-    tris.clear();
-    edges.clear();
+
+  // the triangles and edges at each atom (owned or ghost, vertices at their images closest to
+  // it), with bounding spheres (centre, radius), found once per atom when first needed
+  struct Tri {
+    int v[3];
+    Vector3d centre;
+    double radius;
+  };
+  struct Edge {
+    int v[2];
+    Vector3d centre;
+    double radius;
+  };
+  const int nall = nlocal + atom->nghost;
+  std::vector<int> tri_at(nall + 1, -1), edge_at(nall + 1, -1);    // first index, -1: not yet
+  std::vector<int> tri_end(nall, 0), edge_end(nall, 0);
+  std::vector<Tri> tris;
+  std::vector<Edge> edges;
+  auto point = [&](int k) { return Vector3d(x[k][0], x[k][1], x[k][2]); };
+  auto primitives = [&](int i) {
+    if (tri_at[i] >= 0) return;
+    tri_at[i] = (int) tris.size();
+    edge_at[i] = (int) edges.size();
     for (int k = 0; k < ntri[i]; k++) {
       int w[2];
       for (int e = 0; e < 2; e++) {
@@ -645,45 +662,45 @@ void FixNosbContact::build_candidates()
         continue;
       }
       if (!member(w[0]) || !member(w[1])) continue;
-      tris.push_back({i, w[0], w[1]});
+      Tri t{{i, w[0], w[1]}, Vector3d::Zero(), 0.0};
+      const Vector3d y0 = point(i), y1 = point(w[0]), y2 = point(w[1]);
+      t.centre = (y0 + y1 + y2) / 3.0;
+      t.radius = std::sqrt(std::max({(y0 - t.centre).squaredNorm(),
+                                     (y1 - t.centre).squaredNorm(),
+                                     (y2 - t.centre).squaredNorm()}));
+      tris.push_back(t);
       for (int e = 0; e < 2; e++) {
         bool seen = false;
-        for (const Edge &g : edges) seen = seen || tag[g[1]] == tag[w[e]];
-        if (!seen) edges.push_back({i, w[e]});
+        for (int g = edge_at[i]; g < (int) edges.size(); g++)
+          seen = seen || tag[edges[g].v[1]] == tag[w[e]];
+        if (seen) continue;
+        const Vector3d a = point(i), b = point(w[e]);
+        edges.push_back({{i, w[e]}, 0.5 * (a + b), 0.5 * (b - a).norm()});
       }
     }
+    tri_end[i] = (int) tris.size();
+    edge_end[i] = (int) edges.size();
   };
 
   std::vector<Candidate> found;
-  std::vector<Tri> ti, tj;
-  std::vector<Edge> ei, ej;
   // the pairs that can come within dmin + dhat before the next neighbor list build (tested as
   // they are found: a neighbor list with a wide skin finds many times more pairs than it keeps)
   const double reach = dmin + dhat + neighbor->skin;
   auto near = [&](const Candidate &c) {
     Vector3d y[4];
     gather(c, x, y);
-    // first a bound from the primitives' bounding spheres (the distance of two primitives is at
-    // least the distance of the centres less the radii): most pairs the list finds are far
-    if (c.type == PT) {
-      const Vector3d centre = (y[1] + y[2] + y[3]) / 3.0;
-      const double r = std::sqrt(std::max({(y[1] - centre).squaredNorm(),
-                                           (y[2] - centre).squaredNorm(),
-                                           (y[3] - centre).squaredNorm()}));
-      if ((y[0] - centre).norm() - r >= reach) return false;
-    } else if (c.type == EE) {
-      const double ra = 0.5 * (y[1] - y[0]).norm(), rb = 0.5 * (y[3] - y[2]).norm();
-      if ((0.5 * (y[0] + y[1] - y[2] - y[3])).norm() - ra - rb >= reach) return false;
-    }
     const double D = distance2(c, y);
     return D < reach * reach;
   };
-  // a point-triangle pair in canonical order (the triangle's vertices by ID); none if p is one
+  // a point-triangle pair in canonical order (the triangle's vertices by ID); none if p is one.
+  // First a bound from the primitives' bounding spheres (the distance of two primitives is at
+  // least the distance of the centres less the radii): most pairs the list finds are far
   auto add_pt = [&](int p, const Tri &t) {
     for (int k = 0; k < 3; k++)
-      if (tag[t[k]] == tag[p]) return;
-    Tri s = t;
-    std::sort(s.begin(), s.end(), [tag](int a, int b) { return tag[a] < tag[b]; });
+      if (tag[t.v[k]] == tag[p]) return;
+    if ((point(p) - t.centre).norm() - t.radius >= reach) return;
+    int s[3] = {t.v[0], t.v[1], t.v[2]};
+    std::sort(s, s + 3, [tag](int a, int b) { return tag[a] < tag[b]; });
     Candidate c{PT, {tag[p], tag[s[0]], tag[s[1]], tag[s[2]]}, {p, s[0], s[1], s[2]}, 0.0};
     if (near(c)) found.push_back(c);
   };
@@ -692,9 +709,11 @@ void FixNosbContact::build_candidates()
   auto add_ee = [&](const Edge &a, const Edge &b) {
     for (int k = 0; k < 2; k++)
       for (int l = 0; l < 2; l++)
-        if (tag[a[k]] == tag[b[l]]) return;
-    Edge u = tag[a[0]] < tag[a[1]] ? a : Edge{a[1], a[0]};
-    Edge w = tag[b[0]] < tag[b[1]] ? b : Edge{b[1], b[0]};
+        if (tag[a.v[k]] == tag[b.v[l]]) return;
+    if ((a.centre - b.centre).norm() - a.radius - b.radius >= reach) return;
+    std::array<int, 2> u{a.v[0], a.v[1]}, w{b.v[0], b.v[1]};
+    if (tag[u[1]] < tag[u[0]]) std::swap(u[0], u[1]);
+    if (tag[w[1]] < tag[w[0]]) std::swap(w[0], w[1]);
     if (tag[w[0]] < tag[u[0]]) std::swap(u, w);
     Candidate c{EE, {tag[u[0]], tag[u[1]], tag[w[0]], tag[w[1]]}, {u[0], u[1], w[0], w[1]}, 0.0};
     if (near(c)) found.push_back(c);
@@ -722,28 +741,29 @@ void FixNosbContact::build_candidates()
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
+  // (the list is full and symmetric between owned atoms: what a pair of owned atoms gives is
+  // the same from either end, so it is taken from the end with the smaller ID only)
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     if (i >= nlocal || !(member(i) || particle(i))) continue;
-    ti.clear();
-    ei.clear();
-    if (member(i)) primitives(i, ti, ei);
+    if (member(i)) primitives(i);
     const int *jlist = firstneigh[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      if (tag[j] == tag[i]) continue;
+      if (tag[j] == tag[i] || (j < nlocal && tag[j] < tag[i])) continue;
       if (particle(i) && particle(j)) {
         add_pp(i, j);
         continue;
       }
       if (!member(j) && !particle(j)) continue;
-      tj.clear();
-      ej.clear();
-      if (member(j)) primitives(j, tj, ej);
-      for (const Tri &t : tj) add_pt(i, t);
-      for (const Tri &t : ti) add_pt(j, t);
-      for (const Edge &a : ei)
-        for (const Edge &b : ej) add_ee(a, b);
+      if (member(j)) primitives(j);
+      if (member(j))
+        for (int t = tri_at[j]; t < tri_end[j]; t++) add_pt(i, tris[t]);
+      if (member(i))
+        for (int t = tri_at[i]; t < tri_end[i]; t++) add_pt(j, tris[t]);
+      if (member(i) && member(j))
+        for (int a = edge_at[i]; a < edge_end[i]; a++)
+          for (int b = edge_at[j]; b < edge_end[j]; b++) add_ee(edges[a], edges[b]);
     }
   }
   if (missing)
