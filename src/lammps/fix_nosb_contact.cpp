@@ -630,20 +630,46 @@ void FixNosbContact::build_candidates()
   tagint missing = 0;
 
   // the triangles and edges at each atom (owned or ghost, vertices at their images closest to
-  // it), with bounding spheres (centre, radius), found once per atom when first needed
+  // it), with bounding spheres (centre, radius) and boxes (lo, hi), found once per atom when
+  // first needed
+  struct Bounds {
+    Vector3d centre, lo, hi;
+    double radius;
+  };
   struct Tri {
     int v[3];
-    Vector3d centre;
-    double radius;
+    Bounds b;
   };
   struct Edge {
     int v[2];
-    Vector3d centre;
-    double radius;
+    Bounds b;
+  };
+  auto bounds = [](const Vector3d *y, int n) {
+    Bounds b;
+    b.centre = b.lo = b.hi = y[0];
+    for (int k = 1; k < n; k++) {
+      b.centre += y[k];
+      b.lo = b.lo.cwiseMin(y[k]);
+      b.hi = b.hi.cwiseMax(y[k]);
+    }
+    b.centre /= n;
+    double r2 = 0.0;
+    for (int k = 0; k < n; k++) r2 = std::max(r2, (y[k] - b.centre).squaredNorm());
+    b.radius = std::sqrt(r2);
+    return b;
+  };
+  // a bound from the primitives' bounding spheres and boxes: their distance is at least the
+  // distance of the centres less the radii, and at least the gap between the boxes
+  auto apart = [](const Bounds &a, const Bounds &b, double r) {
+    if ((a.centre - b.centre).norm() - a.radius - b.radius >= r) return true;
+    for (int d = 0; d < 3; d++)
+      if (a.lo[d] - b.hi[d] >= r || b.lo[d] - a.hi[d] >= r) return true;
+    return false;
   };
   const int nall = nlocal + atom->nghost;
   std::vector<int> tri_at(nall + 1, -1), edge_at(nall + 1, -1);    // first index, -1: not yet
   std::vector<int> tri_end(nall, 0), edge_end(nall, 0);
+  std::vector<Bounds> around(nall);    // the bounds of all the primitives at an atom
   std::vector<Tri> tris;
   std::vector<Edge> edges;
   auto point = [&](int k) { return Vector3d(x[k][0], x[k][1], x[k][2]); };
@@ -662,24 +688,29 @@ void FixNosbContact::build_candidates()
         continue;
       }
       if (!member(w[0]) || !member(w[1])) continue;
-      Tri t{{i, w[0], w[1]}, Vector3d::Zero(), 0.0};
-      const Vector3d y0 = point(i), y1 = point(w[0]), y2 = point(w[1]);
-      t.centre = (y0 + y1 + y2) / 3.0;
-      t.radius = std::sqrt(std::max({(y0 - t.centre).squaredNorm(),
-                                     (y1 - t.centre).squaredNorm(),
-                                     (y2 - t.centre).squaredNorm()}));
-      tris.push_back(t);
+      const Vector3d y[3] = {point(i), point(w[0]), point(w[1])};
+      tris.push_back({{i, w[0], w[1]}, bounds(y, 3)});
       for (int e = 0; e < 2; e++) {
         bool seen = false;
         for (int g = edge_at[i]; g < (int) edges.size(); g++)
           seen = seen || tag[edges[g].v[1]] == tag[w[e]];
         if (seen) continue;
-        const Vector3d a = point(i), b = point(w[e]);
-        edges.push_back({{i, w[e]}, 0.5 * (a + b), 0.5 * (b - a).norm()});
+        const Vector3d y[2] = {point(i), point(w[e])};
+        edges.push_back({{i, w[e]}, bounds(y, 2)});
       }
     }
     tri_end[i] = (int) tris.size();
     edge_end[i] = (int) edges.size();
+    // (a sphere about the atom through its farthest edge end, and the box of the triangles)
+    Bounds &u = around[i];
+    u.centre = u.lo = u.hi = point(i);
+    u.radius = 0.0;
+    for (int t = tri_at[i]; t < tri_end[i]; t++) {
+      u.lo = u.lo.cwiseMin(tris[t].b.lo);
+      u.hi = u.hi.cwiseMax(tris[t].b.hi);
+    }
+    for (int e = edge_at[i]; e < edge_end[i]; e++)
+      u.radius = std::max(u.radius, 2.0 * edges[e].b.radius);
   };
 
   std::vector<Candidate> found;
@@ -693,12 +724,12 @@ void FixNosbContact::build_candidates()
     return D < reach * reach;
   };
   // a point-triangle pair in canonical order (the triangle's vertices by ID); none if p is one.
-  // First a bound from the primitives' bounding spheres (the distance of two primitives is at
-  // least the distance of the centres less the radii): most pairs the list finds are far
+  // First the bounds (apart): most pairs the list finds are far
   auto add_pt = [&](int p, const Tri &t) {
     for (int k = 0; k < 3; k++)
       if (tag[t.v[k]] == tag[p]) return;
-    if ((point(p) - t.centre).norm() - t.radius >= reach) return;
+    const Vector3d y = point(p);
+    if (apart(Bounds{y, y, y, 0.0}, t.b, reach)) return;
     int s[3] = {t.v[0], t.v[1], t.v[2]};
     std::sort(s, s + 3, [tag](int a, int b) { return tag[a] < tag[b]; });
     Candidate c{PT, {tag[p], tag[s[0]], tag[s[1]], tag[s[2]]}, {p, s[0], s[1], s[2]}, 0.0};
@@ -710,7 +741,7 @@ void FixNosbContact::build_candidates()
     for (int k = 0; k < 2; k++)
       for (int l = 0; l < 2; l++)
         if (tag[a.v[k]] == tag[b.v[l]]) return;
-    if ((a.centre - b.centre).norm() - a.radius - b.radius >= reach) return;
+    if (apart(a.b, b.b, reach)) return;
     std::array<int, 2> u{a.v[0], a.v[1]}, w{b.v[0], b.v[1]};
     if (tag[u[1]] < tag[u[0]]) std::swap(u[0], u[1]);
     if (tag[w[1]] < tag[w[0]]) std::swap(w[0], w[1]);
@@ -757,6 +788,8 @@ void FixNosbContact::build_candidates()
       }
       if (!member(j) && !particle(j)) continue;
       if (member(j)) primitives(j);
+      // (the primitives at i and at j, and the points i and j, lie within their atoms' bounds)
+      if (member(i) && member(j) && apart(around[i], around[j], reach)) continue;
       if (member(j))
         for (int t = tri_at[j]; t < tri_end[j]; t++) add_pt(i, tris[t]);
       if (member(i))
