@@ -23,9 +23,13 @@ void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &
 
   // mass and centre of mass c^n of the step's start
   double s[NM];
+  // (rows outside the group are zeros: their y^n is not set, and 0 times a NaN left in memory is
+  // a NaN that would reach the sums)
   for (int i = 0; i < nlocal; i++) {
     double *row = moment[i];
-    const double m = rows.has(i) ? rho[i] * vfrac[i] : 0.0;
+    for (int k = 0; k < 4; k++) row[k] = 0.0;
+    if (!rows.has(i)) continue;
+    const double m = rho[i] * vfrac[i];
     row[0] = m;
     for (int k = 0; k < 3; k++) row[1 + k] = m * yn[i][k];
   }
