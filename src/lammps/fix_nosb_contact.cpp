@@ -175,6 +175,17 @@ double FixNosbContact::distance2(const Candidate &c, const Vector3d *y)
                       : PeriSISSM::point_point_distance2(y[0], y[1]);
 }
 
+double FixNosbContact::closing(const Candidate &c, const double *len)
+{
+  const int na = c.type == EE ? 2 : 1;    // the first primitive's points: p, a0 a1, p
+  double la = 0.0, lb = 0.0;
+  for (int k = 0; k < c.nv(); k++) {
+    double &l = k < na ? la : lb;
+    l = std::max(l, len[k]);
+  }
+  return la + lb;
+}
+
 PeriSISSM::Vector12d FixNosbContact::barrier_gradient(const Candidate &c, const Vector3d *y,
                                                       const PeriSISSM::BarrierParameters &prm)
 {
@@ -197,7 +208,8 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     edge_factor(EDGE_FACTOR),
     longest_edge(0.0), list_cutoff(0.0), list(nullptr), meshfix(nullptr), pair(nullptr),
     nparticles(0), stale(1), warned_sissm(0), warned_families(0), xbuild(nullptr), nxbuild(0),
-    ccd(1), xref(nullptr), nxref(0), distance_valid(0), reach_bound(0), reach_moved(0.0),
+    ccd(1), xref(nullptr), nxref(0), distance_valid(0), xlast(nullptr), nxlast(0),
+    xlast_generation(-1), reach_bound(0), reach_moved(0.0),
     reach_atom(0), in_step(0), step_h(0.0), generation(0),
     lagged_generation(-1), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
     nactive{0, 0, 0}, ncandidates(0), nfriction(0), friction_work(0.0), reduced(0),
@@ -271,6 +283,7 @@ FixNosbContact::~FixNosbContact()
 {
   memory->destroy(xbuild);
   memory->destroy(xref);
+  memory->destroy(xlast);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -556,8 +569,7 @@ bool FixNosbContact::balance_stiffness(double **res, double force_factor, int ig
     Vector3d y[4];
     gather(c, x, y);
     const PeriSISSM::Vector12d g = barrier_gradient(c, y, unit);
-    int own[4];
-    owned_vertices(atom, c.tag, c.nv(), own);
+    const int *own = c.own;
     for (int k = 0; k < c.nv(); k++) {
       const int i = own[k];
       if (i < 0 || !(atom->mask[i] & igroupbit)) continue;
@@ -829,6 +841,7 @@ void FixNosbContact::build_candidates()
       c.eps = PeriSISSM::edge_edge_mollifier_threshold(Vector3d::Zero(), r[0], Vector3d::Zero(),
                                                         r[1]);
     }
+    c.counts = owned_vertices(atom, c.tag, c.nv(), c.own);
     candidates.push_back(c);
   }
 
@@ -939,16 +952,52 @@ void FixNosbContact::post_force(int /*vflag*/)
   reduced = 0;
 
   // the candidates' distances at these positions: the gaps limit_move() starts from when fix
-  // sissm evaluates at the positions it has just marked admissible (begin_path() clears the mark)
+  // sissm evaluates at the positions it has just marked admissible (begin_path() clears the mark).
+  // Since the last evaluation (of the same candidates) a pair's distance shrank at most by how
+  // far a point of each primitive moved: when that lower bound is beyond the barrier's range and
+  // not below the smallest distance found so far, the pair neither acts nor is the nearest, and
+  // the bound stands in for the distance (limit_move() takes it as a smaller gap: conservative)
+  const int nall = nlocal + atom->nghost;
+  const bool bounded = xlast_generation == generation && (int) distance.size() ==
+      (int) candidates.size();
+  std::vector<double> moved;
+  if (bounded) {
+    moved.resize(nall);
+    for (int i = 0; i < nall; i++) {
+      const double dx = x[i][0] - xlast[i][0], dy = x[i][1] - xlast[i][1],
+                   dz = x[i][2] - xlast[i][2];
+      moved[i] = std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+  }
   distance.resize(candidates.size());
+  distance_exact.assign(candidates.size(), 1);
   distance_valid = 0;
+  double nearest = mindist;
   for (std::size_t ic = 0; ic < candidates.size(); ic++) {
     const Candidate &c = candidates[ic];
+    if (bounded) {
+      double len[4];
+      for (int k = 0; k < c.nv(); k++) len[k] = moved[c.v[k]];
+      const double bound = distance[ic] - closing(c, len);
+      if (bound >= range && bound >= nearest) {
+        distance[ic] = bound;
+        distance_exact[ic] = 0;
+        continue;
+      }
+    }
     Vector3d y[4];
     gather(c, x, y);
     distance[ic] = std::sqrt(distance2(c, y));
+    nearest = std::min(nearest, distance[ic]);
   }
   distance_valid = 1;
+  if (nall > nxlast) {
+    nxlast = atom->nmax;
+    memory->grow(xlast, nxlast, 3, "nosb/contact:xlast");
+  }
+  for (int i = 0; i < nall; i++)
+    for (int d = 0; d < 3; d++) xlast[i][d] = x[i][d];
+  xlast_generation = generation;
   if (iterate_pending) adapt_at_iterate();
   const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
 
@@ -956,8 +1005,8 @@ void FixNosbContact::post_force(int /*vflag*/)
     const Candidate &c = candidates[ic];
     const int nv = c.nv();
     // the owned vertices of the pair, and whether this rank counts it (its smallest ID)
-    int own[4];
-    const bool counts = owned_vertices(atom, c.tag, nv, own);
+    const int *own = c.own;
+    const bool counts = c.counts;
     if (counts) ncandidates++;
     const double d = distance[ic];
     mindist = std::min(mindist, d);
@@ -1240,16 +1289,20 @@ double FixNosbContact::limit_move(int groupbit)
     }
     if (!moved) continue;
     if (distance_valid) {
-      // the gap at the reference is known (the last evaluation was there): a pair whose points
-      // move less than 0.9 of it over [0, t_pairs] keeps 0.1 of it, as ACCD would certify
-      // (the gap shrinks at most at the largest speed of a point of each primitive, summed)
-      const int na = c.type == EE ? 2 : 1;    // the first primitive's points: p, a0 a1, p
-      double la = 0.0, lb = 0.0;
-      for (int k = 0; k < c.nv(); k++) {
-        double &l = k < na ? la : lb;
-        l = std::max(l, dy[k].norm());
+      // the gap at the reference is known (the last evaluation was there, or a lower bound of
+      // it): a pair whose points move less than 0.9 of it over [0, t_pairs] keeps 0.1 of it, as
+      // ACCD would certify
+      // (a lower bound that does not suffice is replaced by the distance: the same pairs are
+      // skipped as with the distances, and the move is the same)
+      double len[4];
+      for (int k = 0; k < c.nv(); k++) len[k] = dy[k].norm();
+      const double most = closing(c, len) * t_pairs;
+      if (most <= (1.0 - opt.s) * (distance[ic] - dmin)) continue;
+      if (!distance_exact[ic]) {
+        distance[ic] = std::sqrt(distance2(c, y));
+        distance_exact[ic] = 1;
+        if (most <= (1.0 - opt.s) * (distance[ic] - dmin)) continue;
       }
-      if ((la + lb) * t_pairs <= (1.0 - opt.s) * (distance[ic] - dmin)) continue;
     }
     // (a query that reaches ACCD's sub-step cap returns the last safe time: still conservative)
     opt.t_max = t_pairs;
@@ -1364,9 +1417,7 @@ void FixNosbContact::add_blocks(double **block)
       H = PeriSISSM::edge_edge_barrier_hessian(y[0], y[1], y[2], y[3], c.eps, prm, true);
     else
       H.topLeftCorner<6, 6>() = PeriSISSM::point_point_barrier_hessian(y[0], y[1], prm, true);
-    int own[4];
-    owned_vertices(atom, c.tag, c.nv(), own);
-    add_diagonal_blocks(H, c.nv(), own, vfrac, block);
+    add_diagonal_blocks(H, c.nv(), c.own, vfrac, block);
   }
 
   // the friction's (positive semi-definite) blocks at the current slip of the step

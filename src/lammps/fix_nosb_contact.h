@@ -69,6 +69,8 @@ class FixNosbContact : public Fix, public CollisionLimit {
     tagint tag[4];
     int v[4];
     double eps;    // EE: the mollifier threshold from the rest shape
+    int own[4] = {-1, -1, -1, -1};    // local indices of its owned vertices (-1: others; build)
+    bool counts = false;   // this rank counts it (it owns the vertex with the smallest ID)
     // the number of vertices used (v[0] .. v[nv() - 1])
     int nv() const { return type == PP ? 2 : 4; }
   };
@@ -101,8 +103,14 @@ class FixNosbContact : public Fix, public CollisionLimit {
   int nxbuild;
   int ccd;                     // keyword ccd: fix sissm limits its moves (CollisionLimit)
   double **xref;               // the last admissible positions (owned and ghost; begin_path())
-  std::vector<double> distance;    // the candidates' distances at the last force evaluation
+  // the candidates' distances at the last force evaluation: exact, or (for a pair that is
+  // neither active nor the nearest) a lower bound, the last one less how far its points moved
+  std::vector<double> distance;
+  std::vector<char> distance_exact;    // 1: distance[ic] is the distance, 0: a lower bound
   int distance_valid;          // 1: the positions are still those (cleared by begin_path())
+  double **xlast;              // the positions (owned and ghost) of the last force evaluation
+  int nxlast;
+  bigint xlast_generation;     // the candidate build they belong to (-1: none)
   int nxref;
   int reach_bound;             // the last limit_move() was cut short by the candidates' reach
   double reach_moved;          // then: how far an atom had moved from the list build
@@ -145,6 +153,9 @@ class FixNosbContact : public Fix, public CollisionLimit {
   // the positions in x of candidate c's points into y[0 .. c.nv() - 1]; their squared distance
   static void gather(const Candidate &c, double **x, Eigen::Vector3d *y);
   static double distance2(const Candidate &c, const Eigen::Vector3d *y);
+  // how much a move of its points by len[k] (k < nv()) can shrink the pair's distance: the
+  // largest move of a point of each primitive, summed
+  static double closing(const Candidate &c, const double *len);
   // the gradient of the pair's barrier energy (12 values; zeros past the pair's vertices)
   static PeriSISSM::Vector12d barrier_gradient(const Candidate &c, const Eigen::Vector3d *y,
                                                const PeriSISSM::BarrierParameters &prm);
