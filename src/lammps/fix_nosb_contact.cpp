@@ -679,7 +679,7 @@ void FixNosbContact::build_candidates()
     return false;
   };
   const int nall = nlocal + atom->nghost;
-  std::vector<int> tri_at(nall + 1, -1), edge_at(nall + 1, -1);    // first index, -1: not yet
+  std::vector<int> tri_at(nall, -1), edge_at(nall, -1);    // first index, -1: not yet
   std::vector<int> tri_end(nall, 0), edge_end(nall, 0);
   std::vector<Bounds> around(nall);    // the bounds of all the primitives at an atom
   std::vector<Tri> tris;

@@ -396,28 +396,28 @@ void FixSissm::choose_external()
         std::find(implicit_fixes.begin(), implicit_fixes.end(), f) != implicit_fixes.end();
     // its lagged friction is built at the start of each (sub-)step when it is an iterate's force
     if (implicit) contacts.push_back(limit);
+    // a contact that needs every iterate's force, while the other fixes' forces are lagged
+    auto refuse_lagged = [&](const char *needs, const char *remedy) {
+      error->all(FLERR,
+                 "Fix sissm {}: fix {} ({}) {}, so its force must be re-evaluated at every "
+                 "iterate, but the forces of the other fixes are lagged here ({}): remove that, "
+                 "or {}",
+                 id, f->id, f->style, needs,
+                 implicit_external ? "a fix that rewrites forces is present; hold atoms by "
+                                     "leaving them out of fix sissm's group instead"
+                                   : "keyword external lagged",
+                 remedy);
+    };
     if (limit->adapts_stiffness()) {
       if (!implicit)
-        error->all(FLERR,
-                   "Fix sissm {}: fix {} ({}) adapts its stiffness to the implicit step (kappa "
-                   "auto), so its force must be re-evaluated at every iterate, but the forces of "
-                   "the other fixes are lagged here ({}): remove that, or give kappa as a number",
-                   id, f->id, f->style,
-                   implicit_external ? "a fix that rewrites forces is present; hold atoms by "
-                                       "leaving them out of fix sissm's group instead"
-                                     : "keyword external lagged");
+        refuse_lagged("adapts its stiffness to the implicit step (kappa auto)",
+                      "give kappa as a number");
       adapting.push_back(limit);
     }
     if (!limit->limits_moves()) continue;
     if (!implicit)
-      error->all(FLERR,
-                 "Fix sissm {}: fix {} ({}) makes the implicit step collision-free, so its force "
-                 "must be re-evaluated at every iterate, but the forces of the other fixes are "
-                 "lagged here ({}): remove that, or turn the collision check off (ccd no)",
-                 id, f->id, f->style,
-                 implicit_external ? "a fix that rewrites forces is present; hold atoms by "
-                                     "leaving them out of fix sissm's group instead"
-                                   : "keyword external lagged");
+      refuse_lagged("makes the implicit step collision-free",
+                    "turn the collision check off (ccd no)");
     limiters.push_back(limit);
   }
 }
