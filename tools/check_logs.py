@@ -7,9 +7,15 @@ only LAMMPS's built-in styles are skipped: this package cannot change them) with
 compares every thermo row with the log's, column by column, as printed; the cpu column
 (wall time) is ignored. Exit status 0 when every compared deck reproduces its log.
 
-    python3 tools/check_logs.py [--lmp build/lmp] [--only SUBSTRING] [--jobs 1]
+    python3 tools/check_logs.py [--lmp build/lmp] [--only SUBSTRING] [--update]
+
+--update replaces each log that did not reproduce by its rerun, named with today's date
+(log.<ddMonyy>.<name>.g++.<N>, as LAMMPS's own examples are), removes the old one and rewrites
+the references to its name in the repository's text files; it prints each rename. Whether the
+differences are round-off is for the one who runs it to judge (compare the two logs first).
 """
 import argparse
+import datetime
 import pathlib
 import re
 import shutil
@@ -69,7 +75,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--lmp", default=str(ROOT / "build" / "lmp"))
     ap.add_argument("--only", default="", help="only logs whose path contains this")
+    ap.add_argument("--update", action="store_true",
+                    help="replace the logs that did not reproduce by their reruns")
     args = ap.parse_args()
+    renames = []
     runs = []
     for log in sorted(ROOT.glob("examples/*/log.*.g++.*")):
         m = re.match(r"log\.[^.]+\.(.+)\.g\+\+\.(\d+)$", log.name)
@@ -93,13 +102,47 @@ def main():
         done += 1
         problem = (f"exit {proc.returncode}: {proc.stderr.strip()[-300:]}" if proc.returncode
                    else compare(thermo_rows(log.read_text()), thermo_rows(rerun)))
+        if problem is not None and args.update and not proc.returncode:
+            renames.append((log, update(log, rerun)))
         status = "SAME" if problem is None else "DIFFERENT"
         failed += problem is not None
         print(f"{status:9s} {log.relative_to(ROOT)}" + ("" if problem is None else f": {problem}"),
               flush=True)
         progress.step(log.name)
     print(f"{done - failed} of {done} logs reproduced")
+    if renames:
+        rewrite_references(renames)
+        for old, new in renames:
+            print(f"updated {old.relative_to(ROOT)} -> {new.name}")
+        return 0
     return 1 if failed else 0
+
+
+def update(log, rerun):
+    """Write rerun as today's log of the same deck and rank count; remove the old log."""
+    m = re.match(r"log\.[^.]+\.(.+\.g\+\+\.\d+)$", log.name)
+    new = log.parent / f"log.{datetime.date.today().strftime('%d%b%y')}.{m.group(1)}"
+    log.unlink()
+    new.write_text(rerun)
+    return new
+
+
+def rewrite_references(renames):
+    """Old log names replaced by the new ones in the repository's tracked text files."""
+    tracked = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True,
+                             text=True).stdout.split()
+    for name in tracked:
+        path = ROOT / name
+        if path.suffix not in (".md", ".rst", ".py", ".sh", ".txt") and path.name != "README":
+            continue
+        if not path.exists():
+            continue
+        text = path.read_text(errors="replace")
+        new_text = text
+        for old, new in renames:
+            new_text = new_text.replace(old.name, new.name)
+        if new_text != text:
+            path.write_text(new_text)
 
 
 if __name__ == "__main__":

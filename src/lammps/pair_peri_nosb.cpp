@@ -40,6 +40,7 @@
 
 #include "materials/material.h"
 #include "materials/material_file.h"
+#include "linalg/fused.h"
 #include "peri/bond_stiffness.h"
 #include "peri/breaking.h"
 #include "peri/contact.h"
@@ -585,6 +586,15 @@ void PairPeriNosb::init_style()
     utils::logmesg(lmp,
                    "Pair peri/nosb: bonds do not break during a minimization; they are checked "
                    "again from the first step of the next run\n");
+
+  // which version of the bond passes runs (linalg/fused.h): results of the two differ in
+  // round-off, so a user comparing runs of two machines finds it here
+  if (!passes_reported && comm->me == 0)
+    utils::logmesg(lmp, "Pair peri/nosb: bond passes {}\n",
+                   PeriSISSM::fused_passes()
+                       ? "with fused multiply-add (x86-64-v3; PERI_SISSM_PASSES=plain: without)"
+                       : "without fused multiply-add");
+  passes_reported = 1;
 }
 
 /* ----------------------------------------------------------------------

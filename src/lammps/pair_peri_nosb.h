@@ -104,6 +104,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   int hinges_stale;             // local indices may have changed: build the list again
   // summary flags
   int any_break, any_contact;
+  int passes_reported = 0;    // the bond passes' version was written to the log
   int external_breaking;    // 1: compute() does not break bonds (inside an implicit step)
   double **block_rows;      // not null: compute() also sums the SISSM blocks into these rows
   int contact_groupbit;     // contact pairs crossing this group's boundary are counted

@@ -61,11 +61,13 @@ def mpirun_prefix(nprocs: int) -> list:
 
 
 def run_deck(deck, workdir, nprocs: int = 1, variables: dict | None = None,
-             files: dict | None = None, timeout: float = 600, check: bool = True) -> Run:
+             files: dict | None = None, timeout: float = 600, check: bool = True,
+             env: dict | None = None) -> Run:
     """Run a deck (a path, or the text of one) in workdir and return what it produced.
 
     variables: -var NAME VALUE pairs; files: extra files {name: text} written into workdir.
-    check: raise AssertionError with the run's tail when LAMMPS fails.
+    check: raise AssertionError with the run's tail when LAMMPS fails. env: environment
+    variables set for this run (on top of the caller's environment).
     """
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
@@ -82,7 +84,8 @@ def run_deck(deck, workdir, nprocs: int = 1, variables: dict | None = None,
     for name, value in (variables or {}).items():
         cmd += ["-var", name, str(value)]
     proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, timeout=timeout,
-                          stdin=subprocess.DEVNULL)
+                          stdin=subprocess.DEVNULL,
+                          env={**os.environ, **env} if env else None)
     log = logfile.read_text(errors="replace") if logfile.exists() else ""
     run = Run(proc.returncode, proc.stdout, proc.stderr, log, parse_thermo(log))
     if check:

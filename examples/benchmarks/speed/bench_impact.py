@@ -9,7 +9,11 @@ and the acceptance lines of issue 13, from one invocation.
 Configurations (--styles keys), each run on every rank count of --ranks:
 
     pmb, lps            in.impact.pmb, in.impact.lps (built-in peri/pmb, peri/lps; fix nve)
-    nosb                in.impact.nosb: peri/nosb linear, fix nve
+    nosb                in.impact.nosb: peri/nosb linear, fix nve (the bond passes' version
+                        the plugin chooses: with fused multiply-adds on x86-64 processors with
+                        AVX2 and FMA; the log's "Pair peri/nosb: bond passes" line is printed)
+    plain               the same with PERI_SISSM_PASSES=plain: the passes without fused
+                        multiply-adds (src/core/linalg/fused.h), for the gain of the other
     stvk, neohookean    in.impact.nosb with that model in place of linear in pair_coeff (a
                         generated copy of the deck; the deck has no variable for the model)
     jacobi              in.impact.sissm: fix sissm iterations 5 tolerance 0 with -var opts
@@ -20,7 +24,7 @@ Configurations (--styles keys), each run on every rank count of --ranks:
 
 Sizes: small, the deck as it is (3487 particles, --steps default 500); 54k, the same decks with
 impact54k.geometry (this folder; 54027 particles, --steps default 100) copied into the work
-directory as impact.geometry. 54k runs lps, nosb, jacobi and block only. A second --steps value
+directory as impact.geometry. 54k runs lps, nosb, plain, jacobi and block only. A second --steps value
 is the 54k step count; one value sets both.
 
 Runs alternate: each of the --rounds rounds (default 3) runs every configuration of every size
@@ -57,6 +61,7 @@ one row per run. A run that fails is reported at the end, and the exit status is
 from __future__ import annotations
 
 import argparse
+import os
 import csv
 import re
 import shutil
@@ -85,6 +90,7 @@ MEMORY = re.compile(r"Per MPI rank memory allocation \(min/avg/max\) = "
                     r"([0-9.eE+-]+) \| ([0-9.eE+-]+) \| ([0-9.eE+-]+) Mbytes")
 RSS = re.compile(r"PEAKRSS (\d+)")       # /usr/bin/time -f "PEAKRSS %M": kilobytes, per rank
 AMG_SETUPS = re.compile(r"(\d+) set-ups? of the AMG hierarchy")
+PASSES = re.compile(r"^Pair peri/nosb: bond passes (.*)$", re.M)
 ITERATIONS = "f_integrate[3]"            # fix sissm output 3: mean iterations per step
 
 
@@ -96,12 +102,15 @@ class Config:
     model: str = ""          # peri/nosb model replacing linear in the deck's pair_coeff
     opts: str = ""           # fix sissm options (-var opts of in.impact.sissm)
     large: bool = False      # also runs at the 54k size
+    env: tuple = ()          # environment variables of the run, (name, value) pairs
 
 
 CONFIGS = [
     Config("pmb", "peri/pmb", "in.impact.pmb"),
     Config("lps", "peri/lps", "in.impact.lps", large=True),
     Config("nosb", "peri/nosb linear", "in.impact.nosb", large=True),
+    Config("plain", "peri/nosb linear plain", "in.impact.nosb", large=True,
+           env=(("PERI_SISSM_PASSES", "plain"),)),
     Config("stvk", "peri/nosb stvk", "in.impact.nosb", model="stvk"),
     Config("neohookean", "peri/nosb neohookean", "in.impact.nosb", model="neohookean"),
     Config("jacobi", "sissm jacobi", "in.impact.sissm", opts="solver jacobi external lagged",
@@ -146,7 +155,8 @@ def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
     if config.opts:
         cmd += ["-var", "opts", config.opts]
     proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True,
-                          stdin=subprocess.DEVNULL)
+                          stdin=subprocess.DEVNULL,
+                          env={**os.environ, **dict(config.env)} if config.env else None)
     text = log.read_text(errors="replace") if log.exists() else ""
     errors = [ln for ln in (proc.stdout + text).splitlines() if ln.startswith("ERROR")]
     if proc.returncode != 0 or errors or not LOOP.search(text):
@@ -167,11 +177,13 @@ def parse_run(log: str, rss: str, ranks: int) -> dict:
     table = parse_thermo(log)[-1]
     rss_kb = [int(v) for v in RSS.findall(rss)]
     setups = AMG_SETUPS.findall(log)
+    passes = PASSES.findall(log)
     return dict(
         us=float(seconds) / (int(steps) * atoms) * 1e6, atoms=atoms,
         cpu=float(cpu[-1]) if cpu else float("nan"),
         iterations=float(table[ITERATIONS][-1]) if ITERATIONS in table else None,
         amg_setups=int(setups[-1]) if setups else None,
+        passes=passes[0] if passes else "",
         rss_bytes=sum(rss_kb) * 1024 / atoms if len(rss_kb) == ranks else float("nan"),
         lammps_bytes=float(MEMORY.findall(log)[-1][1]) * 2**20 * ranks / atoms)
 
@@ -235,6 +247,10 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
     atoms = next((r[0]["atoms"] for (s, _, _), r in res.runs.items() if s == size), "?")
     print(f"\n== {size}: {atoms} atoms, {steps} steps ==")
     rows = [(c.label, c.key) for c in configs]
+    for c in configs:
+        versions = sorted({x["passes"] for r in ranks for x in res.get(size, c.key, r)} - {""})
+        if versions:
+            print(f"{c.label}: bond passes {' / '.join(versions)}")
 
     def speed(key, r):
         found = res.get(size, key, r)

@@ -7,6 +7,7 @@
 #ifndef PERISISSM_PERI_BOND_ROWS_H
 #define PERISISSM_PERI_BOND_ROWS_H
 
+#include "linalg/fused.h"
 #include "peri/family.h"
 
 #include <algorithm>
@@ -41,22 +42,23 @@ class BondRows {
   }
 
   // S = sum over the rows of a (x) xi (row-major 3x3), each entry summed in row order
-  void outer_sum(double S[9]) const
+  // (FUSED: each term added with one rounding, linalg/fused.h)
+  template <bool FUSED = false> [[gnu::always_inline]] void outer_sum(double S[9]) const
   {
     double s00 = 0.0, s01 = 0.0, s02 = 0.0, s10 = 0.0, s11 = 0.0, s12 = 0.0, s20 = 0.0,
            s21 = 0.0, s22 = 0.0;
     for (int k = 0; k < n_; k++) {
       const double *u = rows_.data() + 6 * k;
       const double a0 = u[0], a1 = u[1], a2 = u[2], x0 = u[3], x1 = u[4], x2 = u[5];
-      s00 += a0 * x0;
-      s01 += a0 * x1;
-      s02 += a0 * x2;
-      s10 += a1 * x0;
-      s11 += a1 * x1;
-      s12 += a1 * x2;
-      s20 += a2 * x0;
-      s21 += a2 * x1;
-      s22 += a2 * x2;
+      s00 = madd<FUSED>(a0, x0, s00);
+      s01 = madd<FUSED>(a0, x1, s01);
+      s02 = madd<FUSED>(a0, x2, s02);
+      s10 = madd<FUSED>(a1, x0, s10);
+      s11 = madd<FUSED>(a1, x1, s11);
+      s12 = madd<FUSED>(a1, x2, s12);
+      s20 = madd<FUSED>(a2, x0, s20);
+      s21 = madd<FUSED>(a2, x1, s21);
+      s22 = madd<FUSED>(a2, x2, s22);
     }
     S[0] = s00;
     S[1] = s01;

@@ -2,6 +2,7 @@
 
 #include "peri/elastic.h"
 
+#include "linalg/fused.h"
 #include "membrane/membrane.h"
 #include "peri/bond_rows.h"
 #include "peri/model.h"
@@ -14,8 +15,10 @@ namespace PeriSISSM {
 
 namespace {
 
-template <int MODE, int UNIFORM, int PBC, int MEMBRANE>
-void state_pass(const Model &model, const Particles &p, const Families &fam,
+// FUSED: the version with fused multiply-adds (linalg/fused.h); inlined into the function
+// that selects it, so that it is compiled for that function's target
+template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
+[[gnu::always_inline]] inline void state_pass(const Model &model, const Particles &p, const Families &fam,
                 const ReferenceBox &box, bool blocks, ParticleFields &fields,
                 std::vector<int> &broke_list)
 {
@@ -57,8 +60,8 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
       double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
       if (PBC) box.image(x0, x1, x2);
       if (MODE != BreakingRule::NOBREAK) {
-        const double r2 = e0 * e0 + e1 * e1 + e2 * e2;
-        const double q2 = x0 * x0 + x1 * x1 + x2 * x2;
+        const double r2 = madd<FUSED>(e2, e2, madd<FUSED>(e1, e1, e0 * e0));
+        const double q2 = madd<FUSED>(x2, x2, madd<FUSED>(x1, x1, x0 * x0));
         const int jtype = UNIFORM ? 1 : type[j];
         if (rule.check<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, s0[j]), acc, den)) {
           jl[b] = -1;
@@ -83,7 +86,7 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
     if (MEMBRANE && fam.kregular[i] && model.membrane(itype)) {
       // a membrane particle: its own state (membrane/membrane.h)
       double M[9];
-      rows.outer_sum(M);
+      rows.outer_sum<FUSED>(M);
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
       double *k = blocks ? fields.k + NK * i : nullptr;
       if (k) k[6] = g[ParticleFields::G_C];
@@ -94,7 +97,7 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
       // the stresses of regular particles two at a time (their SVDs run side by side): this
       // one waits for the next, or goes with the one waiting
       double *M = mrow[waiting ? 1 : 0];
-      rows.outer_sum(M);
+      rows.outer_sum<FUSED>(M);
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
       double *k = blocks ? fields.k + NK * i : nullptr;
       if (k) k[6] = g[ParticleFields::G_C];
@@ -125,7 +128,8 @@ void state_pass(const Model &model, const Particles &p, const Families &fam,
 }
 
 // the SISSM block of particle i (elastic.h)
-inline void implicit_block(const Families &fam, const ParticleFields &fields, int i, double *out)
+template <bool FUSED>
+[[gnu::always_inline]] inline void implicit_block(const Families &fam, const ParticleFields &fields, int i, double *out)
 {
   constexpr int NK = ParticleFields::NK;
   const double *ki = fields.k + NK * i;
@@ -140,7 +144,7 @@ inline void implicit_block(const Families &fam, const ParticleFields &fields, in
     const double *kj = fields.k + NK * j;
     const double w = om[b];
     wsum += w;
-    for (int k = 0; k < NK; k++) a[k] += w * kj[k];
+    for (int k = 0; k < NK; k++) a[k] = madd<FUSED>(w, kj[k], a[k]);
   }
   const double cdiag = 0.5 * (wsum * ki[6] + a[6]);
   for (int k = 0; k < 6; k++) out[k] = wsum * ki[k] + a[k] + (k < 3 ? cdiag : 0.0);
@@ -159,8 +163,8 @@ inline void implicit_block(const Families &fam, const ParticleFields &fields, in
   }
 }
 
-template <int EVFLAG, int PBC, int BLOCKS>
-void force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
+template <int EVFLAG, int PBC, int BLOCKS, bool FUSED>
+[[gnu::always_inline]] inline void force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
                 const ParticleFields &fields, const Virial &virial, double **block)
 {
   const double *xf = p.x;
@@ -188,9 +192,13 @@ void force_pass(const Particles &p, const Families &fam, const ReferenceBox &box
       const double *rj = rf + 3 * j;
       double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
       if (PBC) box.image(x0, x1, x2);
-      const double t0 = w * ((hi[0] + hj[0]) * x0 + (hi[1] + hj[1]) * x1 + (hi[2] + hj[2]) * x2);
-      const double t1 = w * ((hi[3] + hj[3]) * x0 + (hi[4] + hj[4]) * x1 + (hi[5] + hj[5]) * x2);
-      const double t2 = w * ((hi[6] + hj[6]) * x0 + (hi[7] + hj[7]) * x1 + (hi[8] + hj[8]) * x2);
+      // w (H_i + H_j) xi
+      const double t0 = w * madd<FUSED>(hi[2] + hj[2], x2,
+                                        madd<FUSED>(hi[1] + hj[1], x1, (hi[0] + hj[0]) * x0));
+      const double t1 = w * madd<FUSED>(hi[5] + hj[5], x2,
+                                        madd<FUSED>(hi[4] + hj[4], x1, (hi[3] + hj[3]) * x0));
+      const double t2 = w * madd<FUSED>(hi[8] + hj[8], x2,
+                                        madd<FUSED>(hi[7] + hj[7], x1, (hi[6] + hj[6]) * x0));
       fx += t0;
       fy += t1;
       fz += t2;
@@ -204,9 +212,82 @@ void force_pass(const Particles &p, const Families &fam, const ReferenceBox &box
     f[3 * i + 1] += fy;
     f[3 * i + 2] += fz;
     if (EVFLAG) vir.tally(virial, i, -0.5 * vfrac[i]);
-    if (BLOCKS) implicit_block(fam, fields, i, block[i]);
+    if (BLOCKS) implicit_block<FUSED>(fam, fields, i, block[i]);
   }
 }
+
+// all instances of one version, FUSED or plain, in one function (see state_pass)
+template <bool FUSED>
+[[gnu::always_inline]] inline void state_passes(const Model &model, const Particles &p,
+                                                const Families &fam, const ReferenceBox &box,
+                                                int mode, bool blocks, ParticleFields &fields,
+                                                std::vector<int> &broke)
+{
+  using R = BreakingRule;
+  const bool uniform = model.breaking().uniform();
+  const bool membranes = fam.normal && model.any_membrane();
+  const bool pbc = box.any();
+  // membrane particles only in decks that have them (the volume decks' loop is unchanged)
+#define PERISISSM_STATE_PASS(PBC, MB)                                                            \
+  if (mode == R::NOBREAK)                                                                        \
+    state_pass<R::NOBREAK, 0, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke);        \
+  else if (mode == R::S0ONLY)                                                                    \
+    uniform ? state_pass<R::S0ONLY, 1, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke) \
+            : state_pass<R::S0ONLY, 0, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke);\
+  else                                                                                           \
+    uniform ? state_pass<R::BREAK, 1, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke)  \
+            : state_pass<R::BREAK, 0, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke);
+  if (pbc && membranes) {
+    PERISISSM_STATE_PASS(1, 1)
+  } else if (pbc) {
+    PERISISSM_STATE_PASS(1, 0)
+  } else if (membranes) {
+    PERISISSM_STATE_PASS(0, 1)
+  } else {
+    PERISISSM_STATE_PASS(0, 0)
+  }
+#undef PERISISSM_STATE_PASS
+}
+
+template <bool FUSED>
+[[gnu::always_inline]] inline void force_passes(const Particles &p, const Families &fam,
+                                                const ReferenceBox &box,
+                                                const ParticleFields &fields,
+                                                const Virial &virial, double **block)
+{
+  const bool pbc = box.any(), ev = virial.any();
+#define PERISISSM_FORCE_PASS(B)                                                                  \
+  if (pbc)                                                                                       \
+    ev ? force_pass<1, 1, B, FUSED>(p, fam, box, fields, virial, block)                          \
+       : force_pass<0, 1, B, FUSED>(p, fam, box, fields, virial, block);                         \
+  else                                                                                           \
+    ev ? force_pass<1, 0, B, FUSED>(p, fam, box, fields, virial, block)                          \
+       : force_pass<0, 0, B, FUSED>(p, fam, box, fields, virial, block);
+  if (block) {
+    PERISISSM_FORCE_PASS(1)
+  } else {
+    PERISISSM_FORCE_PASS(0)
+  }
+#undef PERISISSM_FORCE_PASS
+}
+
+#ifdef PERISISSM_CPU_DISPATCH
+PERISISSM_FUSED_TARGET void state_passes_fused(const Model &model, const Particles &p,
+                                               const Families &fam, const ReferenceBox &box,
+                                               int mode, bool blocks, ParticleFields &fields,
+                                               std::vector<int> &broke)
+{
+  state_passes<true>(model, p, fam, box, mode, blocks, fields, broke);
+}
+
+PERISISSM_FUSED_TARGET void force_passes_fused(const Particles &p, const Families &fam,
+                                               const ReferenceBox &box,
+                                               const ParticleFields &fields,
+                                               const Virial &virial, double **block)
+{
+  force_passes<true>(p, fam, box, fields, virial, block);
+}
+#endif
 
 }  // namespace
 
@@ -214,42 +295,19 @@ void elastic_state_pass(const Model &model, const Particles &p, const Families &
                         const ReferenceBox &box, int mode, bool blocks, ParticleFields &fields,
                         std::vector<int> &broke)
 {
-  using R = BreakingRule;
-  const bool uniform = model.breaking().uniform();
-  auto run = [&](auto pbc, auto membrane) {
-    constexpr int PBC = decltype(pbc)::value, MB = decltype(membrane)::value;
-    if (mode == R::NOBREAK)
-      state_pass<R::NOBREAK, 0, PBC, MB>(model, p, fam, box, blocks, fields, broke);
-    else if (mode == R::S0ONLY)
-      uniform ? state_pass<R::S0ONLY, 1, PBC, MB>(model, p, fam, box, blocks, fields, broke)
-              : state_pass<R::S0ONLY, 0, PBC, MB>(model, p, fam, box, blocks, fields, broke);
-    else
-      uniform ? state_pass<R::BREAK, 1, PBC, MB>(model, p, fam, box, blocks, fields, broke)
-              : state_pass<R::BREAK, 0, PBC, MB>(model, p, fam, box, blocks, fields, broke);
-  };
-  // membrane particles only in decks that have them (the volume decks' loop is unchanged)
-  using I0 = std::integral_constant<int, 0>;
-  using I1 = std::integral_constant<int, 1>;
-  const bool membranes = fam.normal && model.any_membrane();
-  if (box.any()) membranes ? run(I1(), I1()) : run(I1(), I0());
-  else membranes ? run(I0(), I1()) : run(I0(), I0());
+#ifdef PERISISSM_CPU_DISPATCH
+  if (fused_passes()) return state_passes_fused(model, p, fam, box, mode, blocks, fields, broke);
+#endif
+  state_passes<false>(model, p, fam, box, mode, blocks, fields, broke);
 }
 
 void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
                         const ParticleFields &fields, const Virial &virial, double **block)
 {
-  auto run = [&](auto blocks) {
-    constexpr int B = decltype(blocks)::value;
-    const bool pbc = box.any(), ev = virial.any();
-    if (pbc)
-      ev ? force_pass<1, 1, B>(p, fam, box, fields, virial, block)
-         : force_pass<0, 1, B>(p, fam, box, fields, virial, block);
-    else
-      ev ? force_pass<1, 0, B>(p, fam, box, fields, virial, block)
-         : force_pass<0, 0, B>(p, fam, box, fields, virial, block);
-  };
-  if (block) run(std::integral_constant<int, 1>());
-  else run(std::integral_constant<int, 0>());
+#ifdef PERISISSM_CPU_DISPATCH
+  if (fused_passes()) return force_passes_fused(p, fam, box, fields, virial, block);
+#endif
+  force_passes<false>(p, fam, box, fields, virial, block);
 }
 
 }  // namespace PeriSISSM

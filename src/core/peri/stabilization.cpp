@@ -2,6 +2,7 @@
 
 #include "peri/stabilization.h"
 
+#include "linalg/fused.h"
 #include "linalg/small_matrix.h"
 #include "membrane/membrane.h"
 #include "peri/bond_rows.h"
@@ -9,7 +10,6 @@
 
 #include <cmath>
 
-#include <type_traits>
 
 namespace PeriSISSM {
 
@@ -85,8 +85,9 @@ inline void normal_term(const double *F, const double *n0, const double *nrm, co
     for (int c2 = 0; c2 < 3; c2++) G[3 * r + c2] = u[r] * im.t1[c2] + v[r] * im.t2[c2];
 }
 
-template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE>
-void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
+// FUSED: the version with fused multiply-adds (linalg/fused.h; see elastic.cpp's state_pass)
+template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, bool FUSED>
+[[gnu::always_inline]] inline void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
           ParticleFields &fields, const Virial &virial)
 {
   constexpr int NG = ParticleFields::NG;
@@ -128,16 +129,19 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
       double z0, z1, z2, qa;    // qa = 2 a_i (weight of this bond in Q_i, times 2)
       if (regi && regj) {
         // Fbar = (F_i + F_j) / 2
-        z0 = e0 - 0.5 * ((Fi[0] + gj[0]) * x0 + (Fi[1] + gj[1]) * x1 + (Fi[2] + gj[2]) * x2);
-        z1 = e1 - 0.5 * ((Fi[3] + gj[3]) * x0 + (Fi[4] + gj[4]) * x1 + (Fi[5] + gj[5]) * x2);
-        z2 = e2 - 0.5 * ((Fi[6] + gj[6]) * x0 + (Fi[7] + gj[7]) * x1 + (Fi[8] + gj[8]) * x2);
+        z0 = e0 - 0.5 * madd<FUSED>(Fi[2] + gj[2], x2,
+                                    madd<FUSED>(Fi[1] + gj[1], x1, (Fi[0] + gj[0]) * x0));
+        z1 = e1 - 0.5 * madd<FUSED>(Fi[5] + gj[5], x2,
+                                    madd<FUSED>(Fi[4] + gj[4], x1, (Fi[3] + gj[3]) * x0));
+        z2 = e2 - 0.5 * madd<FUSED>(Fi[8] + gj[8], x2,
+                                    madd<FUSED>(Fi[7] + gj[7], x1, (Fi[6] + gj[6]) * x0));
         qa = 1.0;
       } else if (regi || regj) {
         // one end without F: Fbar is the other end's F
         const double *Fo = regi ? Fi : gj;
-        z0 = e0 - (Fo[0] * x0 + Fo[1] * x1 + Fo[2] * x2);
-        z1 = e1 - (Fo[3] * x0 + Fo[4] * x1 + Fo[5] * x2);
-        z2 = e2 - (Fo[6] * x0 + Fo[7] * x1 + Fo[8] * x2);
+        z0 = e0 - madd<FUSED>(Fo[2], x2, madd<FUSED>(Fo[1], x1, Fo[0] * x0));
+        z1 = e1 - madd<FUSED>(Fo[5], x2, madd<FUSED>(Fo[4], x1, Fo[3] * x0));
+        z2 = e2 - madd<FUSED>(Fo[8], x2, madd<FUSED>(Fo[7], x1, Fo[6] * x0));
         qa = regi ? 2.0 : 0.0;
       } else {
         continue;
@@ -188,7 +192,7 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
     if (!regi) continue;
 
     double q[9];
-    rows.outer_sum(q);
+    rows.outer_sum<FUSED>(q);
     // H_i = A_i + Q_i K_i^-1 with Q_i = -(sum above)/2 (the sum carries 2 a_i)
     const double *k = fam.kinv[i];
     double *h = fields.h + 9 * i;
@@ -206,29 +210,56 @@ void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
   }
 }
 
+// all instances of one version in one function (see pass)
+template <bool FUSED>
+[[gnu::always_inline]] inline void passes(const Model &model, const Particles &p,
+                                          const Families &fam, const ReferenceBox &box,
+                                          ParticleFields &fields, const Virial &virial,
+                                          bool energy)
+{
+  // membranes only in decks that have them (the volume decks' loop is unchanged)
+  const bool membranes = fam.normal && fields.normal && model.any_membrane();
+  const bool pbc = box.any(), ev = virial.any();
+  if (membranes) current_normals(model, p, fam, fields);
+#define PERISISSM_STABILIZATION_PASS(E, M)                                                       \
+  if (pbc)                                                                                       \
+    ev ? pass<E, 1, 1, M, FUSED>(p, fam, box, fields, virial)                                    \
+       : pass<E, 0, 1, M, FUSED>(p, fam, box, fields, virial);                                   \
+  else                                                                                           \
+    ev ? pass<E, 1, 0, M, FUSED>(p, fam, box, fields, virial)                                    \
+       : pass<E, 0, 0, M, FUSED>(p, fam, box, fields, virial);
+  if (energy && membranes) {
+    PERISISSM_STABILIZATION_PASS(1, 1)
+  } else if (energy) {
+    PERISISSM_STABILIZATION_PASS(1, 0)
+  } else if (membranes) {
+    PERISISSM_STABILIZATION_PASS(0, 1)
+  } else {
+    PERISISSM_STABILIZATION_PASS(0, 0)
+  }
+#undef PERISISSM_STABILIZATION_PASS
+}
+
+#ifdef PERISISSM_CPU_DISPATCH
+PERISISSM_FUSED_TARGET void passes_fused(const Model &model, const Particles &p,
+                                         const Families &fam, const ReferenceBox &box,
+                                         ParticleFields &fields, const Virial &virial,
+                                         bool energy)
+{
+  passes<true>(model, p, fam, box, fields, virial, energy);
+}
+#endif
+
 }  // namespace
 
 void stabilization_pass(const Model &model, const Particles &p, const Families &fam,
                         const ReferenceBox &box, ParticleFields &fields, const Virial &virial,
                         bool energy)
 {
-  using I0 = std::integral_constant<int, 0>;
-  using I1 = std::integral_constant<int, 1>;
-  auto run = [&](auto eflag, auto membrane) {
-    constexpr int E = decltype(eflag)::value, M = decltype(membrane)::value;
-    const bool pbc = box.any(), ev = virial.any();
-    if (pbc)
-      ev ? pass<E, 1, 1, M>(p, fam, box, fields, virial)
-         : pass<E, 0, 1, M>(p, fam, box, fields, virial);
-    else
-      ev ? pass<E, 1, 0, M>(p, fam, box, fields, virial)
-         : pass<E, 0, 0, M>(p, fam, box, fields, virial);
-  };
-  // membranes only in decks that have them (the volume decks' loop is unchanged)
-  const bool membranes = fam.normal && fields.normal && model.any_membrane();
-  if (membranes) current_normals(model, p, fam, fields);
-  if (energy) membranes ? run(I1(), I1()) : run(I1(), I0());
-  else membranes ? run(I0(), I1()) : run(I0(), I0());
+#ifdef PERISISSM_CPU_DISPATCH
+  if (fused_passes()) return passes_fused(model, p, fam, box, fields, virial, energy);
+#endif
+  passes<false>(model, p, fam, box, fields, virial, energy);
 }
 
 }  // namespace PeriSISSM
