@@ -178,7 +178,7 @@ def test_the_impact_deck_runs_as_before(tmp_path):
     run = run_deck(IMPACT / "in.impact.nosb", tmp_path, variables={"nsteps": 300},
                    files={"impact.geometry": (IMPACT / "impact.geometry").read_text()})
     ref = None
-    for line in (IMPACT / "log.26Nov26.impact.nosb.g++.1").read_text().splitlines():
+    for line in (IMPACT / "log.27Nov26.impact.nosb.g++.1").read_text().splitlines():
         words = line.split()
         if words and words[0] == "Step":
             ref = {}

@@ -18,9 +18,10 @@ namespace {
 // FUSED: the version with fused multiply-adds (linalg/fused.h); inlined into the function
 // that selects it, so that it is compiled for that function's target
 template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
-[[gnu::always_inline]] inline void state_pass(const Model &model, const Particles &p, const Families &fam,
-                const ReferenceBox &box, bool blocks, ParticleFields &fields,
-                std::vector<int> &broke_list)
+[[gnu::always_inline]] inline void state_pass(const Model &model, const Particles &p,
+                                              const Families &fam, const ReferenceBox &box,
+                                              bool blocks, ParticleFields &fields,
+                                              std::vector<int> &broke_list)
 {
   constexpr int NG = ParticleFields::NG, NK = ParticleFields::NK;
   const BreakingRule &rule = model.breaking();
@@ -129,7 +130,9 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
 
 // the SISSM block of particle i (elastic.h)
 template <bool FUSED>
-[[gnu::always_inline]] inline void implicit_block(const Families &fam, const ParticleFields &fields, int i, double *out)
+[[gnu::always_inline]] inline void implicit_block(const Families &fam,
+                                                  const ParticleFields &fields, int i,
+                                                  double *out)
 {
   constexpr int NK = ParticleFields::NK;
   const double *ki = fields.k + NK * i;
@@ -164,8 +167,10 @@ template <bool FUSED>
 }
 
 template <int EVFLAG, int PBC, int BLOCKS, bool FUSED>
-[[gnu::always_inline]] inline void force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-                const ParticleFields &fields, const Virial &virial, double **block)
+[[gnu::always_inline]] inline void force_pass(const Particles &p, const Families &fam,
+                                              const ReferenceBox &box,
+                                              const ParticleFields &fields,
+                                              const Virial &virial, double **block)
 {
   const double *xf = p.x;
   const double *rf = p.x0;

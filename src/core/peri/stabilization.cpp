@@ -87,8 +87,9 @@ inline void normal_term(const double *F, const double *n0, const double *nrm, co
 
 // FUSED: the version with fused multiply-adds (linalg/fused.h; see elastic.cpp's state_pass)
 template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, bool FUSED>
-[[gnu::always_inline]] inline void pass(const Particles &p, const Families &fam, const ReferenceBox &box,
-          ParticleFields &fields, const Virial &virial)
+[[gnu::always_inline]] inline void pass(const Particles &p, const Families &fam,
+                                        const ReferenceBox &box, ParticleFields &fields,
+                                        const Virial &virial)
 {
   constexpr int NG = ParticleFields::NG;
   const double *xf = p.x;
