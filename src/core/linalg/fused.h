@@ -8,8 +8,8 @@
 // of a step would depend on whether energy or virial was asked for in it, and a restarted run
 // would no longer repeat the unsplit one bit for bit. With each fused operation written out,
 // both versions are deterministic, sum in the same order on any number of ranks, and differ
-// from each other in round-off only. The fused version takes about 7% less time per force
-// evaluation.
+// from each other in round-off only. The fused version takes 5-8% less time per explicit step
+// (impact deck, 3487 and 54K particles).
 
 #ifndef PERISISSM_LINALG_FUSED_H
 #define PERISISSM_LINALG_FUSED_H
