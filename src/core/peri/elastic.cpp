@@ -5,6 +5,7 @@
 #include "linalg/fused.h"
 #include "membrane/membrane.h"
 #include "peri/bond_rows.h"
+#include "peri/instances.h"
 #include "peri/model.h"
 #include "peri/particle.h"
 
@@ -16,7 +17,7 @@ namespace PeriSISSM {
 namespace {
 
 // FUSED: the version with fused multiply-adds (linalg/fused.h); inlined into the function
-// that selects it, so that it is compiled for that function's target
+// that selects it, so that it is compiled for that function's target (peri/instances.h)
 template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
 [[gnu::always_inline]] inline void state_pass(const Model &model, const Particles &p,
                                               const Families &fam, const ReferenceBox &box,
@@ -221,98 +222,43 @@ template <int EVFLAG, int PBC, int BLOCKS, bool FUSED>
   }
 }
 
-// all instances of one version, FUSED or plain, in one function (see state_pass)
-template <bool FUSED>
-[[gnu::always_inline]] inline void state_passes(const Model &model, const Particles &p,
-                                                const Families &fam, const ReferenceBox &box,
-                                                int mode, bool blocks, ParticleFields &fields,
-                                                std::vector<int> &broke)
-{
-  using R = BreakingRule;
-  const bool uniform = model.breaking().uniform();
-  const bool membranes = fam.normal && model.any_membrane();
-  const bool pbc = box.any();
-  // membrane particles only in decks that have them (the volume decks' loop is unchanged)
-#define PERISISSM_STATE_PASS(PBC, MB)                                                            \
-  if (mode == R::NOBREAK)                                                                        \
-    state_pass<R::NOBREAK, 0, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke);        \
-  else if (mode == R::S0ONLY)                                                                    \
-    uniform ? state_pass<R::S0ONLY, 1, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke) \
-            : state_pass<R::S0ONLY, 0, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke);\
-  else                                                                                           \
-    uniform ? state_pass<R::BREAK, 1, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke)  \
-            : state_pass<R::BREAK, 0, PBC, MB, FUSED>(model, p, fam, box, blocks, fields, broke);
-  if (pbc && membranes) {
-    PERISISSM_STATE_PASS(1, 1)
-  } else if (pbc) {
-    PERISISSM_STATE_PASS(1, 0)
-  } else if (membranes) {
-    PERISISSM_STATE_PASS(0, 1)
-  } else {
-    PERISISSM_STATE_PASS(0, 0)
-  }
-#undef PERISISSM_STATE_PASS
-}
-
-template <bool FUSED>
-[[gnu::always_inline]] inline void force_passes(const Particles &p, const Families &fam,
-                                                const ReferenceBox &box,
-                                                const ParticleFields &fields,
-                                                const Virial &virial, double **block)
-{
-  const bool pbc = box.any(), ev = virial.any();
-#define PERISISSM_FORCE_PASS(B)                                                                  \
-  if (pbc)                                                                                       \
-    ev ? force_pass<1, 1, B, FUSED>(p, fam, box, fields, virial, block)                          \
-       : force_pass<0, 1, B, FUSED>(p, fam, box, fields, virial, block);                         \
-  else                                                                                           \
-    ev ? force_pass<1, 0, B, FUSED>(p, fam, box, fields, virial, block)                          \
-       : force_pass<0, 0, B, FUSED>(p, fam, box, fields, virial, block);
-  if (block) {
-    PERISISSM_FORCE_PASS(1)
-  } else {
-    PERISISSM_FORCE_PASS(0)
-  }
-#undef PERISISSM_FORCE_PASS
-}
-
-#ifdef PERISISSM_CPU_DISPATCH
-PERISISSM_FUSED_TARGET void state_passes_fused(const Model &model, const Particles &p,
-                                               const Families &fam, const ReferenceBox &box,
-                                               int mode, bool blocks, ParticleFields &fields,
-                                               std::vector<int> &broke)
-{
-  state_passes<true>(model, p, fam, box, mode, blocks, fields, broke);
-}
-
-PERISISSM_FUSED_TARGET void force_passes_fused(const Particles &p, const Families &fam,
-                                               const ReferenceBox &box,
-                                               const ParticleFields &fields,
-                                               const Virial &virial, double **block)
-{
-  force_passes<true>(p, fam, box, fields, virial, block);
-}
-#endif
-
 }  // namespace
 
 void elastic_state_pass(const Model &model, const Particles &p, const Families &fam,
                         const ReferenceBox &box, int mode, bool blocks, ParticleFields &fields,
                         std::vector<int> &broke)
 {
-#ifdef PERISISSM_CPU_DISPATCH
-  if (fused_passes()) return state_passes_fused(model, p, fam, box, mode, blocks, fields, broke);
-#endif
-  state_passes<false>(model, p, fam, box, mode, blocks, fields, broke);
+  using R = BreakingRule;
+  const bool uniform = model.breaking().uniform();
+  // membrane particles only in decks that have them (the volume decks' loop is unchanged)
+  const bool membranes = fam.normal && model.any_membrane();
+  with_version([&](auto fused) PERISISSM_INLINE {
+    with_flags(box.any(), membranes, [&](auto pbc, auto membrane) PERISISSM_INLINE {
+      constexpr bool F = decltype(fused)::value;
+      constexpr int PBC = decltype(pbc)::value, MB = decltype(membrane)::value;
+      if (mode == R::NOBREAK)
+        state_pass<R::NOBREAK, 0, PBC, MB, F>(model, p, fam, box, blocks, fields, broke);
+      else if (mode == R::S0ONLY)
+        uniform ? state_pass<R::S0ONLY, 1, PBC, MB, F>(model, p, fam, box, blocks, fields, broke)
+                : state_pass<R::S0ONLY, 0, PBC, MB, F>(model, p, fam, box, blocks, fields, broke);
+      else
+        uniform ? state_pass<R::BREAK, 1, PBC, MB, F>(model, p, fam, box, blocks, fields, broke)
+                : state_pass<R::BREAK, 0, PBC, MB, F>(model, p, fam, box, blocks, fields, broke);
+    });
+  });
 }
 
 void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
                         const ParticleFields &fields, const Virial &virial, double **block)
 {
-#ifdef PERISISSM_CPU_DISPATCH
-  if (fused_passes()) return force_passes_fused(p, fam, box, fields, virial, block);
-#endif
-  force_passes<false>(p, fam, box, fields, virial, block);
+  with_version([&](auto fused) PERISISSM_INLINE {
+    with_flag(block != nullptr, [&](auto blocks) PERISISSM_INLINE {
+      with_flags(virial.any(), box.any(), [&](auto ev, auto pbc) PERISISSM_INLINE {
+        force_pass<decltype(ev)::value, decltype(pbc)::value, decltype(blocks)::value,
+                   decltype(fused)::value>(p, fam, box, fields, virial, block);
+      });
+    });
+  });
 }
 
 }  // namespace PeriSISSM

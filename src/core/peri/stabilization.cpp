@@ -6,10 +6,10 @@
 #include "linalg/small_matrix.h"
 #include "membrane/membrane.h"
 #include "peri/bond_rows.h"
+#include "peri/instances.h"
 #include "peri/model.h"
 
 #include <cmath>
-
 
 namespace PeriSISSM {
 
@@ -85,7 +85,7 @@ inline void normal_term(const double *F, const double *n0, const double *nrm, co
     for (int c2 = 0; c2 < 3; c2++) G[3 * r + c2] = u[r] * im.t1[c2] + v[r] * im.t2[c2];
 }
 
-// FUSED: the version with fused multiply-adds (linalg/fused.h; see elastic.cpp's state_pass)
+// FUSED: the version with fused multiply-adds (linalg/fused.h, peri/instances.h)
 template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, bool FUSED>
 [[gnu::always_inline]] inline void pass(const Particles &p, const Families &fam,
                                         const ReferenceBox &box, ParticleFields &fields,
@@ -211,56 +211,23 @@ template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, bool FUSED>
   }
 }
 
-// all instances of one version in one function (see pass)
-template <bool FUSED>
-[[gnu::always_inline]] inline void passes(const Model &model, const Particles &p,
-                                          const Families &fam, const ReferenceBox &box,
-                                          ParticleFields &fields, const Virial &virial,
-                                          bool energy)
-{
-  // membranes only in decks that have them (the volume decks' loop is unchanged)
-  const bool membranes = fam.normal && fields.normal && model.any_membrane();
-  const bool pbc = box.any(), ev = virial.any();
-  if (membranes) current_normals(model, p, fam, fields);
-#define PERISISSM_STABILIZATION_PASS(E, M)                                                       \
-  if (pbc)                                                                                       \
-    ev ? pass<E, 1, 1, M, FUSED>(p, fam, box, fields, virial)                                    \
-       : pass<E, 0, 1, M, FUSED>(p, fam, box, fields, virial);                                   \
-  else                                                                                           \
-    ev ? pass<E, 1, 0, M, FUSED>(p, fam, box, fields, virial)                                    \
-       : pass<E, 0, 0, M, FUSED>(p, fam, box, fields, virial);
-  if (energy && membranes) {
-    PERISISSM_STABILIZATION_PASS(1, 1)
-  } else if (energy) {
-    PERISISSM_STABILIZATION_PASS(1, 0)
-  } else if (membranes) {
-    PERISISSM_STABILIZATION_PASS(0, 1)
-  } else {
-    PERISISSM_STABILIZATION_PASS(0, 0)
-  }
-#undef PERISISSM_STABILIZATION_PASS
-}
-
-#ifdef PERISISSM_CPU_DISPATCH
-PERISISSM_FUSED_TARGET void passes_fused(const Model &model, const Particles &p,
-                                         const Families &fam, const ReferenceBox &box,
-                                         ParticleFields &fields, const Virial &virial,
-                                         bool energy)
-{
-  passes<true>(model, p, fam, box, fields, virial, energy);
-}
-#endif
-
 }  // namespace
 
 void stabilization_pass(const Model &model, const Particles &p, const Families &fam,
                         const ReferenceBox &box, ParticleFields &fields, const Virial &virial,
                         bool energy)
 {
-#ifdef PERISISSM_CPU_DISPATCH
-  if (fused_passes()) return passes_fused(model, p, fam, box, fields, virial, energy);
-#endif
-  passes<false>(model, p, fam, box, fields, virial, energy);
+  // membranes only in decks that have them (the volume decks' loop is unchanged)
+  const bool membranes = fam.normal && fields.normal && model.any_membrane();
+  if (membranes) current_normals(model, p, fam, fields);
+  with_version([&](auto fused) PERISISSM_INLINE {
+    with_flags(energy, membranes, [&](auto eflag, auto membrane) PERISISSM_INLINE {
+      with_flags(virial.any(), box.any(), [&](auto ev, auto pbc) PERISISSM_INLINE {
+        pass<decltype(eflag)::value, decltype(ev)::value, decltype(pbc)::value,
+             decltype(membrane)::value, decltype(fused)::value>(p, fam, box, fields, virial);
+      });
+    });
+  });
 }
 
 }  // namespace PeriSISSM
