@@ -52,6 +52,7 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "group.h"
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
@@ -870,7 +871,9 @@ bool PairPeriNosb::group_coupled(int groupbit)
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   int coupled = contact_crossings > 0;
-  for (int i = 0; i < nlocal && !coupled; i++) {
+  // group all: every atom is in it, no bond leaves it (and no pass over the bonds is needed)
+  const bool every_atom = groupbit == group->bitmask[0];
+  for (int i = 0; i < nlocal && !coupled && !every_atom; i++) {
     if (!(mask[i] & groupbit)) continue;
     const int *jl = family->jlocal[i];
     for (int b = 0; b < family->npartner[i]; b++)

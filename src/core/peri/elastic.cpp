@@ -10,6 +10,9 @@
 #include "peri/particle.h"
 
 #include <algorithm>
+#ifdef PERISISSM_CPU_DISPATCH
+#include <immintrin.h>
+#endif
 #include <vector>
 
 namespace PeriSISSM {
@@ -91,7 +94,10 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
       rows.outer_sum<FUSED>(M);
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
       double *k = blocks ? fields.k + NK * i : nullptr;
-      if (k) k[6] = g[ParticleFields::G_C];
+      if (k) {
+        k[ParticleFields::K_C] = g[ParticleFields::G_C];
+        k[ParticleFields::K_ONE] = 1.0;
+      }
       g[ParticleFields::G_REG] = 1.0;
       fields.w[i] =
           membrane_state(model.material(itype), M, fam.kinv[i], fam.normal[i], g, h, k);
@@ -102,7 +108,10 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
       rows.outer_sum<FUSED>(M);
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
       double *k = blocks ? fields.k + NK * i : nullptr;
-      if (k) k[6] = g[ParticleFields::G_C];
+      if (k) {
+        k[ParticleFields::K_C] = g[ParticleFields::G_C];
+        k[ParticleFields::K_ONE] = 1.0;
+      }
       g[ParticleFields::G_REG] = 1.0;
       const CorrespondenceState state{&model.material(itype), M, fam.kinv[i], g, h, k,
                                       fields.w + i};
@@ -114,8 +123,10 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
       // C = 0, W = 0) and F is reported as the identity
       for (int k = 0; k < 9; k++) g[k] = (k % 4 == 0) ? 1.0 : 0.0;
       for (int k = 0; k < 9; k++) h[k] = 0.0;
-      if (blocks)
+      if (blocks) {
         for (int k = 0; k < NK; k++) fields.k[NK * i + k] = 0.0;
+        fields.k[NK * i + ParticleFields::K_ONE] = 1.0;
+      }
       g[ParticleFields::G_C] = 0.0;
       g[ParticleFields::G_REG] = 0.0;
       fields.w[i] = 0.0;
@@ -129,28 +140,14 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
     for (int i = 0; i < nlocal; i++) s0[i] = fields.smin_new[i];
 }
 
-// the SISSM block of particle i (elastic.h)
-template <bool FUSED>
-[[gnu::always_inline]] inline void implicit_block(const Families &fam,
-                                                  const ParticleFields &fields, int i,
-                                                  double *out)
+// The SISSM block of particle i (elastic.h) from a[] = sum_j omega_ij k_j over its unbroken
+// bonds, in family order (a[K_ONE] is the family's weight sum, k_j[K_ONE] being 1).
+inline void finish_block(const ParticleFields &fields, int i, const double *a, double *out)
 {
-  constexpr int NK = ParticleFields::NK;
+  constexpr int NK = ParticleFields::NK, K_C = ParticleFields::K_C;
   const double *ki = fields.k + NK * i;
-  const int n = fam.npartner[i];
-  const int *jl = fam.jlocal[i];
-  const double *om = fam.omega[i];
-  double a[NK] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  double wsum = 0.0;
-  for (int b = 0; b < n; b++) {
-    const int j = jl[b];
-    if (j < 0) continue;
-    const double *kj = fields.k + NK * j;
-    const double w = om[b];
-    wsum += w;
-    for (int k = 0; k < NK; k++) a[k] = madd<FUSED>(w, kj[k], a[k]);
-  }
-  const double cdiag = 0.5 * (wsum * ki[6] + a[6]);
+  const double wsum = a[ParticleFields::K_ONE];
+  const double cdiag = 0.5 * (wsum * ki[K_C] + a[K_C]);
   for (int k = 0; k < 6; k++) out[k] = wsum * ki[k] + a[k] + (k < 3 ? cdiag : 0.0);
   // a membrane's stabilization acts in its tangent plane only (stabilization.h): its share of
   // the block is cdiag (I - n n^T) with the particle's current normal
@@ -166,6 +163,69 @@ template <bool FUSED>
     }
   }
 }
+
+// the SISSM block of particle i, plain arithmetic
+inline void implicit_block(const Families &fam, const ParticleFields &fields, int i,
+                           double *out)
+{
+  constexpr int NK = ParticleFields::NK;
+  const int n = fam.npartner[i];
+  const int *jl = fam.jlocal[i];
+  const double *om = fam.omega[i];
+  double a[NK] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  for (int b = 0; b < n; b++) {
+    const int j = jl[b];
+    if (j < 0) continue;
+    const double *kj = fields.k + NK * j;
+    const double w = om[b];
+    for (int k = 0; k < NK; k++) a[k] = madd<false>(w, kj[k], a[k]);
+  }
+  finish_block(fields, i, a, out);
+}
+
+#ifdef PERISISSM_CPU_DISPATCH
+// The SISSM blocks of the P particles i0 .. i0+P-1 with fused multiply-adds: the same sums in
+// the same order as implicit_block, each row of k (eight doubles) in two 4-wide multiply-adds.
+// A particle's sum is a chain of dependent multiply-adds (one per bond), so a single family
+// waits on their latency; the families of P particles go side by side, bond b of each in
+// turn, and the chains overlap.
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void add_k_row(const Families &fam,
+                                                                  const double *kf, int i, int b,
+                                                                  __m256d &lo, __m256d &hi)
+{
+  constexpr int NK = ParticleFields::NK;
+  const int j = fam.jlocal[i][b];
+  if (j < 0) return;
+  const __m256d w = _mm256_set1_pd(fam.omega[i][b]);
+  lo = _mm256_fmadd_pd(w, _mm256_loadu_pd(kf + NK * j), lo);
+  hi = _mm256_fmadd_pd(w, _mm256_loadu_pd(kf + NK * j + 4), hi);
+}
+
+template <int P>
+PERISISSM_FUSED_TARGET inline void implicit_blocks_fused(const Families &fam,
+                                                         const ParticleFields &fields, int i0,
+                                                         double **block)
+{
+  constexpr int NK = ParticleFields::NK;
+  static_assert(NK == 8, "a row of k is two 4-wide vectors");
+  const double *kf = fields.k;
+  __m256d lo[P], hi[P];
+  int nmin = fam.npartner[i0];
+  for (int q = 0; q < P; q++) {
+    lo[q] = hi[q] = _mm256_setzero_pd();
+    nmin = std::min(nmin, fam.npartner[i0 + q]);
+  }
+  for (int b = 0; b < nmin; b++)
+    for (int q = 0; q < P; q++) add_k_row(fam, kf, i0 + q, b, lo[q], hi[q]);
+  for (int q = 0; q < P; q++) {
+    for (int b = nmin; b < fam.npartner[i0 + q]; b++) add_k_row(fam, kf, i0 + q, b, lo[q], hi[q]);
+    double a[NK];
+    _mm256_storeu_pd(a, lo[q]);
+    _mm256_storeu_pd(a + 4, hi[q]);
+    finish_block(fields, i0 + q, a, block[i0 + q]);
+  }
+}
+#endif
 
 template <int EVFLAG, int PBC, int BLOCKS, bool FUSED>
 [[gnu::always_inline]] inline void force_pass(const Particles &p, const Families &fam,
@@ -218,8 +278,15 @@ template <int EVFLAG, int PBC, int BLOCKS, bool FUSED>
     f[3 * i + 1] += fy;
     f[3 * i + 2] += fz;
     if (EVFLAG) vir.tally(virial, i, -0.5 * vfrac[i]);
-    if (BLOCKS) implicit_block<FUSED>(fam, fields, i, block[i]);
+    if constexpr (BLOCKS && FUSED) {
+      // (while the last four families are in the cache)
+      if ((i & 3) == 3) implicit_blocks_fused<4>(fam, fields, i - 3, block);
+    } else if constexpr (BLOCKS) {
+      implicit_block(fam, fields, i, block[i]);
+    }
   }
+  if constexpr (BLOCKS && FUSED)
+    for (int i = nlocal & ~3; i < nlocal; i++) implicit_blocks_fused<1>(fam, fields, i, block);
 }
 
 }  // namespace

@@ -25,8 +25,10 @@ struct Particles {
 struct ParticleFields {
   // g: F (row-major 3x3), C (stabilization modulus), regular flag (1 or 0)
   enum { G_C = 9, G_REG = 10, NG = 11 };
-  // k: implicit stiffness H (xx yy zz xy xz yz) and C, for the SISSM blocks
-  enum { NK = 7 };
+  // k: implicit stiffness H (xx yy zz xy xz yz), C, and 1 (K_ONE: the weighted sum of a
+  // family's k rows then carries the family's weight sum too; eight doubles, one cache line),
+  // for the SISSM blocks
+  enum { K_C = 6, K_ONE = 7, NK = 8 };
   double *g = nullptr;          // NG per particle
   double *h = nullptr;          // 9 per particle: H = (P + Q) K^-1
   double *k = nullptr;          // NK per particle (only when blocks are asked for)

@@ -243,6 +243,52 @@ TEST(BondTerms, BlocksAreTheImplicitStiffness)
   }
 }
 
+// The SISSM block of every owned particle is its sum over the unbroken bonds,
+//   sum_j omega_ij (H+_i + H+_j + (C_i + C_j)/2 I),
+// also where the evaluation sums several families side by side (the fused version goes four
+// particles at a time: 27 particles leave three for the end, 3 x 3 x 4 plus a lonely particle
+// one), with broken bonds (partner index -1, skipped) spread over them, in periodic and bounded
+// boxes. Round-off: 1e-13 of the block.
+TEST(BondTerms, BlocksOfEveryParticleSumTheUnbrokenBonds)
+{
+  const PeriSISSM::Model model = make_model("neohookean", 1.5);
+  constexpr int NK = PeriSISSM::ParticleFields::NK, NG = PeriSISSM::ParticleFields::NG;
+  for (int nz : {3, 4})
+    for (bool periodic : {false, true}) {
+      SCOPED_TRACE("nz " + std::to_string(nz) + (periodic ? " periodic" : ""));
+      Cluster cl(3, 3, nz, 1.8, periodic, 5u + nz);
+      if (nz == 4) cl.add_lonely(1.5);
+      cl.build(model);
+      int broken = 0;
+      for (int i = 0; i < cl.nlocal; i++)
+        for (int b = i % 5; b < cl.npartner[i]; b += 7) {
+          cl.jl[i][b] = -1;
+          broken++;
+        }
+      ASSERT_GT(broken, 10);
+      const Cluster::Result r = cl.evaluate(model, deformed(cl, 3u, 0.05));
+      auto hplus = [&](int j) {
+        const double *k = r.k.data() + NK * j;
+        Eigen::Matrix3d H;
+        H << k[0], k[3], k[4], k[3], k[1], k[5], k[4], k[5], k[2];
+        return H;
+      };
+      const std::vector<Eigen::Matrix3d> blocks = assembled_blocks(r);
+      for (int i = 0; i < cl.nlocal; i++) {
+        Eigen::Matrix3d expect = Eigen::Matrix3d::Zero();
+        for (int b = 0; b < cl.npartner[i]; b++) {
+          const int j = cl.jl[i][b];
+          if (j < 0) continue;
+          const double cbar = 0.5 * (r.g[NG * i + PeriSISSM::ParticleFields::G_C] +
+                                     r.g[NG * j + PeriSISSM::ParticleFields::G_C]);
+          expect += cl.om[i][b] * (hplus(i) + hplus(j) + cbar * Eigen::Matrix3d::Identity());
+        }
+        EXPECT_LE((blocks[i] - expect).norm(), 1e-13 * expect.norm() + 1e-300)
+            << "particle " << i;
+      }
+    }
+}
+
 // Short-range contact of one pair: the force densities are -(1/V) dE/dy of the pair energy
 // (unequal volumes), and the block is -df_i/dy_i, both by central differences (step 1e-7 on a
 // gap of ~0.1: relative error ~1e-9; tolerance 1e-6).
