@@ -97,7 +97,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     yn(nullptr), yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr),
     xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
     sdir(nullptr), term(nullptr), moment(nullptr), xstart(nullptr), vstart(nullptr),
-    hstart(nullptr), vn(nullptr), fstart(nullptr), gnode(nullptr)
+    hstart(nullptr), vn(nullptr), fstart(nullptr), gnode(nullptr), psize(nullptr)
 {
   ncols = 0;
   hist = nullptr;
@@ -471,6 +471,7 @@ void FixSissm::destroy_arrays()
     memory->destroy(*a);
   memory->destroy(term);
   memory->destroy(gnode);
+  memory->destroy(psize);
 }
 
 void FixSissm::grow()
@@ -479,6 +480,7 @@ void FixSissm::grow()
   destroy_arrays();
   nmax = atom->nmax;
   memory->create(kblock, nmax, 6, "sissm:block");
+  memory->create(psize, nmax, "sissm:size");
   memory->create(yn, nmax, 3, "sissm:yn");
   memory->create(yhat, nmax, 3, "sissm:yhat");
   memory->create(res, nmax, 3, "sissm:res");
@@ -754,7 +756,6 @@ double FixSissm::step_tolerance()
 {
   double **x = atom->x;
   double *rho = atom->rmass;
-  double *vfrac = atom->vfrac;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const double h2 = scheme->force_factor();
@@ -763,7 +764,7 @@ double FixSissm::step_tolerance()
     if (!(mask[i] & groupbit)) continue;
     const double xmax = fmax(fabs(x[i][0]), fmax(fabs(x[i][1]), fabs(x[i][2])));
     const double bmax = fmax(kblock[i][0], fmax(kblock[i][1], kblock[i][2]));
-    local[0] = fmax(local[0], xmax / cbrt(vfrac[i]) * (1.0 + h2 * bmax / rho[i]));
+    local[0] = fmax(local[0], xmax / psize[i] * (1.0 + h2 * bmax / rho[i]));
     local[1] = fmax(local[1], xmax);
   }
   MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
@@ -940,6 +941,9 @@ void FixSissm::post_integrate()
   rows_.bit = groupbit;
   rows_.volume = atom->vfrac;
   rows_.density = atom->rmass;
+  // the particle sizes of the convergence measure, once per step rather than per iteration
+  for (int i = 0; i < nlocal; i++) psize[i] = cbrt(atom->vfrac[i]);
+  rows_.size = psize;
 
   // lagged: fint of ghosts belongs to their owners (short-range contact with newton on)
   if ((lagged || mixed) && force->newton_pair) comm->reverse_comm(this);
@@ -1106,7 +1110,8 @@ double FixSissm::compute_vector(int n)
 double FixSissm::memory_usage()
 {
   // the per-atom arrays grow() allocates (PETSc's matrix and hierarchy are not counted)
-  int arrays = 4 * 3 + 6 + PeriSISSM::kMomentumColumns;    // yn, yhat, res, fext, block, moment
+  // yn, yhat, res, fext, block, moment, size
+  int arrays = 4 * 3 + 6 + PeriSISSM::kMomentumColumns + 1;
   if (external_mode == EXT_LAGGED || external_mode == EXT_MIXED) arrays += 2 * 3;  // fint, flagged
   if (xstart) arrays += 2 * 3 + (hstart ? ncols : 0);                             // cut back
   arrays += ncols + (vn ? 2 * 3 : 0);    // the scheme's history, v^n and f at y^n

@@ -162,6 +162,7 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   std::vector<double> state_start;    // the scheme's global state at the start of the step
   double **vn, **fstart;    // schemes with history: v^n, and the force density at y^n
   double *gnode;        // amg: global node number of each atom (-1: not an unknown)
+  double *psize;        // V^(1/3) of each atom (Rows::size), refreshed at every step
   friend class SissmAmg;
 
   void grow();

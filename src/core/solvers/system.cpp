@@ -35,8 +35,8 @@ double scaled_max(NonlinearSystem &sys, double **a, bool per_density)
   double local = 0.0;
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
-    const double size =
-        per_density ? rows.density[i] * cbrt(rows.volume[i]) : cbrt(rows.volume[i]);
+    const double length = rows.size ? rows.size[i] : cbrt(rows.volume[i]);
+    const double size = per_density ? rows.density[i] * length : length;
     const double m = sqrt(a[i][0] * a[i][0] + a[i][1] * a[i][1] + a[i][2] * a[i][2]) / size;
     if (m > local) local = m;
   }

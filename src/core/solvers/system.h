@@ -20,6 +20,8 @@ struct Rows {
   int bit = 0;
   const double *volume = nullptr;
   const double *density = nullptr;
+  // V^(1/3) of each row, the particle's size (null: scaled_max computes it from volume)
+  const double *size = nullptr;
   bool has(int i) const { return (mask[i] & bit) != 0; }
 };
 
