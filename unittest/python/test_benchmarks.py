@@ -177,6 +177,16 @@ def test_impact_speed_driver(tmp_path):
     assert all(4 <= v <= 5 for v in k.values()), k
     assert k["block", 1] == k["block", 2], k
     assert "== small: 3487 atoms, 20 steps ==" in out and "== 54k" not in out
+    # the 2-rank runs split the atoms: the ranks' average is half of them, and the balance
+    # printed (ave / max) is the one of the runs, at most 1
+    for r in rows:
+        if int(r["ranks"]) == 2:
+            assert float(r["nlocal_ave"]) == 3487 / 2, r
+            assert 0.5 < float(r["balance"]) <= 1.0, r
+    balance = {float(r["balance"]) for r in rows if int(r["ranks"]) == 2}
+    line = re.search(r"^load balance on 2 ranks, .*: (.*)$", out, re.M)
+    assert line and {float(v) for v in line.group(1).split(", ")} == \
+        {float(f"{b:.4f}") for b in balance}, out[-2000:]
     # the plain configuration ran the bond passes without fused multiply-adds
     assert "peri/nosb linear plain: bond passes without fused multiply-add" in out
     for goal in ("[small] peri/nosb linear / peri/lps <= 0.5",

@@ -46,7 +46,10 @@ is formed from medians of this invocation. Printed:
   t / (k + 1), per force evaluation. jacobi takes exactly 5 iterations per step; krylov may
   take 4 (when CG meets its Eisenstat-Walker target early, one evaluation left is too few for
   a CG product and the check of its Newton iterate: that step ends with a SISSM sweep);
-- 2-rank parallel efficiency t1 / (2 t2) where both rank counts ran;
+- 2-rank parallel efficiency t1 / (2 t2) where both rank counts ran, and the load balance of
+  the 2-rank runs: owned atoms ave / max over the ranks (LAMMPS's Nlocal), the efficiency that
+  equal work per atom and free communication would give (the 54K cylinder has an odd number of
+  lattice columns across the cut, so one rank holds the middle one);
 - memory per particle: peak resident memory (/usr/bin/time, per rank) summed over the ranks /
   atoms, and LAMMPS's "Per MPI rank memory allocation" avg x ranks / atoms, with the ratios to
   peri/lps;
@@ -91,6 +94,8 @@ MEMORY = re.compile(r"Per MPI rank memory allocation \(min/avg/max\) = "
 RSS = re.compile(r"PEAKRSS (\d+)")       # /usr/bin/time -f "PEAKRSS %M": kilobytes, per rank
 AMG_SETUPS = re.compile(r"(\d+) set-ups? of the AMG hierarchy")
 PASSES = re.compile(r"^Pair peri/nosb: bond passes (.*)$", re.M)
+# "Nlocal:        27013.5 ave       27702 max       26325 min" (owned atoms per rank, at the end)
+NLOCAL = re.compile(r"^Nlocal:\s+([0-9.eE+-]+) ave\s+([0-9.eE+-]+) max", re.M)
 ITERATIONS = "f_integrate[3]"            # fix sissm output 3: mean iterations per step
 
 
@@ -178,12 +183,15 @@ def parse_run(log: str, rss: str, ranks: int) -> dict:
     rss_kb = [int(v) for v in RSS.findall(rss)]
     setups = AMG_SETUPS.findall(log)
     passes = PASSES.findall(log)
+    nlocal = NLOCAL.findall(log)
+    ave, most = (float(v) for v in nlocal[-1]) if nlocal else (float("nan"), float("nan"))
     return dict(
         us=float(seconds) / (int(steps) * atoms) * 1e6, atoms=atoms,
         cpu=float(cpu[-1]) if cpu else float("nan"),
         iterations=float(table[ITERATIONS][-1]) if ITERATIONS in table else None,
         amg_setups=int(setups[-1]) if setups else None,
         passes=passes[0] if passes else "",
+        nlocal_ave=ave, balance=ave / most if nlocal else float("nan"),
         rss_bytes=sum(rss_kb) * 1024 / atoms if len(rss_kb) == ranks else float("nan"),
         lammps_bytes=float(MEMORY.findall(log)[-1][1]) * 2**20 * ranks / atoms)
 
@@ -289,6 +297,11 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
     if 1 in ranks and 2 in ranks:
         print("\n2-rank parallel efficiency t1 / (2 t2) of the medians: " + ", ".join(
             f"{c.label} {e:.2f}" for c in configs if (e := res.efficiency(size, c.key))))
+    balance = sorted({x["balance"] for c in configs for x in res.get(size, c.key, 2)})
+    if balance:
+        print("load balance on 2 ranks, owned atoms ave / max (LAMMPS's Nlocal at the end of the "
+              "run; the efficiency that equal work per atom and free communication would "
+              "give): " + ", ".join(f"{b:.4f}" for b in balance))
 
     def memory(key, r):
         if not res.get(size, key, r):

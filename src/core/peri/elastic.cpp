@@ -10,9 +10,6 @@
 #include "peri/particle.h"
 
 #include <algorithm>
-#ifdef PERISISSM_CPU_DISPATCH
-#include <immintrin.h>
-#endif
 #include <vector>
 
 namespace PeriSISSM {
@@ -189,16 +186,27 @@ inline void implicit_block(const Families &fam, const ParticleFields &fields, in
 // A particle's sum is a chain of dependent multiply-adds (one per bond), so a single family
 // waits on their latency; the families of P particles go side by side, bond b of each in
 // turn, and the chains overlap.
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void add_k_row(const Families &fam,
-                                                                  const double *kf, int i, int b,
-                                                                  __m256d &lo, __m256d &hi)
+// four doubles (GCC vector extension): one 4-wide register in x86-64-v3 code
+typedef double Double4 __attribute__((vector_size(32)));
+
+// c + w a per lane (a: four doubles), rounded once
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 fma4(double w, const double *a,
+                                                                Double4 c)
+{
+  Double4 v;
+  __builtin_memcpy(&v, a, sizeof v);
+  return Double4{__builtin_fma(w, v[0], c[0]), __builtin_fma(w, v[1], c[1]),
+                 __builtin_fma(w, v[2], c[2]), __builtin_fma(w, v[3], c[3])};
+}
+
+// lo, hi += w k_j (the eight doubles of a row of k)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void add_k_row(const double *kf, int j,
+                                                                  double w, Double4 &lo,
+                                                                  Double4 &hi)
 {
   constexpr int NK = ParticleFields::NK;
-  const int j = fam.jlocal[i][b];
-  if (j < 0) return;
-  const __m256d w = _mm256_set1_pd(fam.omega[i][b]);
-  lo = _mm256_fmadd_pd(w, _mm256_loadu_pd(kf + NK * j), lo);
-  hi = _mm256_fmadd_pd(w, _mm256_loadu_pd(kf + NK * j + 4), hi);
+  lo = fma4(w, kf + NK * j, lo);
+  hi = fma4(w, kf + NK * j + 4, hi);
 }
 
 template <int P>
@@ -209,19 +217,28 @@ PERISISSM_FUSED_TARGET inline void implicit_blocks_fused(const Families &fam,
   constexpr int NK = ParticleFields::NK;
   static_assert(NK == 8, "a row of k is two 4-wide vectors");
   const double *kf = fields.k;
-  __m256d lo[P], hi[P];
+  const int *jl[P];
+  const double *om[P];
+  int n[P];
+  Double4 lo[P], hi[P];
   int nmin = fam.npartner[i0];
   for (int q = 0; q < P; q++) {
-    lo[q] = hi[q] = _mm256_setzero_pd();
-    nmin = std::min(nmin, fam.npartner[i0 + q]);
+    jl[q] = fam.jlocal[i0 + q];
+    om[q] = fam.omega[i0 + q];
+    n[q] = fam.npartner[i0 + q];
+    nmin = std::min(nmin, n[q]);
+    lo[q] = hi[q] = Double4{0.0, 0.0, 0.0, 0.0};
   }
   for (int b = 0; b < nmin; b++)
-    for (int q = 0; q < P; q++) add_k_row(fam, kf, i0 + q, b, lo[q], hi[q]);
+#pragma GCC unroll 4
+    for (int q = 0; q < P; q++)
+      if (jl[q][b] >= 0) add_k_row(kf, jl[q][b], om[q][b], lo[q], hi[q]);
   for (int q = 0; q < P; q++) {
-    for (int b = nmin; b < fam.npartner[i0 + q]; b++) add_k_row(fam, kf, i0 + q, b, lo[q], hi[q]);
+    for (int b = nmin; b < n[q]; b++)
+      if (jl[q][b] >= 0) add_k_row(kf, jl[q][b], om[q][b], lo[q], hi[q]);
     double a[NK];
-    _mm256_storeu_pd(a, lo[q]);
-    _mm256_storeu_pd(a + 4, hi[q]);
+    __builtin_memcpy(a, &lo[q], sizeof lo[q]);
+    __builtin_memcpy(a + 4, &hi[q], sizeof hi[q]);
     finish_block(fields, i0 + q, a, block[i0 + q]);
   }
 }
