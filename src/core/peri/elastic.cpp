@@ -181,11 +181,6 @@ inline void implicit_block(const Families &fam, const ParticleFields &fields, in
 }
 
 #ifdef PERISISSM_CPU_DISPATCH
-// The SISSM blocks of the P particles i0 .. i0+P-1 with fused multiply-adds: the same sums in
-// the same order as implicit_block, each row of k (eight doubles) in two 4-wide multiply-adds.
-// A particle's sum is a chain of dependent multiply-adds (one per bond), so a single family
-// waits on their latency; the families of P particles go side by side, bond b of each in
-// turn, and the chains overlap.
 // four doubles (GCC vector extension): one 4-wide register in x86-64-v3 code
 typedef double Double4 __attribute__((vector_size(32)));
 
@@ -209,6 +204,11 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void add_k_row(const double
   hi = fma4(w, kf + NK * j + 4, hi);
 }
 
+// The SISSM blocks of the P particles i0 .. i0+P-1 with fused multiply-adds: the same sums in
+// the same order as implicit_block, each row of k (eight doubles) in two 4-wide multiply-adds.
+// A particle's sum is a chain of dependent multiply-adds (one per bond), so a single family
+// waits on their latency; the families of P particles go side by side, bond b of each in
+// turn, and the chains overlap.
 template <int P>
 PERISISSM_FUSED_TARGET inline void implicit_blocks_fused(const Families &fam,
                                                          const ParticleFields &fields, int i0,
@@ -295,15 +295,18 @@ template <int EVFLAG, int PBC, int BLOCKS, bool FUSED>
     f[3 * i + 1] += fy;
     f[3 * i + 2] += fz;
     if (EVFLAG) vir.tally(virial, i, -0.5 * vfrac[i]);
-    if constexpr (BLOCKS && FUSED) {
-      // (while the last four families are in the cache)
+    if constexpr (BLOCKS && !FUSED) implicit_block(fam, fields, i, block[i]);
+#ifdef PERISISSM_CPU_DISPATCH
+    // (while the last four families are in the cache; only the dispatch builds the fused
+    // version)
+    if constexpr (BLOCKS && FUSED)
       if ((i & 3) == 3) implicit_blocks_fused<4>(fam, fields, i - 3, block);
-    } else if constexpr (BLOCKS) {
-      implicit_block(fam, fields, i, block[i]);
-    }
+#endif
   }
+#ifdef PERISISSM_CPU_DISPATCH
   if constexpr (BLOCKS && FUSED)
     for (int i = nlocal & ~3; i < nlocal; i++) implicit_blocks_fused<1>(fam, fields, i, block);
+#endif
 }
 
 }  // namespace
