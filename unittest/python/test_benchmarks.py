@@ -194,3 +194,32 @@ def test_impact_speed_driver(tmp_path):
         assert re.search(re.escape(goal) + r".* -> (PASS|FAIL)$", out, re.M), goal
     assert re.search(r"\[54k\] 2-rank efficiency >= 0\.95 nve .*: \(not run\) -> not measured",
                      out), out[-2000:]
+
+
+def test_bench_passes_tool():
+    """tools/bench_passes.sh builds against the core library and runs: every pass timed, the
+    step and iteration lines are the sums of the minima they name, and the small stretch of the
+    lattice breaks no bond (a 10^3 lattice, 2 rounds: seconds)."""
+    done = subprocess.run(["bash", str(REPO / "tools" / "bench_passes.sh"), "10", "2"],
+                          capture_output=True, text=True, timeout=HANG_GUARD_S)
+    assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-4000:]
+    assert "lost bonds" not in done.stderr, done.stderr
+    out = done.stdout
+    assert out.startswith("1000 particles, 2 rounds, "), out
+    passes = {name.strip(): (float(lo), float(mid)) for name, lo, mid in
+              re.findall(r"^  (\S.*?)\s+([0-9.]+)\s+([0-9.]+)$", out, re.M)}
+    assert set(passes) == {"state, breaking check", "state, no check", "state, no check, k rows",
+                           "stabilization", "force", "force and blocks"}, out
+    for lo, mid in passes.values():
+        assert 0.0 < lo <= mid, out
+    step = float(re.search(r"^explicit step .*: ([0-9.]+) ms$", out, re.M).group(1))
+    it, ratio = (float(v) for v in re.search(
+        r"^sissm iteration .*: ([0-9.]+) ms = ([0-9.]+) x the step$", out, re.M).groups())
+    lo = {k: v[0] for k, v in passes.items()}
+    # printed to 0.01 ms: each sum of three rounded minima is within 0.02 of the printed sum
+    assert step == pytest.approx(lo["state, breaking check"] + lo["stabilization"]
+                                 + lo["force"], abs=0.021)
+    assert it == pytest.approx(lo["state, no check, k rows"] + lo["stabilization"]
+                               + lo["force and blocks"], abs=0.021)
+    # (the ratio comes from the unrounded times: passes of ~1 ms, printed to 0.01 ms)
+    assert ratio == pytest.approx(it / step, rel=0.03)

@@ -1,0 +1,124 @@
+// Development benchmark: the time of each bond pass of peri/nosb on an n x n x n simple cubic
+// lattice (horizon 3.0002 spacings, linear model, stabilization, uniform breaking that breaks
+// nothing), without LAMMPS. The passes run in turn, round after round, in one process, so that
+// a busy machine slows them alike; per pass the minimum and the median over the rounds.
+// Compares variants of one pass (state with and without the breaking check, force with and
+// without the SISSM blocks) and sums the passes of an explicit step and of a fix sissm
+// iteration (no halo, contact or solver: the bond loops only). Built and run by
+// tools/bench_passes.sh; nothing is asserted.
+
+#include "peri/cluster.h"
+
+#include "linalg/fused.h"
+#include "materials/material.h"
+#include "peri/elastic.h"
+#include "peri/stabilization.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+using namespace PeriSISSM;
+
+namespace {
+double now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+}    // namespace
+
+int main(int argc, char **argv)
+{
+  const int n = argc > 1 ? std::atoi(argv[1]) : 38;
+  const int rounds = argc > 2 ? std::atoi(argv[2]) : 15;
+  if (n < 4 || rounds < 1) {
+    std::fprintf(stderr, "usage: bench_passes [n >= 4, default 38] [rounds >= 1, default 15]\n");
+    return 2;
+  }
+  Model m;
+  m.set_ntypes(1);
+  const auto lame = lame_from_bulk_shear(1.0, 0.6);
+  m.set_type(1, make_material("linear", lame.mu, lame.lambda), 1.0, 1.0);
+  m.set_pair(1, 1, 3.0002, false, 0.0);
+  m.breaking().configure(
+      1, [](int, int) { return true; }, [](int, int) { return 0.5; },
+      [](int, int) { return 0.25; });
+  PeriSISSMTest::Cluster c(n, n, n, 3.0002, false, 5u, 0.0, 0.0);
+  c.build(m);
+  // a small stretch and a ripple, far from breaking
+  for (int i = 0; i < c.nlocal; i++)
+    for (int k = 0; k < 3; k++)
+      c.x[3 * i + k] = c.x0[3 * i + k] * (1.0 + 0.001 * k) + 1.0e-3 * ((7 * i + k) % 5);
+
+  const int nall = c.nall;
+  std::vector<double> f(3 * nall), g(nall * ParticleFields::NG), h(9 * nall),
+      k(nall * ParticleFields::NK), w(nall), smin_new(nall), blocks(6 * nall);
+  std::vector<double *> rows(nall);
+  for (int i = 0; i < nall; i++) rows[i] = blocks.data() + 6 * i;
+  Particles p;
+  p.nlocal = c.nlocal;
+  p.nall = nall;
+  p.x = c.x.data();
+  p.x0 = c.ref.data();
+  p.volume = c.volume.data();
+  p.type = c.type.data();
+  p.smin = c.smin.data();
+  p.f = f.data();
+  ParticleFields fields;
+  fields.g = g.data();
+  fields.h = h.data();
+  fields.k = k.data();
+  fields.w = w.data();
+  fields.smin_new = smin_new.data();
+  Virial virial;
+  std::vector<int> broke;
+  const Families fam = c.families();
+
+  enum { STATE_BREAK, STATE, STATE_K, STAB, FORCE, FORCE_BLOCKS, NPASS };
+  const char *names[NPASS] = {"state, breaking check",  "state, no check",
+                              "state, no check, k rows", "stabilization",
+                              "force",                  "force and blocks"};
+  std::vector<std::vector<double>> t(NPASS);
+  auto timed = [&](int q, auto &&pass) {
+    const double t0 = now();
+    pass();
+    t[q].push_back(now() - t0);
+  };
+  for (int r = 0; r < rounds; r++) {
+    timed(STATE_BREAK, [&] {
+      elastic_state_pass(m, p, fam, c.box, BreakingRule::BREAK, false, fields, broke);
+    });
+    timed(STATE, [&] {
+      elastic_state_pass(m, p, fam, c.box, BreakingRule::NOBREAK, false, fields, broke);
+    });
+    timed(STATE_K, [&] {
+      elastic_state_pass(m, p, fam, c.box, BreakingRule::NOBREAK, true, fields, broke);
+    });
+    timed(STAB, [&] { stabilization_pass(m, p, fam, c.box, fields, virial, false); });
+    timed(FORCE, [&] { elastic_force_pass(p, fam, c.box, fields, virial, nullptr); });
+    timed(FORCE_BLOCKS,
+          [&] { elastic_force_pass(p, fam, c.box, fields, virial, rows.data()); });
+  }
+  if (!broke.empty()) std::fprintf(stderr, "warning: %zu families lost bonds\n", broke.size());
+
+  double lo[NPASS], mid[NPASS];
+  std::printf("%d particles, %d rounds, %s passes; ms per pass: min, median\n", c.nlocal,
+              rounds, fused_passes() ? "fused" : "plain");
+  for (int q = 0; q < NPASS; q++) {
+    std::sort(t[q].begin(), t[q].end());
+    lo[q] = 1e3 * t[q].front();
+    mid[q] = 1e3 * t[q][t[q].size() / 2];
+    std::printf("  %-26s %9.2f %9.2f\n", names[q], lo[q], mid[q]);
+  }
+  const double step = lo[STATE_BREAK] + lo[STAB] + lo[FORCE];
+  const double iter = lo[STATE_K] + lo[STAB] + lo[FORCE_BLOCKS];
+  std::printf("explicit step (state with check + stabilization + force): %.2f ms\n", step);
+  std::printf("sissm iteration (state with k rows + stabilization + force and blocks): %.2f ms"
+              " = %.3f x the step\n", iter, iter / step);
+  std::printf("breaking check: %.3f x the state pass without it; blocks: %.3f x the force pass\n",
+              lo[STATE_BREAK] / lo[STATE], lo[FORCE_BLOCKS] / lo[FORCE]);
+  return 0;
+}
