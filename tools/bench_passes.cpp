@@ -58,15 +58,7 @@ int main(int argc, char **argv)
       k(nall * ParticleFields::NK), w(nall), smin_new(nall), blocks(6 * nall);
   std::vector<double *> rows(nall);
   for (int i = 0; i < nall; i++) rows[i] = blocks.data() + 6 * i;
-  Particles p;
-  p.nlocal = c.nlocal;
-  p.nall = nall;
-  p.x = c.x.data();
-  p.x0 = c.ref.data();
-  p.volume = c.volume.data();
-  p.type = c.type.data();
-  p.smin = c.smin.data();
-  p.f = f.data();
+  const Particles p = c.particles(f.data());
   ParticleFields fields;
   fields.g = g.data();
   fields.h = h.data();

@@ -11,7 +11,8 @@ if [ ! -f "$lib" ]; then
   echo "bench_passes: $lib not found; run bash tools/setup.sh first" >&2
   exit 1
 fi
-if [ ! -x "$exe" ] || [ "$lib" -nt "$exe" ] || [ "$here/tools/bench_passes.cpp" -nt "$exe" ]; then
+if [ ! -x "$exe" ] || [ "$lib" -nt "$exe" ] || [ "$here/tools/bench_passes.cpp" -nt "$exe" ] ||
+   [ "$here/unittest/core/peri/cluster.h" -nt "$exe" ]; then
   g++ -O3 -DNDEBUG -std=c++17 -I"$here/src/core" -I"$here/unittest/core" -I/usr/include/eigen3 \
     "$here/tools/bench_passes.cpp" "$lib" -o "$exe"
 fi

@@ -139,6 +139,21 @@ class Cluster : public PeriSISSM::Halo {
     }
   }
 
+  // the particles as the passes see them (current positions x), force densities into f
+  PeriSISSM::Particles particles(double *f)
+  {
+    PeriSISSM::Particles p;
+    p.nlocal = nlocal;
+    p.nall = nall;
+    p.x = x.data();
+    p.x0 = ref.data();
+    p.volume = volume.data();
+    p.type = type.data();
+    p.smin = smin.data();
+    p.f = f;
+    return p;
+  }
+
   struct Result {
     double energy = 0.0;            // sum_i V_i w_i
     std::vector<double> f;          // force densities of the owned rows
@@ -156,15 +171,7 @@ class Cluster : public PeriSISSM::Halo {
     std::vector<double> f(3 * nall, 0.0), g(nall * PeriSISSM::ParticleFields::NG, 0.0),
         h(9 * nall, 0.0), kk(nall * PeriSISSM::ParticleFields::NK, 0.0), w(nall, 0.0),
         sn(nall, 0.0), nrm(3 * nall, 0.0);
-    PeriSISSM::Particles p;
-    p.nlocal = nlocal;
-    p.nall = nall;
-    p.x = x.data();
-    p.x0 = ref.data();
-    p.volume = volume.data();
-    p.type = type.data();
-    p.smin = smin.data();
-    p.f = f.data();
+    const PeriSISSM::Particles p = particles(f.data());
     PeriSISSM::ParticleFields fields;
     fields.g = g.data();
     fields.h = h.data();

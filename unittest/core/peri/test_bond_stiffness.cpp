@@ -35,10 +35,7 @@ PeriSISSM::Model linear_model(double bulk, double shear, double horizon)
 
 PeriSISSM::BondSprings springs_of(Cluster &cl, const Cluster::Result &r)
 {
-  PeriSISSM::Particles p;
-  p.nlocal = cl.nlocal;
-  p.x = cl.x.data();
-  p.volume = cl.volume.data();
+  const PeriSISSM::Particles p = cl.particles(nullptr);
   PeriSISSM::ParticleFields fields;
   std::vector<double> k = r.k;
   fields.k = k.data();
