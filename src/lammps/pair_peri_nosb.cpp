@@ -89,7 +89,7 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
     track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
     state_nlocal(-1), nmax(0),
-    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), any_bend(0), meshfix(nullptr),
+    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), cols(nullptr), any_bend(0), meshfix(nullptr),
     hinges_stale(1), comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
@@ -108,6 +108,7 @@ PairPeriNosb::~PairPeriNosb()
   memory->destroy(gstate);
   memory->destroy(hstate);
   memory->destroy(kstate);
+  memory->destroy(cols);
   memory->destroy(wdens);
   memory->destroy(s0_new);
   memory->destroy(cnormal);
@@ -705,12 +706,14 @@ void PairPeriNosb::grow_peratom()
   memory->destroy(gstate);
   memory->destroy(hstate);
   memory->destroy(kstate);
+  memory->destroy(cols);
   memory->destroy(wdens);
   memory->destroy(s0_new);
   memory->destroy(cnormal);
   memory->create(kstate, nmax * ParticleFields::NK, "pair:kstate");
   memory->create(gstate, nmax * ParticleFields::NG, "pair:gstate");
   memory->create(hstate, nmax * 9, "pair:hstate");
+  memory->create(cols, nmax * ParticleFields::NCOLS, "pair:cols");
   memory->create(wdens, nmax, "pair:wdens");
   memory->create(s0_new, nmax, "pair:s0_new");
   if (model_->any_membrane()) memory->create(cnormal, 3 * nmax, "pair:cnormal");
@@ -782,6 +785,7 @@ void PairPeriNosb::compute(int eflag, int vflag)
   fields.energy = eflag_either;
   fields.smin_new = s0_new;
   fields.normal = cnormal;
+  fields.cols = cols;
   PeriSISSM::Virial vir;
   if (vflag_either) {
     if (vflag_global) vir.global = virial;
@@ -1022,7 +1026,8 @@ void PairPeriNosb::read_restart(FILE *fp)
 double PairPeriNosb::memory_usage()
 {
   using PeriSISSM::ParticleFields;
-  double bytes = (double) nmax * (ParticleFields::NG + ParticleFields::NK + 9 + 2) * sizeof(double);
+  double bytes = (double) nmax * (ParticleFields::NG + ParticleFields::NK + 9 + 2 + ParticleFields::NCOLS) *
+      sizeof(double);
   bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
   bytes += (double) hinges.capacity() * sizeof(Hinge);
   const double n = atom->ntypes + 1;

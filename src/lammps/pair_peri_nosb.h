@@ -136,6 +136,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   double *wdens;            // energy density
   double *s0_new;
   double *cnormal;          // current normals of membrane particles (decks with membranes only)
+  double *cols;             // scratch of the fused passes: F, then H, by columns
   std::vector<int> broke;   // atoms that lost bonds in the last compute()
   const PeriSISSM::HaloField *comm_fields;    // the fields forward_comm sends
   int comm_nfields;

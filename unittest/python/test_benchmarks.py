@@ -3,6 +3,7 @@ and 12; examples/benchmarks/speed/bench_impact.py, issue 13) run end to end in t
 form, write their report, CSVs and plots where they are told, and keep the physical facts the
 committed reports state (never a wall time). Slow (about 1 to 3 minutes each)."""
 import csv
+import os
 import re
 import subprocess
 import sys
@@ -198,18 +199,29 @@ def test_impact_speed_driver(tmp_path):
 
 def test_bench_passes_tool():
     """tools/bench_passes.sh builds against the core library and runs: every pass timed, the
-    step and iteration lines are the sums of the minima they name, and the small stretch of the
-    lattice breaks no bond (a 10^3 lattice, 2 rounds: seconds)."""
+    step and iteration lines are the sums of the minima they name, the small stretch of the
+    lattice breaks no bond, and the results have the same bits with the 4-wide loops as with
+    the scalar ones (BENCH_PASSES_SCALAR=1 runs every pass scalar; a 10^3 lattice, 2 rounds:
+    seconds)."""
     done = subprocess.run(["bash", str(REPO / "tools" / "bench_passes.sh"), "10", "2"],
                           capture_output=True, text=True, timeout=HANG_GUARD_S)
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-4000:]
+    scalar = subprocess.run(["bash", str(REPO / "tools" / "bench_passes.sh"), "10", "2"],
+                            capture_output=True, text=True, timeout=HANG_GUARD_S,
+                            env=dict(os.environ, BENCH_PASSES_SCALAR="1"))
+    assert scalar.returncode == 0, scalar.stdout[-2000:] + scalar.stderr[-4000:]
+    prints = [re.search(r"^fingerprint of the results: ([0-9a-f]{16})$", d.stdout, re.M)
+              for d in (done, scalar)]
+    assert all(prints), done.stdout + scalar.stdout
+    assert prints[0].group(1) == prints[1].group(1), done.stdout + scalar.stdout
     assert "lost bonds" not in done.stderr, done.stderr
     out = done.stdout
     assert out.startswith("1000 particles, 2 rounds, "), out
     passes = {name.strip(): (float(lo), float(mid)) for name, lo, mid in
               re.findall(r"^  (\S.*?)\s+([0-9.]+)\s+([0-9.]+)$", out, re.M)}
-    assert set(passes) == {"state, breaking check", "state, no check", "state, no check, k rows",
-                           "stabilization", "force", "force and blocks"}, out
+    assert set(passes) == {"state, breaking check", "state, check, scalar", "state, no check",
+                           "state, no check, k rows", "stabilization", "stabilization, scalar",
+                           "force", "force, scalar", "force and blocks"}, out
     for lo, mid in passes.values():
         assert 0.0 < lo <= mid, out
     step = float(re.search(r"^explicit step .*: ([0-9.]+) ms$", out, re.M).group(1))

@@ -2,9 +2,11 @@
 
 #include "peri/elastic.h"
 
+#include "linalg/double4.h"
 #include "linalg/fused.h"
 #include "membrane/membrane.h"
 #include "peri/bond_rows.h"
+#include "peri/columns.h"
 #include "peri/instances.h"
 #include "peri/model.h"
 #include "peri/particle.h"
@@ -16,6 +18,114 @@ namespace PeriSISSM {
 
 namespace {
 
+// The bonds of particle i in the state pass: the breaking check (a bond that breaks gets
+// partner index -1), and M = sum omega eta (x) xi over the unbroken bonds (row-major), from
+// rows of omega eta and xi (bond_rows.h). Returns 1 if a bond broke.
+template <int MODE, int UNIFORM, int PBC, bool FUSED>
+[[gnu::always_inline]] inline int state_bonds(const BreakingRule &rule, const Particles &p,
+                                              const Families &fam, const ReferenceBox &box,
+                                              int i, double smini, double &acc, double &den,
+                                              BondRows &rows, double M[9])
+{
+  const double *xf = p.x;
+  const double *rf = p.x0;
+  const int itype = p.type[i];
+  const double xi0 = xf[3 * i], xi1 = xf[3 * i + 1], xi2 = xf[3 * i + 2];
+  const double ri0 = rf[3 * i], ri1 = rf[3 * i + 1], ri2 = rf[3 * i + 2];
+  const int n = fam.npartner[i];
+  int *jl = fam.jlocal[i];
+  const double *om = fam.omega[i];
+  int broke = 0;
+  rows.clear();
+  for (int b = 0; b < n; b++) {
+    const int j = jl[b];
+    if (j < 0) continue;
+    const double *xj = xf + 3 * j;
+    const double e0 = xj[0] - xi0;
+    const double e1 = xj[1] - xi1;
+    const double e2 = xj[2] - xi2;
+    const double *rj = rf + 3 * j;
+    double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
+    if (PBC) box.image(x0, x1, x2);
+    if (MODE != BreakingRule::NOBREAK) {
+      const double r2 = madd<FUSED>(e2, e2, madd<FUSED>(e1, e1, e0 * e0));
+      const double q2 = madd<FUSED>(x2, x2, madd<FUSED>(x1, x1, x0 * x0));
+      const int jtype = UNIFORM ? 1 : p.type[j];
+      if (rule.check<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, p.smin[j]), acc,
+                                    den)) {
+        jl[b] = -1;
+        broke = 1;
+        continue;
+      }
+    }
+    const double w = om[b];
+    rows.push(w * e0, w * e1, w * e2, x0, x1, x2);
+  }
+  rows.outer_sum<FUSED>(M);
+  return broke;
+}
+
+#ifdef PERISISSM_CPU_DISPATCH
+// state_bonds of the fused version, 4-wide (linalg/double4.h): eta in lanes 0-2, each
+// component of xi in every lane of its own register, M by columns summed bond by bond; the
+// same operations in the same order as state_bonds<..., FUSED = true>, so the same bits.
+template <int MODE, int UNIFORM, int PBC>
+PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Particles &p,
+                                             const Families &fam, const ReferenceBox &box,
+                                             int i, double smini, double &acc, double &den,
+                                             double M[9])
+{
+  const double *xf = p.x;
+  const double *rf = p.x0;
+  const int itype = p.type[i];
+  const double *xi = xf + 3 * i, *ri = rf + 3 * i;
+  const Double4 xiv = load3(xi);
+  const Double4 ri0 = splat(ri[0]), ri1 = splat(ri[1]), ri2 = splat(ri[2]);
+  const int n = fam.npartner[i];
+  int *jl = fam.jlocal[i];
+  const double *om = fam.omega[i];
+  int broke = 0;
+  Double4 m0 = splat(0.0), m1 = m0, m2 = m0;
+  for (int b = 0; b < n; b++) {
+    const int j = jl[b];
+    if (j < 0) continue;
+    const double *xj = xf + 3 * j, *rj = rf + 3 * j;
+    Double4 x0 = bcast(rj) - ri0, x1 = bcast(rj + 1) - ri1, x2 = bcast(rj + 2) - ri2;
+    if (PBC) {
+      double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
+      box.image(y0, y1, y2);
+      x0 = splat(y0);
+      x1 = splat(y1);
+      x2 = splat(y2);
+    }
+    if (MODE != BreakingRule::NOBREAK) {
+      const double e0 = xj[0] - xi[0], e1 = xj[1] - xi[1], e2 = xj[2] - xi[2];
+      const double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
+      const double r2 = std::fma(e2, e2, std::fma(e1, e1, e0 * e0));
+      const double q2 = std::fma(y2, y2, std::fma(y1, y1, y0 * y0));
+      const int jtype = UNIFORM ? 1 : p.type[j];
+      if (rule.check<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, p.smin[j]), acc,
+                                    den)) {
+        jl[b] = -1;
+        broke = 1;
+        continue;
+      }
+    }
+    const Double4 we = bcast(om + b) * (load3(xj) - xiv);
+    m0 = fma4(we, x0, m0);
+    m1 = fma4(we, x1, m1);
+    m2 = fma4(we, x2, m2);
+  }
+  double c[12];
+  store4(c, m0);
+  store4(c + 4, m1);
+  store4(c + 8, m2);
+  for (int r = 0; r < 3; r++)
+    for (int k = 0; k < 3; k++) M[3 * r + k] = c[4 * k + r];
+  return broke;
+}
+#endif
+
 // FUSED: the version with fused multiply-adds (linalg/fused.h); inlined into the function
 // that selects it, so that it is compiled for that function's target (peri/instances.h)
 template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
@@ -26,7 +136,6 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
 {
   constexpr int NG = ParticleFields::NG, NK = ParticleFields::NK;
   const BreakingRule &rule = model.breaking();
-  const double *xf = p.x;
   const double *rf = p.x0;
   const int *type = p.type;
   double *s0 = p.smin;
@@ -39,41 +148,21 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
 
   for (int i = 0; i < nlocal; i++) {
     const int itype = type[i];
-    const double xi0 = xf[3 * i], xi1 = xf[3 * i + 1], xi2 = xf[3 * i + 2];
-    const double ri0 = rf[3 * i], ri1 = rf[3 * i + 1], ri2 = rf[3 * i + 2];
-    const int n = fam.npartner[i];
-    int *jl = fam.jlocal[i];
-    const double *om = fam.omega[i];
     double acc = ACC0, den = 0.0;
     int broke = 0;
     const double smini = (MODE != BreakingRule::NOBREAK) ? s0[i] : 0.0;
 
-    // the breaking check, and each unbroken bond's omega eta and xi into the rows, whose sum
-    // is M (bond_rows.h)
-    rows.clear();
-    for (int b = 0; b < n; b++) {
-      const int j = jl[b];
-      if (j < 0) continue;
-      const double *xj = xf + 3 * j;
-      const double e0 = xj[0] - xi0;
-      const double e1 = xj[1] - xi1;
-      const double e2 = xj[2] - xi2;
-      const double *rj = rf + 3 * j;
-      double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
-      if (PBC) box.image(x0, x1, x2);
-      if (MODE != BreakingRule::NOBREAK) {
-        const double r2 = madd<FUSED>(e2, e2, madd<FUSED>(e1, e1, e0 * e0));
-        const double q2 = madd<FUSED>(x2, x2, madd<FUSED>(x1, x1, x0 * x0));
-        const int jtype = UNIFORM ? 1 : type[j];
-        if (rule.check<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, s0[j]), acc, den)) {
-          jl[b] = -1;
-          broke = 1;
-          continue;
-        }
-      }
-      const double w = om[b];
-      rows.push(w * e0, w * e1, w * e2, x0, x1, x2);
-    }
+    // the breaking check, and M = sum omega eta (x) xi over the unbroken bonds (M of a
+    // regular particle goes to the free row of mrow)
+    double *M = mrow[waiting ? 1 : 0];
+    // (the 4-wide loop with the other 4-wide passes: where fields.cols is given)
+#ifdef PERISISSM_CPU_DISPATCH
+    if (FUSED && fields.cols)
+      broke = state_bonds_fused<MODE, UNIFORM, PBC>(rule, p, fam, box, i, smini, acc, den, M);
+    else
+#endif
+      broke = state_bonds<MODE, UNIFORM, PBC, FUSED>(rule, p, fam, box, i, smini, acc, den,
+                                                     rows, M);
 
     if (MODE != BreakingRule::NOBREAK) {
       fields.smin_new[i] = BreakingRule::smin_from<UNIFORM>(acc, den, smini);
@@ -87,8 +176,6 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
     double *h = fields.h + 9 * i;
     if (MEMBRANE && fam.kregular[i] && model.membrane(itype)) {
       // a membrane particle: its own state (membrane/membrane.h)
-      double M[9];
-      rows.outer_sum<FUSED>(M);
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
       double *k = blocks ? fields.k + NK * i : nullptr;
       if (k) {
@@ -101,8 +188,6 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
     } else if (fam.kregular[i]) {
       // the stresses of regular particles two at a time (their SVDs run side by side): this
       // one waits for the next, or goes with the one waiting
-      double *M = mrow[waiting ? 1 : 0];
-      rows.outer_sum<FUSED>(M);
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
       double *k = blocks ? fields.k + NK * i : nullptr;
       if (k) {
@@ -181,19 +266,6 @@ inline void implicit_block(const Families &fam, const ParticleFields &fields, in
 }
 
 #ifdef PERISISSM_CPU_DISPATCH
-// four doubles (GCC vector extension): one 4-wide register in x86-64-v3 code
-typedef double Double4 __attribute__((vector_size(32)));
-
-// c + w a per lane (a: four doubles), rounded once
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 fma4(double w, const double *a,
-                                                                Double4 c)
-{
-  Double4 v;
-  __builtin_memcpy(&v, a, sizeof v);
-  return Double4{__builtin_fma(w, v[0], c[0]), __builtin_fma(w, v[1], c[1]),
-                 __builtin_fma(w, v[2], c[2]), __builtin_fma(w, v[3], c[3])};
-}
-
 // lo, hi += w k_j (the eight doubles of a row of k)
 PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void add_k_row(const double *kf, int j,
                                                                   double w, Double4 &lo,
@@ -241,6 +313,75 @@ PERISISSM_FUSED_TARGET inline void implicit_blocks_fused(const Families &fam,
     __builtin_memcpy(a + 4, &hi[q], sizeof hi[q]);
     finish_block(fields, i0 + q, a, block[i0 + q]);
   }
+}
+#endif
+
+#ifdef PERISISSM_CPU_DISPATCH
+// The fused force pass, 4-wide (linalg/double4.h): the same operations in the same order as
+// force_pass<..., FUSED = true> below, so the same bits. H of each particle comes by columns
+// from fields.cols (peri/columns.h, filled here), each component of xi is in every lane of its
+// own register; the force is a 3-vector in lanes 0-2.
+template <int EVFLAG, int PBC, int BLOCKS>
+PERISISSM_FUSED_TARGET void force_pass_columns(const Particles &p, const Families &fam,
+                                               const ReferenceBox &box,
+                                               const ParticleFields &fields,
+                                               const Virial &virial, double **block)
+{
+  constexpr int NC = ParticleFields::NCOLS;
+  const double *xf = p.x;
+  const double *rf = p.x0;
+  const double *cols = fields.cols;
+  const int nlocal = p.nlocal;
+  fill_columns(fields.h, 9, p.nall, fields.cols);
+
+  for (int i = 0; i < nlocal; i++) {
+    const double *ci = cols + NC * i;
+    const Double4 hi0 = load4(ci), hi1 = load4(ci + 4), hi2 = load4(ci + 8);
+    const double *ri = rf + 3 * i;
+    const Double4 ri0 = splat(ri[0]), ri1 = splat(ri[1]), ri2 = splat(ri[2]);
+    const int n = fam.npartner[i];
+    const int *jl = fam.jlocal[i];
+    const double *om = fam.omega[i];
+    Double4 fsum = splat(0.0);
+    BondVirial vir;
+
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *cj = cols + NC * j;
+      const double *rj = rf + 3 * j;
+      Double4 x0 = bcast(rj) - ri0, x1 = bcast(rj + 1) - ri1, x2 = bcast(rj + 2) - ri2;
+      if (PBC) {
+        double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
+        box.image(y0, y1, y2);
+        x0 = splat(y0);
+        x1 = splat(y1);
+        x2 = splat(y2);
+      }
+      // w (H_i + H_j) xi
+      const Double4 t = bcast(om + b) *
+          mat_vec(hi0 + load4(cj), hi1 + load4(cj + 4), hi2 + load4(cj + 8), x0, x1, x2);
+      fsum += t;
+      if (EVFLAG) {
+        double tv[4], ev[4];
+        store4(tv, t);
+        store4(ev, load3(xf + 3 * j) - load3(xf + 3 * i));
+        vir.add(ev[0], ev[1], ev[2], tv[0], tv[1], tv[2]);
+      }
+    }
+
+    double fs[4];
+    store4(fs, fsum);
+    p.f[3 * i] += fs[0];
+    p.f[3 * i + 1] += fs[1];
+    p.f[3 * i + 2] += fs[2];
+    if (EVFLAG) vir.tally(virial, i, -0.5 * p.volume[i]);
+    // (while the last four families are in the cache)
+    if constexpr (BLOCKS)
+      if ((i & 3) == 3) implicit_blocks_fused<4>(fam, fields, i - 3, block);
+  }
+  if constexpr (BLOCKS)
+    for (int i = nlocal & ~3; i < nlocal; i++) implicit_blocks_fused<1>(fam, fields, i, block);
 }
 #endif
 
@@ -341,6 +482,14 @@ void elastic_force_pass(const Particles &p, const Families &fam, const Reference
   with_version([&](auto fused) PERISISSM_INLINE {
     with_flag(block != nullptr, [&](auto blocks) PERISISSM_INLINE {
       with_flags(virial.any(), box.any(), [&](auto ev, auto pbc) PERISISSM_INLINE {
+#ifdef PERISISSM_CPU_DISPATCH
+        if constexpr (decltype(fused)::value)
+          if (fields.cols) {
+            force_pass_columns<decltype(ev)::value, decltype(pbc)::value,
+                               decltype(blocks)::value>(p, fam, box, fields, virial, block);
+            return;
+          }
+#endif
         force_pass<decltype(ev)::value, decltype(pbc)::value, decltype(blocks)::value,
                    decltype(fused)::value>(p, fam, box, fields, virial, block);
       });

@@ -37,6 +37,10 @@ struct ParticleFields {
   double *smin_new = nullptr;   // scratch, one per owned particle
   double *normal = nullptr;     // scratch, 3 per particle (owned and ghost): current normals of
                                 // membrane particles; needed only when the model has membranes
+  double *cols = nullptr;       // scratch, NCOLS per particle (owned and ghost), optional: the
+                                // fused passes' copy of F, then of H, by columns (peri/columns.h);
+                                // without it they run their scalar code
+  enum { NCOLS = 12 };
 };
 
 // One per-particle field: width doubles per particle, contiguous rows.

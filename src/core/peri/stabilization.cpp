@@ -2,10 +2,12 @@
 
 #include "peri/stabilization.h"
 
+#include "linalg/double4.h"
 #include "linalg/fused.h"
 #include "linalg/small_matrix.h"
 #include "membrane/membrane.h"
 #include "peri/bond_rows.h"
+#include "peri/columns.h"
 #include "peri/instances.h"
 #include "peri/model.h"
 
@@ -84,6 +86,112 @@ inline void normal_term(const double *F, const double *n0, const double *nrm, co
   for (int r = 0; r < 3; r++)
     for (int c2 = 0; c2 < 3; c2++) G[3 * r + c2] = u[r] * im.t1[c2] + v[r] * im.t2[c2];
 }
+
+// H_i -= Q_i K_i^-1 / 2 from q (sum_j 2 a_i Cbar omega z (x) xi, row-major)
+inline void add_q_term(const double q[9], const double *k, double *h)
+{
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++)
+      h[3 * r + c] -= 0.5 * (q[3 * r] * k[c] + q[3 * r + 1] * k[3 + c] + q[3 * r + 2] * k[6 + c]);
+}
+
+#ifdef PERISISSM_CPU_DISPATCH
+// The fused pass of a deck without membranes, 4-wide (linalg/double4.h): the same operations
+// in the same order as pass<..., FUSED = true> below, so the same bits. F of each particle
+// comes by columns from fields.cols (peri/columns.h; lane 3 of column 0 holds C, of column 1
+// the regular flag); z, the direct force and the columns of Q are 3-vectors in lanes 0-2 (lane
+// 3 carries finite values nobody reads), each component of xi is in every lane of its own
+// register, and Q is summed bond by bond in family order as BondRows::outer_sum sums it.
+template <int EFLAG, int EVFLAG, int PBC>
+PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam,
+                                         const ReferenceBox &box, ParticleFields &fields,
+                                         const Virial &virial)
+{
+  constexpr int NC = ParticleFields::NCOLS;
+  const double *xf = p.x;
+  const double *rf = p.x0;
+  const double *cols = fields.cols;
+  const int nlocal = p.nlocal;
+  fill_columns(fields.g, ParticleFields::NG, p.nall, fields.cols);
+  const Double4 half = splat(0.5);
+
+  for (int i = 0; i < nlocal; i++) {
+    const double *ci = cols + NC * i;
+    const Double4 fi0 = load4(ci), fi1 = load4(ci + 4), fi2 = load4(ci + 8);
+    const Double4 cmod = bcast(ci + 3);
+    const int regi = ci[7] > 0.0;
+    const double *ri = rf + 3 * i;
+    const Double4 xi = load3(xf + 3 * i);
+    const Double4 ri0 = splat(ri[0]), ri1 = splat(ri[1]), ri2 = splat(ri[2]);
+    const int n = fam.npartner[i];
+    const int *jl = fam.jlocal[i];
+    const double *om = fam.omega[i];
+    Double4 fsum = splat(0.0), q0 = fsum, q1 = fsum, q2 = fsum;
+    double ws = 0.0;
+    BondVirial vir;
+
+    for (int b = 0; b < n; b++) {
+      const int j = jl[b];
+      if (j < 0) continue;
+      const double *cj = cols + NC * j;
+      const int regj = cj[7] > 0.0;
+      const double *rj = rf + 3 * j;
+      Double4 x0 = bcast(rj) - ri0, x1 = bcast(rj + 1) - ri1, x2 = bcast(rj + 2) - ri2;
+      if (PBC) {
+        double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
+        box.image(y0, y1, y2);
+        x0 = splat(y0);
+        x1 = splat(y1);
+        x2 = splat(y2);
+      }
+      const Double4 e = load3(xf + 3 * j) - xi;
+      Double4 z, u;
+      const Double4 cw = half * (cmod + bcast(cj + 3)) * bcast(om + b);
+      if (regi && regj) {
+        z = e - half * mat_vec(fi0 + load4(cj), fi1 + load4(cj + 4), fi2 + load4(cj + 8), x0,
+                               x1, x2);
+        u = cw * z;    // qa = 1
+      } else if (regi) {
+        z = e - mat_vec(fi0, fi1, fi2, x0, x1, x2);
+        u = splat(2.0) * (cw * z);
+      } else if (regj) {
+        z = e - mat_vec(load4(cj), load4(cj + 4), load4(cj + 8), x0, x1, x2);
+        u = splat(0.0) * (cw * z);
+      } else {
+        continue;
+      }
+      const Double4 t = cw * z;
+      fsum += t;
+      q0 = fma4(u, x0, q0);
+      q1 = fma4(u, x1, q1);
+      q2 = fma4(u, x2, q2);
+      if (EFLAG || EVFLAG) {
+        double tz[4], tv[4], ev[4];
+        store4(tz, t * z);
+        store4(tv, t);
+        store4(ev, e);
+        if (EFLAG) ws += tz[0] + tz[1] + tz[2];
+        if (EVFLAG) vir.add(ev[0], ev[1], ev[2], tv[0], tv[1], tv[2]);
+      }
+    }
+
+    double fs[4];
+    store4(fs, fsum);
+    p.f[3 * i] += fs[0];
+    p.f[3 * i + 1] += fs[1];
+    p.f[3 * i + 2] += fs[2];
+    if (EFLAG) fields.w[i] += 0.25 * ws;
+    if (EVFLAG) vir.tally(virial, i, -0.5 * p.volume[i]);
+    if (!regi) continue;
+    double c[12];
+    store4(c, q0);
+    store4(c + 4, q1);
+    store4(c + 8, q2);
+    const double q[9] = {c[0], c[4], c[8], c[1], c[5], c[9], c[2], c[6], c[10]};
+    add_q_term(q, fam.kinv[i], fields.h + 9 * i);
+  }
+}
+#endif
 
 // FUSED: the version with fused multiply-adds (linalg/fused.h, peri/instances.h)
 template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, bool FUSED>
@@ -197,10 +305,7 @@ template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, bool FUSED>
     // H_i = A_i + Q_i K_i^-1 with Q_i = -(sum above)/2 (the sum carries 2 a_i)
     const double *k = fam.kinv[i];
     double *h = fields.h + 9 * i;
-    for (int r = 0; r < 3; r++)
-      for (int c = 0; c < 3; c++)
-        h[3 * r + c] -=
-            0.5 * (q[3 * r] * k[c] + q[3 * r + 1] * k[3 + c] + q[3 * r + 2] * k[6 + c]);
+    add_q_term(q, k, h);
     if (MEMBRANE && hasni) {
       double G[9];
       normal_term(Fi, fam.normal[i], ni, gn, G);
@@ -223,6 +328,14 @@ void stabilization_pass(const Model &model, const Particles &p, const Families &
   with_version([&](auto fused) PERISISSM_INLINE {
     with_flags(energy, membranes, [&](auto eflag, auto membrane) PERISISSM_INLINE {
       with_flags(virial.any(), box.any(), [&](auto ev, auto pbc) PERISISSM_INLINE {
+#ifdef PERISISSM_CPU_DISPATCH
+        if constexpr (decltype(fused)::value && !decltype(membrane)::value)
+          if (fields.cols) {
+            pass_columns<decltype(eflag)::value, decltype(ev)::value, decltype(pbc)::value>(
+                p, fam, box, fields, virial);
+            return;
+          }
+#endif
         pass<decltype(eflag)::value, decltype(ev)::value, decltype(pbc)::value,
              decltype(membrane)::value, decltype(fused)::value>(p, fam, box, fields, virial);
       });

@@ -159,6 +159,7 @@ class Cluster : public PeriSISSM::Halo {
     std::vector<double> f;          // force densities of the owned rows
     std::vector<double> k;          // implicit stiffness rows (all rows)
     std::vector<double> g;          // F, C, regular (all rows)
+    std::vector<double> h;          // H (all rows)
     std::vector<double> blocks;     // SISSM diagonal blocks of the owned rows (6 each)
     double virial[6] = {0, 0, 0, 0, 0, 0};
   };
@@ -170,7 +171,8 @@ class Cluster : public PeriSISSM::Halo {
     Result out;
     std::vector<double> f(3 * nall, 0.0), g(nall * PeriSISSM::ParticleFields::NG, 0.0),
         h(9 * nall, 0.0), kk(nall * PeriSISSM::ParticleFields::NK, 0.0), w(nall, 0.0),
-        sn(nall, 0.0), nrm(3 * nall, 0.0);
+        sn(nall, 0.0), nrm(3 * nall, 0.0),
+        cols(columns ? PeriSISSM::ParticleFields::NCOLS * nall : 0, 0.0);
     const PeriSISSM::Particles p = particles(f.data());
     PeriSISSM::ParticleFields fields;
     fields.g = g.data();
@@ -179,8 +181,10 @@ class Cluster : public PeriSISSM::Halo {
     fields.w = w.data();
     fields.smin_new = sn.data();
     fields.normal = nrm.data();
+    fields.cols = columns ? cols.data() : nullptr;
+    fields.energy = energy;
     PeriSISSM::Virial vir;
-    vir.global = out.virial;
+    if (virial) vir.global = out.virial;
     std::vector<int> broke;
     out.blocks.assign(6 * nlocal, 0.0);
     std::vector<double *> brows(nlocal);
@@ -191,8 +195,13 @@ class Cluster : public PeriSISSM::Halo {
     out.f.assign(f.begin(), f.begin() + 3 * nlocal);
     out.k = kk;
     out.g = g;
+    out.h = h;
     return out;
   }
+
+  // what evaluate() asks for: the fused passes' columns scratch (ParticleFields::cols), the
+  // energy (else Result::energy lacks the stabilization's), the virial
+  bool columns = true, energy = true, virial = true;
 
   int nlocal = 0, nall = 0;
   std::vector<double> x, x0, ref, volume, smin, shift;
