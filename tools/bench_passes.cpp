@@ -19,11 +19,25 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <new>
 #include <vector>
 
 using namespace PeriSISSM;
 
 namespace {
+// 64-byte aligned storage, as LAMMPS allocates its per-atom arrays (LAMMPS_MEMALIGN = 64): a row
+// of eight doubles is then one cache line
+template <class T> struct Aligned64 {
+  using value_type = T;
+  Aligned64() = default;
+  template <class U> Aligned64(const Aligned64<U> &) {}
+  T *allocate(size_t n) { return static_cast<T *>(::operator new(n * sizeof(T), std::align_val_t(64))); }
+  void deallocate(T *p, size_t) { ::operator delete(p, std::align_val_t(64)); }
+  template <class U> bool operator==(const Aligned64<U> &) const { return true; }
+  template <class U> bool operator!=(const Aligned64<U> &) const { return false; }
+};
+typedef std::vector<double, Aligned64<double>> Doubles;
+
 double now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
@@ -55,8 +69,8 @@ int main(int argc, char **argv)
       c.x[3 * i + k] = c.x0[3 * i + k] * (1.0 + 0.001 * k) + 1.0e-3 * ((7 * i + k) % 5);
 
   const int nall = c.nall;
-  std::vector<double> f(3 * nall), g(nall * ParticleFields::NG), h(9 * nall),
-      k(nall * ParticleFields::NK), w(nall), smin_new(nall), blocks(6 * nall);
+  Doubles f(3 * nall), g(nall * ParticleFields::NG), h(9 * nall), k(nall * ParticleFields::NK),
+      w(nall), smin_new(nall), blocks(6 * nall);
   std::vector<double *> rows(nall);
   for (int i = 0; i < nall; i++) rows[i] = blocks.data() + 6 * i;
   const Particles p = c.particles(f.data());
@@ -66,7 +80,7 @@ int main(int argc, char **argv)
   fields.k = k.data();
   fields.w = w.data();
   fields.smin_new = smin_new.data();
-  std::vector<double> cols(ParticleFields::NCOLS * static_cast<size_t>(nall));
+  Doubles cols(ParticleFields::NCOLS * static_cast<size_t>(nall));
   fields.cols = std::getenv("BENCH_PASSES_SCALAR") ? nullptr : cols.data();
   Virial virial;
   std::vector<int> broke;
@@ -136,7 +150,7 @@ int main(int argc, char **argv)
   // the bits of the results (force densities summed over the rounds, H, the blocks, F): the
   // same n, rounds and version of the passes give the same fingerprint
   unsigned long long hash = 1469598103934665603ull;
-  for (const std::vector<double> *v : {&f, &h, &blocks, &g})
+  for (const Doubles *v : {&f, &h, &blocks, &g})
     for (const double a : *v) {
       unsigned long long bits;
       std::memcpy(&bits, &a, sizeof bits);
