@@ -11,7 +11,7 @@ namespace PeriSISSM {
 // What the particles are.
 struct Particles {
   int nlocal = 0;                   // owned particles (rows 0 .. nlocal-1)
-  int nall = 0;                     // owned and ghost rows (needed by membrane decks only)
+  int nall = 0;                     // owned and ghost rows (membrane decks, ParticleFields::cols)
   const double *x = nullptr;        // current positions
   const double *x0 = nullptr;       // reference positions
   const double *volume = nullptr;   // V_i

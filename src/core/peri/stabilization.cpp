@@ -96,13 +96,13 @@ inline void add_q_term(const double q[9], const double *k, double *h)
 }
 
 #ifdef PERISISSM_CPU_DISPATCH
-// The fused pass of a deck without membranes, 4-wide (linalg/double4.h): the same operations
+// The fused pass, 4-wide (linalg/double4.h): the same operations
 // in the same order as pass<..., FUSED = true> below, so the same bits. F of each particle
 // comes by columns from fields.cols (peri/columns.h; lane 3 of column 0 holds C, of column 1
 // the regular flag); z, the direct force and the columns of Q are 3-vectors in lanes 0-2 (lane
 // 3 carries finite values nobody reads), each component of xi is in every lane of its own
 // register, and Q is summed bond by bond in family order as BondRows::outer_sum sums it.
-template <int EFLAG, int EVFLAG, int PBC>
+template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE>
 PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam,
                                          const ReferenceBox &box, ParticleFields &fields,
                                          const Virial &virial)
@@ -129,6 +129,10 @@ PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam
     Double4 fsum = splat(0.0), q0 = fsum, q1 = fsum, q2 = fsum;
     double ws = 0.0;
     BondVirial vir;
+    const double *ni = MEMBRANE ? fields.normal + 3 * i : nullptr;
+    const bool hasni = MEMBRANE && (ni[0] != 0.0 || ni[1] != 0.0 || ni[2] != 0.0);
+    const Double4 niv = MEMBRANE ? load3(fields.normal + 3 * i) : splat(0.0);
+    Double4 gn = splat(0.0);    // membranes: dE/dn_i per unit volume
 
     for (int b = 0; b < n; b++) {
       const int j = jl[b];
@@ -160,6 +164,40 @@ PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam
       } else {
         continue;
       }
+      if (MEMBRANE) {
+        // the part of z in the tangent planes of the two ends (an end without a normal takes
+        // the other's), as pass<> below does it
+        const double *nj = fields.normal + 3 * j;
+        const bool hasnj = nj[0] != 0.0 || nj[1] != 0.0 || nj[2] != 0.0;
+        if (hasni || hasnj) {
+          const Double4 njv = load3(nj);
+          const Double4 na = hasni ? niv : njv, nb = hasnj ? njv : niv;
+          double pa[4], pb[4];
+          store4(pa, na * z);
+          store4(pb, nb * z);
+          const double da = pa[0] + pa[1] + pa[2], db = pb[0] + pb[1] + pb[2];
+          if (hasni) {
+            const double sg = -0.5 * lane0(cw) * (hasnj ? da : 2.0 * da);
+            gn += splat(sg) * z;
+          }
+          const Double4 pz = z - half * (splat(da) * na + splat(db) * nb);
+          const Double4 t = cw * pz;
+          fsum += t;
+          const Double4 um = (regi && regj) ? t : (regi ? splat(2.0) * t : splat(0.0) * t);
+          q0 = fma4(um, x0, q0);
+          q1 = fma4(um, x1, q1);
+          q2 = fma4(um, x2, q2);
+          if (EFLAG || EVFLAG) {
+            double tz[4], tv[4], ev[4];
+            store4(tz, t * z);
+            store4(tv, t);
+            store4(ev, e);
+            if (EFLAG) ws += tz[0] + tz[1] + tz[2];
+            if (EVFLAG) vir.add(ev[0], ev[1], ev[2], tv[0], tv[1], tv[2]);
+          }
+          continue;
+        }
+      }
       const Double4 t = cw * z;
       fsum += t;
       q0 = fma4(u, x0, q0);
@@ -188,7 +226,17 @@ PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam
     store4(c + 4, q1);
     store4(c + 8, q2);
     const double q[9] = {c[0], c[4], c[8], c[1], c[5], c[9], c[2], c[6], c[10]};
-    add_q_term(q, fam.kinv[i], fields.h + 9 * i);
+    const double *k = fam.kinv[i];
+    double *h = fields.h + 9 * i;
+    add_q_term(q, k, h);
+    if (MEMBRANE && hasni) {
+      double gv[4], G[9];
+      store4(gv, gn);
+      normal_term(fields.g + ParticleFields::NG * i, fam.normal[i], ni, gv, G);
+      for (int r = 0; r < 3; r++)
+        for (int c2 = 0; c2 < 3; c2++)
+          h[3 * r + c2] += G[3 * r] * k[c2] + G[3 * r + 1] * k[3 + c2] + G[3 * r + 2] * k[6 + c2];
+    }
   }
 }
 #endif
@@ -329,10 +377,10 @@ void stabilization_pass(const Model &model, const Particles &p, const Families &
     with_flags(energy, membranes, [&](auto eflag, auto membrane) PERISISSM_INLINE {
       with_flags(virial.any(), box.any(), [&](auto ev, auto pbc) PERISISSM_INLINE {
 #ifdef PERISISSM_CPU_DISPATCH
-        if constexpr (decltype(fused)::value && !decltype(membrane)::value)
+        if constexpr (decltype(fused)::value)
           if (fields.cols) {
-            pass_columns<decltype(eflag)::value, decltype(ev)::value, decltype(pbc)::value>(
-                p, fam, box, fields, virial);
+            pass_columns<decltype(eflag)::value, decltype(ev)::value, decltype(pbc)::value,
+                         decltype(membrane)::value>(p, fam, box, fields, virial);
             return;
           }
 #endif

@@ -2,7 +2,7 @@
 // the scalar code of the fused version (cols not given): the same operations in the same order,
 // so the same bits, in every case the passes distinguish: periodic or not, broken bonds, a
 // particle with a singular shape tensor, without stabilization, energy and virial asked for or
-// not, membranes (whose stabilization stays scalar), and the breaking check in both modes
+// not, membranes, and the breaking check in both modes
 // with one breaking rule for every pair and with a rule per type pair. Bitwise comparison: any
 // difference at all fails. Skipped where the fused version does not run (no AVX2 and FMA, or a
 // build without the dispatch), since both evaluations are then the plain scalar code.
@@ -101,14 +101,20 @@ TEST(FourWidePasses, EvaluationHasTheBitsOfTheScalarCode)
         }
 }
 
-// A membrane sheet: the state pass goes 4-wide, the stabilization stays scalar.
+// A membrane sheet (its stabilization counts z in the tangent planes only), with a particle of
+// a single partner (singular: no F and no normal, so its bond takes the other end's normal)
+// and broken bonds.
 TEST(FourWidePasses, MembraneEvaluationHasTheBitsOfTheScalarCode)
 {
   if (!PeriSISSM::fused_passes()) GTEST_SKIP() << "the fused version does not run here";
   const PeriSISSM::Model model = make_model("neohookean", 1.0, 1, 2.2, true, false);
   Cluster cl(5, 4, 1, 2.2, false, 7u, 0.15, 0.3);
+  cl.add_lonely(2.0);
   for (int i = 0; i < cl.nlocal; i++) cl.normal.insert(cl.normal.end(), {0.0, 0.0, 1.0});
   cl.build(model);
+  for (int i = 0; i < cl.nlocal; i++)
+    for (int b = i % 3; b < cl.npartner[i]; b += 11) cl.jl[i][b] = -1;
+  ASSERT_EQ(cl.kregular[cl.nlocal - 1], 0);
   std::vector<double> y = moved(cl, 5u, 0.03, 0.05);
   for (int i = 0; i < cl.nlocal; i++) y[3 * i + 2] += 0.05 * cl.x0[3 * i] * cl.x0[3 * i];
   cl.columns = true;
