@@ -6,6 +6,8 @@
 #ifndef PERISISSM_PERI_COLUMNS_H
 #define PERISISSM_PERI_COLUMNS_H
 
+#include "linalg/double4.h"
+#include "peri/family.h"
 #include "peri/fields.h"
 
 namespace PeriSISSM {
@@ -25,6 +27,28 @@ inline void fill_columns(const double *rows, int width, int n, double *cols)
     }
   }
 }
+
+#ifdef PERISISSM_CPU_DISPATCH
+// The reference bond xi = X_j - X_i of the 4-wide passes, each component broadcast into every
+// lane of x0, x1, x2 (from the partner's reference position rj and splats ri0, ri1, ri2 of
+// the particle's); its minimum image in a periodic box (PBC)
+template <int PBC>
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void bond_xi(
+    const double *rj, Double4 ri0, Double4 ri1, Double4 ri2, const ReferenceBox &box,
+    Double4 &x0, Double4 &x1, Double4 &x2)
+{
+  x0 = bcast(rj) - ri0;
+  x1 = bcast(rj + 1) - ri1;
+  x2 = bcast(rj + 2) - ri2;
+  if (PBC) {
+    double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
+    box.image(y0, y1, y2);
+    x0 = splat(y0);
+    x1 = splat(y1);
+    x2 = splat(y2);
+  }
+}
+#endif
 
 }  // namespace PeriSISSM
 

@@ -18,6 +18,20 @@ namespace PeriSISSM {
 
 namespace {
 
+// The breaking check of the bond ij (BreakingRule::check) from eta = (e0, e1, e2) and xi =
+// (x0, x1, x2); true if it breaks
+template <int MODE, int UNIFORM, bool FUSED>
+[[gnu::always_inline]] inline bool bond_breaks(const BreakingRule &rule, const Particles &p,
+                                               int itype, int j, double smini, double e0,
+                                               double e1, double e2, double x0, double x1,
+                                               double x2, double &acc, double &den)
+{
+  const double r2 = madd<FUSED>(e2, e2, madd<FUSED>(e1, e1, e0 * e0));
+  const double q2 = madd<FUSED>(x2, x2, madd<FUSED>(x1, x1, x0 * x0));
+  const int jtype = UNIFORM ? 1 : p.type[j];
+  return rule.check<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, p.smin[j]), acc, den);
+}
+
 // The bonds of particle i in the state pass: the breaking check (a bond that breaks gets
 // partner index -1), and M = sum omega eta (x) xi over the unbroken bonds (row-major), from
 // rows of omega eta and xi (bond_rows.h). Returns 1 if a bond broke.
@@ -47,16 +61,12 @@ template <int MODE, int UNIFORM, int PBC, bool FUSED>
     const double *rj = rf + 3 * j;
     double x0 = rj[0] - ri0, x1 = rj[1] - ri1, x2 = rj[2] - ri2;
     if (PBC) box.image(x0, x1, x2);
-    if (MODE != BreakingRule::NOBREAK) {
-      const double r2 = madd<FUSED>(e2, e2, madd<FUSED>(e1, e1, e0 * e0));
-      const double q2 = madd<FUSED>(x2, x2, madd<FUSED>(x1, x1, x0 * x0));
-      const int jtype = UNIFORM ? 1 : p.type[j];
-      if (rule.check<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, p.smin[j]), acc,
-                                    den)) {
-        jl[b] = -1;
-        broke = 1;
-        continue;
-      }
+    if (MODE != BreakingRule::NOBREAK &&
+        bond_breaks<MODE, UNIFORM, FUSED>(rule, p, itype, j, smini, e0, e1, e2, x0, x1, x2, acc,
+                                          den)) {
+      jl[b] = -1;
+      broke = 1;
+      continue;
     }
     const double w = om[b];
     rows.push(w * e0, w * e1, w * e2, x0, x1, x2);
@@ -89,27 +99,16 @@ PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Par
   for (int b = 0; b < n; b++) {
     const int j = jl[b];
     if (j < 0) continue;
-    const double *xj = xf + 3 * j, *rj = rf + 3 * j;
-    Double4 x0 = bcast(rj) - ri0, x1 = bcast(rj + 1) - ri1, x2 = bcast(rj + 2) - ri2;
-    if (PBC) {
-      double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
-      box.image(y0, y1, y2);
-      x0 = splat(y0);
-      x1 = splat(y1);
-      x2 = splat(y2);
-    }
-    if (MODE != BreakingRule::NOBREAK) {
-      const double e0 = xj[0] - xi[0], e1 = xj[1] - xi[1], e2 = xj[2] - xi[2];
-      const double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
-      const double r2 = std::fma(e2, e2, std::fma(e1, e1, e0 * e0));
-      const double q2 = std::fma(y2, y2, std::fma(y1, y1, y0 * y0));
-      const int jtype = UNIFORM ? 1 : p.type[j];
-      if (rule.check<MODE, UNIFORM>(r2, q2, itype, jtype, std::max(smini, p.smin[j]), acc,
-                                    den)) {
-        jl[b] = -1;
-        broke = 1;
-        continue;
-      }
+    const double *xj = xf + 3 * j;
+    Double4 x0, x1, x2;
+    bond_xi<PBC>(rf + 3 * j, ri0, ri1, ri2, box, x0, x1, x2);
+    if (MODE != BreakingRule::NOBREAK &&
+        bond_breaks<MODE, UNIFORM, true>(rule, p, itype, j, smini, xj[0] - xi[0],
+                                         xj[1] - xi[1], xj[2] - xi[2], lane0(x0), lane0(x1),
+                                         lane0(x2), acc, den)) {
+      jl[b] = -1;
+      broke = 1;
+      continue;
     }
     const Double4 we = bcast(om + b) * (load3(xj) - xiv);
     m0 = fma4(we, x0, m0);
@@ -349,15 +348,8 @@ PERISISSM_FUSED_TARGET void force_pass_columns(const Particles &p, const Familie
       const int j = jl[b];
       if (j < 0) continue;
       const double *cj = cols + NC * j;
-      const double *rj = rf + 3 * j;
-      Double4 x0 = bcast(rj) - ri0, x1 = bcast(rj + 1) - ri1, x2 = bcast(rj + 2) - ri2;
-      if (PBC) {
-        double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
-        box.image(y0, y1, y2);
-        x0 = splat(y0);
-        x1 = splat(y1);
-        x2 = splat(y2);
-      }
+      Double4 x0, x1, x2;
+      bond_xi<PBC>(rf + 3 * j, ri0, ri1, ri2, box, x0, x1, x2);
       // w (H_i + H_j) xi
       const Double4 t = bcast(om + b) *
           mat_vec(hi0 + load4(cj), hi1 + load4(cj + 4), hi2 + load4(cj + 8), x0, x1, x2);

@@ -139,31 +139,21 @@ PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam
       if (j < 0) continue;
       const double *cj = cols + NC * j;
       const int regj = cj[7] > 0.0;
-      const double *rj = rf + 3 * j;
-      Double4 x0 = bcast(rj) - ri0, x1 = bcast(rj + 1) - ri1, x2 = bcast(rj + 2) - ri2;
-      if (PBC) {
-        double y0 = lane0(x0), y1 = lane0(x1), y2 = lane0(x2);
-        box.image(y0, y1, y2);
-        x0 = splat(y0);
-        x1 = splat(y1);
-        x2 = splat(y2);
-      }
+      Double4 x0, x1, x2;
+      bond_xi<PBC>(rf + 3 * j, ri0, ri1, ri2, box, x0, x1, x2);
       const Double4 e = load3(xf + 3 * j) - xi;
-      Double4 z, u;
-      const Double4 cw = half * (cmod + bcast(cj + 3)) * bcast(om + b);
-      if (regi && regj) {
+      Double4 z;
+      if (regi && regj)
         z = e - half * mat_vec(fi0 + load4(cj), fi1 + load4(cj + 4), fi2 + load4(cj + 8), x0,
                                x1, x2);
-        u = cw * z;    // qa = 1
-      } else if (regi) {
+      else if (regi)
         z = e - mat_vec(fi0, fi1, fi2, x0, x1, x2);
-        u = splat(2.0) * (cw * z);
-      } else if (regj) {
+      else if (regj)
         z = e - mat_vec(load4(cj), load4(cj + 4), load4(cj + 8), x0, x1, x2);
-        u = splat(0.0) * (cw * z);
-      } else {
+      else
         continue;
-      }
+      const Double4 cw = half * (cmod + bcast(cj + 3)) * bcast(om + b);
+      Double4 t = cw * z;
       if (MEMBRANE) {
         // the part of z in the tangent planes of the two ends (an end without a normal takes
         // the other's), as pass<> below does it
@@ -180,26 +170,12 @@ PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam
             const double sg = -0.5 * lane0(cw) * (hasnj ? da : 2.0 * da);
             gn += splat(sg) * z;
           }
-          const Double4 pz = z - half * (splat(da) * na + splat(db) * nb);
-          const Double4 t = cw * pz;
-          fsum += t;
-          const Double4 um = (regi && regj) ? t : (regi ? splat(2.0) * t : splat(0.0) * t);
-          q0 = fma4(um, x0, q0);
-          q1 = fma4(um, x1, q1);
-          q2 = fma4(um, x2, q2);
-          if (EFLAG || EVFLAG) {
-            double tz[4], tv[4], ev[4];
-            store4(tz, t * z);
-            store4(tv, t);
-            store4(ev, e);
-            if (EFLAG) ws += tz[0] + tz[1] + tz[2];
-            if (EVFLAG) vir.add(ev[0], ev[1], ev[2], tv[0], tv[1], tv[2]);
-          }
-          continue;
+          t = cw * (z - half * (splat(da) * na + splat(db) * nb));
         }
       }
-      const Double4 t = cw * z;
       fsum += t;
+      // the bond's weight in Q_i, times 2 (qa: 1, or 2 and 0 where one end has no F)
+      const Double4 u = (regi && regj) ? t : (regi ? splat(2.0) * t : splat(0.0) * t);
       q0 = fma4(u, x0, q0);
       q1 = fma4(u, x1, q1);
       q2 = fma4(u, x2, q2);
