@@ -95,6 +95,14 @@ inline void add_q_term(const double q[9], const double *k, double *h)
       h[3 * r + c] -= 0.5 * (q[3 * r] * k[c] + q[3 * r + 1] * k[3 + c] + q[3 * r + 2] * k[6 + c]);
 }
 
+// H_i += G_i K_i^-1 from the normal term G (normal_term, row-major)
+inline void add_normal_term(const double G[9], const double *k, double *h)
+{
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++)
+      h[3 * r + c] += G[3 * r] * k[c] + G[3 * r + 1] * k[3 + c] + G[3 * r + 2] * k[6 + c];
+}
+
 #ifdef PERISISSM_CPU_DISPATCH
 // The fused pass, 4-wide (linalg/double4.h): the same operations
 // in the same order as pass<..., FUSED = true> below, so the same bits. F of each particle
@@ -209,9 +217,7 @@ PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam
       double gv[4], G[9];
       store4(gv, gn);
       normal_term(fields.g + ParticleFields::NG * i, fam.normal[i], ni, gv, G);
-      for (int r = 0; r < 3; r++)
-        for (int c2 = 0; c2 < 3; c2++)
-          h[3 * r + c2] += G[3 * r] * k[c2] + G[3 * r + 1] * k[3 + c2] + G[3 * r + 2] * k[6 + c2];
+      add_normal_term(G, k, h);
     }
   }
 }
@@ -333,9 +339,7 @@ template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, bool FUSED>
     if (MEMBRANE && hasni) {
       double G[9];
       normal_term(Fi, fam.normal[i], ni, gn, G);
-      for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++)
-          h[3 * r + c] += G[3 * r] * k[c] + G[3 * r + 1] * k[3 + c] + G[3 * r + 2] * k[6 + c];
+      add_normal_term(G, k, h);
     }
   }
 }
