@@ -46,7 +46,7 @@ not count (contention for caches, memory bandwidth and clock frequency still doe
      288 gathered bytes as misses to DRAM; which one binds and by how much (arithmetic
      intensity against the machine balance GFlop/s / GB/s), and the fraction of the arithmetic
      ceiling achieved.
-4. Working sets of the small size and of the 54027-particle one (impact54k.geometry, this
+4. Working sets of the small size and of the 53784-particle one (impact54k.geometry, this
    folder; counted in numpy, not run): per-particle arrays (216 B each) and family arrays
    (12 B per slot and pass) against L2 and L3, and at 54k the time to stream the family arrays
    against the arithmetic ceiling.
