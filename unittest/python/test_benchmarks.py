@@ -161,8 +161,9 @@ def test_impact_speed_driver(tmp_path):
     out = run_driver("speed/bench_impact.py", "--ranks", 1, 2, "--csv", runs).stdout
     rows = read_csv(runs)
     configs = ("pmb", "lps", "nosb", "plain", "stvk", "neohookean", "jacobi", "block", "amg")
+    # beside (two serial runs at once, one per core) runs on 1 rank only
     assert sorted((r["config"], int(r["ranks"])) for r in rows) == \
-        sorted((c, n) for c in configs for n in (1, 2))
+        sorted([(c, n) for c in configs for n in (1, 2)] + [("beside", 1)])
     for r in rows:
         assert (r["size"], r["steps"], r["atoms"]) == ("small", "20", "3487"), r
         for name in ("us", "rss_bytes", "lammps_bytes"):
@@ -205,6 +206,14 @@ def test_impact_speed_driver(tmp_path):
     eff = re.findall(r"^2-rank parallel efficiency t1 / \(2 t2\) of the (medians|minima): (.*)$",
                      out, re.M)
     assert [w for w, _ in eff] == ["medians", "minima"] and eff[0][1] == eff[1][1], out[-3000:]
+    # the two serial runs at once against a lone one and the 2-rank run, from the csv's times
+    us = {(r["config"], int(r["ranks"])): float(r["us"]) for r in rows}
+    busy = re.search(r"^both cores busy \(medians\): .* each take ([0-9.]+) x a lone one; .*: "
+                     r"([0-9.]+)$", out, re.M)
+    assert busy, out[-3000:]
+    assert float(busy.group(1)) == pytest.approx(us["beside", 1] / us["nosb", 1], abs=0.006)
+    assert float(busy.group(2)) == pytest.approx(us["beside", 1] / (2 * us["nosb", 2]),
+                                                 abs=0.006)
 
 
 def test_bench_passes_tool():

@@ -14,6 +14,10 @@ Configurations (--styles keys), each run on every rank count of --ranks:
                         AVX2 and FMA; the log's "Pair peri/nosb: bond passes" line is printed)
     plain               the same with PERI_SISSM_PASSES=plain: the passes without fused
                         multiply-adds (src/core/linalg/fused.h), for the gain of the other
+    beside              peri/nosb linear x2: two serial runs of in.impact.nosb at once, pinned
+                        to cores 0 and 1 (taskset), their mean time; only with 1 in --ranks.
+                        How much two busy cores slow each other (on a virtual machine two
+                        vCPUs may share one physical core's units), which bounds a 2-rank run
     stvk, neohookean    in.impact.nosb with that model in place of linear in pair_coeff (a
                         generated copy of the deck; the deck has no variable for the model)
     jacobi              in.impact.sissm: fix sissm iterations 5 tolerance 0 with -var opts
@@ -24,7 +28,7 @@ Configurations (--styles keys), each run on every rank count of --ranks:
 
 Sizes: small, the deck as it is (3487 particles, --steps default 500); 54k, the same decks with
 impact54k.geometry (this folder; 53784 particles, --steps default 100) copied into the work
-directory as impact.geometry. 54k runs lps, nosb, plain, jacobi and block only. A second --steps value
+directory as impact.geometry. 54k runs lps, nosb, plain, beside, jacobi and block only. A second --steps value
 is the 54k step count; one value sets both.
 
 Runs alternate: each of the --rounds rounds (default 3) runs every configuration of every size
@@ -48,7 +52,10 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
   t / (k + 1), per force evaluation. jacobi takes exactly 5 iterations per step; krylov may
   take 4 (when CG meets its Eisenstat-Walker target early, one evaluation left is too few for
   a CG product and the check of its Newton iterate: that step ends with a SISSM sweep);
-- 2-rank parallel efficiency t1 / (2 t2) where both rank counts ran, and the load balance of
+- 2-rank parallel efficiency t1 / (2 t2) where both rank counts ran; with beside, t_x2 / t1
+  (1: the cores do not slow each other) and t_x2 / (2 t2), the 2-rank efficiency of peri/nosb
+  linear against the rate of two busy cores (what is left is communication, waiting and the
+  ranks' extra work); the load balance of
   the 2-rank runs: owned atoms ave / max over the ranks (LAMMPS's Nlocal), the efficiency that
   equal work per atom and free communication would give (1 for the 54K cylinder, whose axis
   runs between lattice columns; the small deck's runs through one, so one rank holds it);
@@ -111,6 +118,7 @@ class Config:
     opts: str = ""           # fix sissm options (-var opts of in.impact.sissm)
     large: bool = False      # also runs at the 54k size
     env: tuple = ()          # environment variables of the run, (name, value) pairs
+    beside: bool = False     # two serial runs at once, one pinned to each of cores 0 and 1
 
 
 CONFIGS = [
@@ -119,6 +127,7 @@ CONFIGS = [
     Config("nosb", "peri/nosb linear", "in.impact.nosb", large=True),
     Config("plain", "peri/nosb linear plain", "in.impact.nosb", large=True,
            env=(("PERI_SISSM_PASSES", "plain"),)),
+    Config("beside", "peri/nosb linear x2", "in.impact.nosb", large=True, beside=True),
     Config("stvk", "peri/nosb stvk", "in.impact.nosb", model="stvk"),
     Config("neohookean", "peri/nosb neohookean", "in.impact.nosb", model="neohookean"),
     Config("jacobi", "sissm jacobi", "in.impact.sissm", opts="solver jacobi external lagged",
@@ -150,27 +159,55 @@ def deck_path(config: Config, workdir: Path) -> Path:
     return copy
 
 
-def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
-             lmp: Path) -> dict:
-    """Run one configuration once in a fresh workdir; return parse_run() of what it wrote."""
+def start(config: Config, size: str, ranks: int, steps: int, workdir: Path, lmp: Path,
+          prefix: list) -> subprocess.Popen:
+    """Start one run of a configuration in a fresh workdir (prefix: e.g. taskset)."""
     workdir.mkdir(parents=True)
     shutil.copy(GEOMETRY[size], workdir / "impact.geometry")
-    log, rss = workdir / "log.lammps", workdir / "rss.txt"
-    cmd = mpirun_prefix(ranks) + [
-        "/usr/bin/time", "-a", "-o", str(rss), "-f", "PEAKRSS %M",
-        str(lmp), "-in", str(deck_path(config, workdir)), "-log", str(log), "-echo", "log",
-        "-nocite", "-var", "nsteps", str(steps), "-var", "thermo_every", str(steps)]
+    cmd = prefix + mpirun_prefix(ranks) + [
+        "/usr/bin/time", "-a", "-o", str(workdir / "rss.txt"), "-f", "PEAKRSS %M",
+        str(lmp), "-in", str(deck_path(config, workdir)), "-log", str(workdir / "log.lammps"),
+        "-echo", "log", "-nocite", "-var", "nsteps", str(steps), "-var", "thermo_every",
+        str(steps)]
     if config.opts:
         cmd += ["-var", "opts", config.opts]
-    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True,
-                          stdin=subprocess.DEVNULL,
-                          env={**os.environ, **dict(config.env)} if config.env else None)
+    return subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, stdin=subprocess.DEVNULL,
+                            env={**os.environ, **dict(config.env)} if config.env else None)
+
+
+def finish(proc: subprocess.Popen, workdir: Path, ranks: int) -> dict:
+    """Wait for a run started by start(); return parse_run() of what it wrote."""
+    out, err = proc.communicate()
+    log, rss = workdir / "log.lammps", workdir / "rss.txt"
     text = log.read_text(errors="replace") if log.exists() else ""
-    errors = [ln for ln in (proc.stdout + text).splitlines() if ln.startswith("ERROR")]
+    errors = [ln for ln in (out + text).splitlines() if ln.startswith("ERROR")]
     if proc.returncode != 0 or errors or not LOOP.search(text):
-        tail = errors[:1] or (proc.stdout + proc.stderr).splitlines()[-10:]
+        tail = errors[:1] or (out + err).splitlines()[-10:]
         raise RunFailed(f"exit {proc.returncode}: " + " | ".join(tail))
     return parse_run(text, rss.read_text() if rss.exists() else "", ranks)
+
+
+def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
+             lmp: Path) -> dict:
+    """Run one configuration once in a fresh workdir; return parse_run() of what it wrote. A
+    beside configuration starts two serial runs at once, pinned to cores 0 and 1, and returns
+    the first's with the mean of the two's times and CPU use."""
+    if not config.beside:
+        return finish(start(config, size, ranks, steps, workdir, lmp, []), workdir, ranks)
+    dirs = [workdir / f"core{k}" for k in (0, 1)]
+    procs = [start(config, size, 1, steps, d, lmp, ["taskset", "-c", str(k)])
+             for k, d in enumerate(dirs)]
+    runs, failed = [], None
+    for proc, d in zip(procs, dirs):      # both waited for, even when the first failed
+        try:
+            runs.append(finish(proc, d, 1))
+        except RunFailed as err:
+            failed = failed or err
+    if failed:
+        raise failed
+    return {**runs[0], "us": statistics.mean(r["us"] for r in runs),
+            "cpu": statistics.mean(r["cpu"] for r in runs)}
 
 
 def parse_run(log: str, rss: str, ranks: int) -> dict:
@@ -244,6 +281,14 @@ class Results:
         t1, t2 = self.med(size, key, 1), self.med(size, key, 2)
         return t1 / (2 * t2) if t1 and t2 else None
 
+    def beside(self, size):
+        """(t_x2 / t1, t_x2 / (2 t2)) of peri/nosb linear, t_x2 from two serial runs at once:
+        how much the two cores slow each other, and the 2-rank efficiency against the rate of
+        two busy cores (None without those runs)."""
+        tx, t1, t2 = (self.med(size, "beside", 1), self.med(size, "nosb", 1),
+                      self.med(size, "nosb", 2))
+        return (tx / t1, tx / (2 * t2)) if tx and t1 and t2 else None
+
 
 W = 32          # width of a table cell
 
@@ -261,6 +306,11 @@ def table(title: str, labels: list, ranks: list, text, width: int = W) -> None:
         print(f"{label:<22}" + "".join(f"  {text(key, r):>{width}}" for r in ranks))
 
 
+def missing(key: str, r: int) -> str:
+    """A table cell without runs: empty where the configuration does not run, else failed."""
+    return "" if BY_KEY[key].beside and r != 1 else "failed"
+
+
 def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) -> None:
     """The tables of one size."""
     atoms = next((r[0]["atoms"] for (s, _, _), r in res.runs.items() if s == size), "?")
@@ -274,7 +324,7 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
     def speed(key, r):
         found = res.get(size, key, r)
         if not found:
-            return "failed"
+            return missing(key, r)
         lo, hi = min(x["us"] for x in found), max(x["us"] for x in found)
         ratio = res.ratio(size, key, r)
         return (f"{res.med(size, key, r):.3f} ({lo:.3f}..{hi:.3f})"
@@ -310,6 +360,12 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
         for which, stats in (("medians", res), ("minima", res.best())):
             print(f"2-rank parallel efficiency t1 / (2 t2) of the {which}: " + ", ".join(
                 f"{c.label} {e:.2f}" for c in configs if (e := stats.efficiency(size, c.key))))
+        for which, stats in (("medians", res), ("minima", res.best())):
+            if (both := stats.beside(size)):
+                print(f"both cores busy ({which}): two serial peri/nosb linear runs at once, "
+                      f"one per core, each take {both[0]:.2f} x a lone one; the 2-rank "
+                      f"efficiency of peri/nosb linear against that rate, t_x2 / (2 t2): "
+                      f"{both[1]:.2f}")
     balance = sorted({x["balance"] for c in configs for x in res.get(size, c.key, 2)})
     if balance:
         print("load balance on 2 ranks, owned atoms ave / max (LAMMPS's Nlocal at the end of the "
@@ -318,7 +374,7 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
 
     def memory(key, r):
         if not res.get(size, key, r):
-            return "failed"
+            return missing(key, r)
         parts = []
         for name in ("rss_bytes", "lammps_bytes"):
             ratio = res.ratio(size, key, r, name)
@@ -355,6 +411,9 @@ def print_acceptance(res: Results, sizes: list, ranks: list, which: str) -> None
     nve = [("nve", e) for e in [res.efficiency("54k", "nosb")] if e]
     sissm = [(BY_KEY[k].label, e) for k in ACCEPTED_SISSM if (e := res.efficiency("54k", k))]
     goal("[54k] 2-rank efficiency >= 0.95 nve (peri/nosb linear)", nve, 0.95, 1, above=True)
+    if (both := res.beside("54k")):
+        print(f"    (both cores busy: two serial runs at once each take {both[0]:.2f} x a lone "
+              f"one; the nve efficiency against that rate {both[1]:.2f})")
     goal("[54k] 2-rank efficiency >= 0.9 sissm (jacobi and krylov block)", sissm, 0.9, 2,
          above=True)
 
@@ -383,8 +442,10 @@ def main():
 
     # rounds x (size, configuration, ranks), round-robin; progress weighted by particle-steps
     # (x6 for fix sissm's evaluations)
-    order = [(s, c, r) for s in sizes for c in configs[s] for r in args.ranks]
-    weight = {(s, c): steps[s] * PARTICLES[s] * (6 if c.opts else 1) for s, c, _ in order}
+    order = [(s, c, r) for s in sizes for c in configs[s] for r in args.ranks
+             if not (c.beside and r != 1)]
+    weight = {(s, c): steps[s] * PARTICLES[s] * (6 if c.opts else 1) * (2 if c.beside else 1)
+              for s, c, _ in order}
     progress = Progress(rounds * sum(weight[s, c] for s, c, _ in order), "bench_impact")
     res, failures, rows = Results(), [], []
     with tempfile.TemporaryDirectory(prefix="bench_impact-") as tmp:
