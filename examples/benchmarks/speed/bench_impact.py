@@ -15,7 +15,7 @@ Configurations (--styles keys), each run on every rank count of --ranks:
     plain               the same with PERI_SISSM_PASSES=plain: the passes without fused
                         multiply-adds (src/core/linalg/fused.h), for the gain of the other
     beside              peri/nosb linear x2: two serial runs of in.impact.nosb at once, pinned
-                        to cores 0 and 1 (taskset), their mean time; only with 1 in --ranks.
+                        to two cores (taskset), their mean time; only with 1 in --ranks.
                         How much two busy cores slow each other (on a virtual machine two
                         vCPUs may share one physical core's units), which bounds a 2-rank run
     stvk, neohookean    in.impact.nosb with that model in place of linear in pair_coeff (a
@@ -191,13 +191,15 @@ def finish(proc: subprocess.Popen, workdir: Path, ranks: int) -> dict:
 def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
              lmp: Path) -> dict:
     """Run one configuration once in a fresh workdir; return parse_run() of what it wrote. A
-    beside configuration starts two serial runs at once, pinned to cores 0 and 1, and returns
-    the first's with the mean of the two's times and CPU use."""
+    beside configuration starts two serial runs at once, each pinned to one of the first two
+    cores this process may use (unpinned where it may use only one), and returns the first's
+    with the mean of the two's times and CPU use."""
     if not config.beside:
         return finish(start(config, size, ranks, steps, workdir, lmp, []), workdir, ranks)
+    cores = sorted(os.sched_getaffinity(0))[:2]
+    pins = [["taskset", "-c", str(c)] for c in cores] if len(cores) == 2 else [[], []]
     dirs = [workdir / f"core{k}" for k in (0, 1)]
-    procs = [start(config, size, 1, steps, d, lmp, ["taskset", "-c", str(k)])
-             for k, d in enumerate(dirs)]
+    procs = [start(config, size, 1, steps, d, lmp, pin) for d, pin in zip(dirs, pins)]
     runs, failed = [], None
     for proc, d in zip(procs, dirs):      # both waited for, even when the first failed
         try:
