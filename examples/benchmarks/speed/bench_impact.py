@@ -118,7 +118,11 @@ class Config:
     opts: str = ""           # fix sissm options (-var opts of in.impact.sissm)
     large: bool = False      # also runs at the 54k size
     env: tuple = ()          # environment variables of the run, (name, value) pairs
-    beside: bool = False     # two serial runs at once, one pinned to each of cores 0 and 1
+    beside: bool = False     # two serial runs at once, one pinned to each of two cores
+
+    def runs_on(self, ranks: int) -> bool:
+        """Whether the configuration runs on that rank count (beside: serial runs only)."""
+        return not self.beside or ranks == 1
 
 
 CONFIGS = [
@@ -261,11 +265,12 @@ class Results:
         return self.runs.get((size, key, ranks), [])
 
     def med(self, size, key, ranks, name="us"):
+        """The statistic of this view (median, or minimum from best()) over the rounds."""
         found = self.get(size, key, ranks)
         return self.stat(found, name) if found else None
 
     def ratio(self, size, key, ranks, name="us"):
-        """Median of key over median of peri/lps."""
+        """key over peri/lps, each by med()."""
         a, b = self.med(size, key, ranks, name), self.med(size, "lps", ranks, name)
         return a / b if a and b else None
 
@@ -310,7 +315,7 @@ def table(title: str, labels: list, ranks: list, text, width: int = W) -> None:
 
 def missing(key: str, r: int) -> str:
     """A table cell without runs: empty where the configuration does not run, else failed."""
-    return "" if BY_KEY[key].beside and r != 1 else "failed"
+    return "failed" if BY_KEY[key].runs_on(r) else ""
 
 
 def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) -> None:
@@ -359,10 +364,11 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
 
     if 1 in ranks and 2 in ranks:
         print()
-        for which, stats in (("medians", res), ("minima", res.best())):
+        views = (("medians", res), ("minima", res.best()))
+        for which, stats in views:
             print(f"2-rank parallel efficiency t1 / (2 t2) of the {which}: " + ", ".join(
                 f"{c.label} {e:.2f}" for c in configs if (e := stats.efficiency(size, c.key))))
-        for which, stats in (("medians", res), ("minima", res.best())):
+        for which, stats in views:
             if (both := stats.beside(size)):
                 print(f"both cores busy ({which}): two serial peri/nosb linear runs at once, "
                       f"one per core, each take {both[0]:.2f} x a lone one; the 2-rank "
@@ -444,8 +450,7 @@ def main():
 
     # rounds x (size, configuration, ranks), round-robin; progress weighted by particle-steps
     # (x6 for fix sissm's evaluations)
-    order = [(s, c, r) for s in sizes for c in configs[s] for r in args.ranks
-             if not (c.beside and r != 1)]
+    order = [(s, c, r) for s in sizes for c in configs[s] for r in args.ranks if c.runs_on(r)]
     weight = {(s, c): steps[s] * PARTICLES[s] * (6 if c.opts else 1) * (2 if c.beside else 1)
               for s, c, _ in order}
     progress = Progress(rounds * sum(weight[s, c] for s, c, _ in order), "bench_impact")
