@@ -28,8 +28,8 @@ Configurations (--styles keys), each run on every rank count of --ranks:
 
 Sizes: small, the deck as it is (3487 particles, --steps default 500); 54k, the same decks with
 impact54k.geometry (this folder; 53784 particles, --steps default 100) copied into the work
-directory as impact.geometry. 54k runs lps, nosb, plain, beside, jacobi and block only. A second --steps value
-is the 54k step count; one value sets both.
+directory as impact.geometry. 54k runs lps, nosb, plain, beside, jacobi and block only. A
+second --steps value is the 54k step count; one value sets both.
 
 Runs alternate: each of the --rounds rounds (default 3) runs every configuration of every size
 on every rank count once, so a slow moment of the shared machine hits them alike. Per
@@ -55,7 +55,12 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
 - 2-rank parallel efficiency t1 / (2 t2) where both rank counts ran; with beside, t_x2 / t1
   (1: the cores do not slow each other) and t_x2 / (2 t2), the 2-rank efficiency of peri/nosb
   linear against the rate of two busy cores (what is left is communication, waiting and the
-  ranks' extra work); the load balance of
+  ranks' extra work); for the 2-rank runs, the share of the loop each rank spent inside MPI
+  calls (waiting for the other rank and moving data; mpi_time.c, built with mpicc and preloaded
+  into the ranks: mean over the ranks) and t1 / own work, own work the sum over the ranks of
+  (loop - MPI time): the efficiency is (1 - share) x t1 / own work, what communication and
+  waiting cost times how fast the ranks did their halves (work_split.py counts the work itself
+  in instructions, free of the machine's noise); the load balance of
   the 2-rank runs: owned atoms ave / max over the ranks (LAMMPS's Nlocal), the efficiency that
   equal work per atom and free communication would give (1 for the 54K cylinder, whose axis
   runs between lattice columns; the small deck's runs through one, so one rank holds it);
@@ -74,8 +79,9 @@ one row per run. A run that fails is reported at the end, and the exit status is
 from __future__ import annotations
 
 import argparse
-import os
 import csv
+import os
+import math
 import re
 import shutil
 import statistics
@@ -107,6 +113,9 @@ PASSES = re.compile(r"^Pair peri/nosb: bond passes (.*)$", re.M)
 # "Nlocal:        27013.5 ave       27702 max       26325 min" (owned atoms per rank, at the end)
 NLOCAL = re.compile(r"^Nlocal:\s+([0-9.eE+-]+) ave\s+([0-9.eE+-]+) max", re.M)
 ITERATIONS = "f_integrate[3]"            # fix sissm output 3: mean iterations per step
+# mpi_time.c, preloaded into the multi-rank runs: "MPITIME rank 0 loop 4.55 mpi 0.25 calls 967"
+MPI_TIME_SRC = HERE / "mpi_time.c"
+MPITIME = re.compile(r"^MPITIME rank (\d+) loop ([0-9.eE+-]+) mpi ([0-9.eE+-]+)", re.M)
 
 
 @dataclass(frozen=True)
@@ -163,12 +172,29 @@ def deck_path(config: Config, workdir: Path) -> Path:
     return copy
 
 
+def build_mpi_time(tmp: Path):
+    """mpi_time.c built as a library to preload (None, with the reason, where it cannot be)."""
+    lib = tmp / "libmpi_time.so"
+    try:
+        done = subprocess.run(["mpicc", "-shared", "-fPIC", "-O2", "-o", str(lib),
+                               str(MPI_TIME_SRC)], capture_output=True, text=True)
+    except OSError as err:
+        return None, f"mpicc: {err}"
+    if done.returncode != 0:
+        return None, "mpicc: " + (done.stderr.strip().splitlines() or ["failed"])[-1]
+    return lib, ""
+
+
 def start(config: Config, size: str, ranks: int, steps: int, workdir: Path, lmp: Path,
-          prefix: list) -> subprocess.Popen:
-    """Start one run of a configuration in a fresh workdir (prefix: e.g. taskset)."""
+          prefix: list, preload: Path | None = None) -> subprocess.Popen:
+    """Start one run of a configuration in a fresh workdir (prefix: e.g. taskset; preload: the
+    library of mpi_time.c, given to the ranks of a multi-rank run)."""
     workdir.mkdir(parents=True)
     shutil.copy(GEOMETRY[size], workdir / "impact.geometry")
-    cmd = prefix + mpirun_prefix(ranks) + [
+    mpirun = mpirun_prefix(ranks)
+    if mpirun and preload:
+        mpirun += ["-x", f"LD_PRELOAD={preload}"]
+    cmd = prefix + mpirun + [
         "/usr/bin/time", "-a", "-o", str(workdir / "rss.txt"), "-f", "PEAKRSS %M",
         str(lmp), "-in", str(deck_path(config, workdir)), "-log", str(workdir / "log.lammps"),
         "-echo", "log", "-nocite", "-var", "nsteps", str(steps), "-var", "thermo_every",
@@ -189,17 +215,18 @@ def finish(proc: subprocess.Popen, workdir: Path, ranks: int) -> dict:
     if proc.returncode != 0 or errors or not LOOP.search(text):
         tail = errors[:1] or (out + err).splitlines()[-10:]
         raise RunFailed(f"exit {proc.returncode}: " + " | ".join(tail))
-    return parse_run(text, rss.read_text() if rss.exists() else "", ranks)
+    return parse_run(text, rss.read_text() if rss.exists() else "", ranks, err)
 
 
 def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
-             lmp: Path) -> dict:
+             lmp: Path, preload: Path | None = None) -> dict:
     """Run one configuration once in a fresh workdir; return parse_run() of what it wrote. A
     beside configuration starts two serial runs at once, each pinned to one of the first two
     cores this process may use (unpinned where it may use only one), and returns the first's
     with the mean of the two's times and CPU use."""
     if not config.beside:
-        return finish(start(config, size, ranks, steps, workdir, lmp, []), workdir, ranks)
+        return finish(start(config, size, ranks, steps, workdir, lmp, [], preload), workdir,
+                      ranks)
     cores = sorted(os.sched_getaffinity(0))[:2]
     pins = [["taskset", "-c", str(c)] for c in cores] if len(cores) == 2 else [[], []]
     dirs = [workdir / f"core{k}" for k in (0, 1)]
@@ -216,10 +243,13 @@ def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
             "cpu": statistics.mean(r["cpu"] for r in runs)}
 
 
-def parse_run(log: str, rss: str, ranks: int) -> dict:
-    """What one run's log and /usr/bin/time file say: microseconds per particle-step, atoms,
-    % CPU use, memory (bytes per particle, two ways), and for fix sissm the iterations per
-    step (None without it) and the set-ups of the AMG hierarchy."""
+def parse_run(log: str, rss: str, ranks: int, stderr: str = "") -> dict:
+    """What one run's log, /usr/bin/time file and stderr say: microseconds per particle-step,
+    atoms, % CPU use, memory (bytes per particle, two ways), for fix sissm the iterations per
+    step (None without it) and the set-ups of the AMG hierarchy, and where mpi_time.c reported
+    (multi-rank runs) the share of the loop spent inside MPI calls (mean over the ranks) and the
+    ranks' own work, the sum over the ranks of (loop - MPI time) per particle-step, i.e. ranks
+    x us x (1 - share) (NaN without)."""
     seconds, procs, steps, atoms = LOOP.findall(log)[-1]
     if int(procs) != ranks:
         raise RunFailed(f"ran on {procs} procs, not {ranks}")
@@ -231,8 +261,15 @@ def parse_run(log: str, rss: str, ranks: int) -> dict:
     passes = PASSES.findall(log)
     nlocal = NLOCAL.findall(log)
     ave, most = (float(v) for v in nlocal[-1]) if nlocal else (float("nan"), float("nan"))
+    per_rank = {int(r): (float(loop), float(mpi)) for r, loop, mpi in MPITIME.findall(stderr)}
+    timed = ranks > 1 and len(per_rank) == ranks
+    us = float(seconds) / (int(steps) * atoms) * 1e6
+    # each rank's share of its own loop interval (the ranks leave the closing barrier a moment
+    # apart), applied to LAMMPS's loop time
+    share = (statistics.mean(mpi / loop for loop, mpi in per_rank.values()) if timed
+             else float("nan"))
     return dict(
-        us=float(seconds) / (int(steps) * atoms) * 1e6, atoms=atoms,
+        us=us, atoms=atoms, mpi_share=share, work_us=ranks * us * (1 - share),
         cpu=float(cpu[-1]) if cpu else float("nan"),
         iterations=float(table[ITERATIONS][-1]) if ITERATIONS in table else None,
         amg_setups=int(setups[-1]) if setups else None,
@@ -287,6 +324,19 @@ class Results:
     def efficiency(self, size, key):
         t1, t2 = self.med(size, key, 1), self.med(size, key, 2)
         return t1 / (2 * t2) if t1 and t2 else None
+
+    def split(self, size, key):
+        """(share of the 2-rank loop inside MPI calls, t1 / own work): the 2-rank efficiency
+        t1 / (2 t2) is their product's complement, (1 - share) x t1 / own work, where own work
+        is the sum over the ranks of (loop - MPI time) per particle-step. The first factor is
+        what waiting for the other rank and moving data cost; the second, how fast the ranks
+        did their halves against the serial run doing the whole (less than 1: extra work on 2
+        ranks, or two busy cores slowing each other). None without mpi_time.c's report."""
+        t1, share, work = (self.med(size, key, 1), self.med(size, key, 2, "mpi_share"),
+                           self.med(size, key, 2, "work_us"))
+        if not (t1 and share is not None and work and math.isfinite(share * work)):
+            return None
+        return share, t1 / work
 
     def beside(self, size):
         """(t_x2 / t1, t_x2 / (2 t2)) of peri/nosb linear, t_x2 from two serial runs at once:
@@ -369,6 +419,13 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
             print(f"2-rank parallel efficiency t1 / (2 t2) of the {which}: " + ", ".join(
                 f"{c.label} {e:.2f}" for c in configs if (e := stats.efficiency(size, c.key))))
         for which, stats in views:
+            parts = [f"{c.label} {100 * sp[0]:.1f} % / {sp[1]:.2f}" for c in configs
+                     if (sp := stats.split(size, c.key))]
+            if parts:
+                print(f"2 ranks ({which}): % of the loop inside MPI calls, waits and transfers "
+                      f"(mean over the ranks) / t1 / (own work: sum over the ranks of loop - "
+                      f"MPI time): " + ", ".join(parts))
+        for which, stats in views:
             if (both := stats.beside(size)):
                 print(f"both cores busy ({which}): two serial peri/nosb linear runs at once, "
                       f"one per core, each take {both[0]:.2f} x a lone one; the 2-rank "
@@ -424,6 +481,11 @@ def print_acceptance(res: Results, sizes: list, ranks: list, which: str) -> None
               f"one; the nve efficiency against that rate {both[1]:.2f})")
     goal("[54k] 2-rank efficiency >= 0.9 sissm (jacobi and krylov block)", sissm, 0.9, 2,
          above=True)
+    parts = [f"{BY_KEY[k].label} {100 * sp[0]:.1f} % / {sp[1]:.2f}" for k in ("nosb",)
+             + ACCEPTED_SISSM if (sp := res.split("54k", k))]
+    if parts:
+        print("    (2 ranks, % of the loop inside MPI calls / the ranks' own work against the "
+              "serial run: " + ", ".join(parts) + ")")
 
 
 def main():
@@ -456,12 +518,14 @@ def main():
     progress = Progress(rounds * sum(weight[s, c] for s, c, _ in order), "bench_impact")
     res, failures, rows = Results(), [], []
     with tempfile.TemporaryDirectory(prefix="bench_impact-") as tmp:
+        preload, why = build_mpi_time(Path(tmp)) if max(args.ranks) > 1 else (None, "")
         for n in range(1, rounds + 1):
             for size, config, ranks in order:
                 what = f"{size} {config.label} on {ranks} rank(s), round {n}"
                 try:
                     run = run_once(config, size, ranks, steps[size],
-                                   Path(tmp) / f"{size}-{config.key}-{ranks}-{n}", args.lmp)
+                                   Path(tmp) / f"{size}-{config.key}-{ranks}-{n}", args.lmp,
+                                   preload)
                 except RunFailed as err:
                     failures.append(f"{what}: {err}")
                 else:
@@ -481,6 +545,8 @@ def main():
     print(f"median of {rounds} alternating round(s) (min..max); ratios of medians to peri/lps at "
           "the same size and rank count")
     print_build(start)
+    if why:
+        print(f"(no MPI timing of the multi-rank runs: {why})")
     for size in sizes:
         print_size(res, size, configs[size], args.ranks, steps[size])
     print_acceptance(res, sizes, args.ranks, "medians of this invocation")
