@@ -214,6 +214,31 @@ def test_impact_speed_driver(tmp_path):
     assert float(busy.group(1)) == pytest.approx(us["beside", 1] / us["nosb", 1], abs=0.006)
     assert float(busy.group(2)) == pytest.approx(us["beside", 1] / (2 * us["nosb", 2]),
                                                  abs=0.006)
+    # the 2-rank runs timed their MPI calls (mpi_time.c preloaded): a share of the loop in
+    # [0, 1) and the ranks' own work per particle-step, own work = 2 t2 (1 - share), which
+    # recompose the printed efficiency, (1 - share) x t1 / own work = t1 / (2 t2); serial runs
+    # have neither
+    for r in rows:
+        share, work = float(r["mpi_share"]), float(r["work_us"])
+        if int(r["ranks"]) == 1:
+            assert share != share and work != work, r          # NaN
+        else:
+            assert 0.0 <= share < 1.0 and work > 0.0, r
+            assert work == pytest.approx(2 * float(r["us"]) * (1 - share), rel=1e-9), r
+    split = re.search(r"^2 ranks \(medians\): % of the loop inside MPI calls.*: (.*)$", out, re.M)
+    assert split, out[-3000:]
+    printed = {m.group(1): (float(m.group(2)), float(m.group(3))) for m in
+               (re.fullmatch(r"(.*) ([0-9.]+) % / ([0-9.]+)", part)
+                for part in split.group(1).split(", "))}
+    effs = {m.group(1): float(m.group(2)) for m in
+            (re.fullmatch(r"(.*) ([0-9.]+)", part) for part in eff[0][1].split(", "))}
+    labels = {"peri/nosb linear": "nosb", "sissm jacobi": "jacobi", "peri/lps": "lps"}
+    for label, key in labels.items():
+        row = next(r for r in rows if r["config"] == key and int(r["ranks"]) == 2)
+        share, own = printed[label]
+        assert share == pytest.approx(100 * float(row["mpi_share"]), abs=0.06), label
+        assert own == pytest.approx(us[key, 1] / float(row["work_us"]), abs=0.006), label
+        assert (1 - share / 100) * own == pytest.approx(effs[label], abs=0.02), label
 
 
 @pytest.mark.mpi
@@ -232,6 +257,31 @@ def test_impact54k_splits_evenly(tmp_path):
     for name, (ave, most, least) in counts.items():
         assert most == least == ave, (name, ave, most, least)
     assert counts["Nlocal"][0] == 53784 / 2, counts
+
+
+@pytest.mark.slow
+@pytest.mark.mpi
+def test_work_split_tool():
+    """examples/benchmarks/speed/work_split.py counts instructions (callgrind) of the run loop,
+    serially and on 2 ranks (small impact deck, peri/nosb + nve, 2 steps): the ranks share the
+    serial run's work with little extra (halo packing: 1.5 % here), the work follows the owned
+    atoms (the small deck's 2-rank split is 0.94 balanced), and the waiting shows up apart, in
+    the MPI libraries' count, not in the work. Counts do not depend on the machine's load."""
+    done = run_driver("speed/work_split.py")     # --quick: small, 2 steps, peri/nosb + nve
+    out = done.stdout
+    m = re.search(r"^peri/nosb linear: serial work ([0-9.]+); on 2 ranks work ([0-9.]+), "
+                  r"([0-9.]+) \(MPI libraries ([0-9.]+), ([0-9.]+)\)", out, re.M)
+    assert m, out
+    serial, w0, w1, m0, m1 = (float(v) for v in m.groups())
+    assert serial > 0.05 and m0 + m1 > 0, out
+    s = re.search(r"extra work ([-+0-9.]+) %, work balance ([0-9.]+) \(atoms ([0-9.]+)\), "
+                  r"work efficiency ([0-9.]+)", out)
+    extra, balance, atoms, efficiency = (float(v) for v in s.groups())
+    assert 0.0 < extra < 3.0, out
+    assert (w0 + w1) / serial - 1 == pytest.approx(extra / 100, abs=0.02), out
+    assert abs(balance - atoms) < 0.01 and 0.9 < atoms < 1.0, out
+    assert efficiency == pytest.approx(balance / (1 + extra / 100), abs=2e-4), out
+    assert "unpack_forward_comm" in out, out
 
 
 def test_bench_passes_tool():
