@@ -262,7 +262,10 @@ def parse_run(log: str, rss: str, ranks: int, stderr: str = "") -> dict:
     nlocal = NLOCAL.findall(log)
     ave, most = (float(v) for v in nlocal[-1]) if nlocal else (float("nan"), float("nan"))
     per_rank = {int(r): (float(loop), float(mpi)) for r, loop, mpi in MPITIME.findall(stderr)}
-    timed = ranks > 1 and len(per_rank) == ranks
+    # the wrapper's interval is the loop only if no barrier ran inside it: its mean over the
+    # ranks against the log's loop time (LAMMPS's mean of the same per-rank intervals)
+    timed = ranks > 1 and len(per_rank) == ranks and abs(
+        statistics.mean(loop for loop, _ in per_rank.values()) / float(seconds) - 1) < 0.01
     us = float(seconds) / (int(steps) * atoms) * 1e6
     # each rank's share of its own loop interval (the ranks leave the closing barrier a moment
     # apart), applied to LAMMPS's loop time

@@ -11,6 +11,8 @@
      MPITIME rank R loop L mpi M calls N
 
    M is what the rank spent waiting for the other ranks and moving data; L - M is its own work.
+   A barrier inside the loop (none in the benchmark's decks) would cut it short: bench_impact.py
+   uses the report only where the mean of L over the ranks is LAMMPS's loop time within 1 %.
    Build: mpicc -shared -fPIC -O2 -o libmpi_time.so mpi_time.c */
 
 #include <mpi.h>

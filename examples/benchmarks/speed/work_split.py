@@ -32,6 +32,7 @@ own work against the serial run says which). About 6 minutes for the three confi
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import shutil
 import subprocess
@@ -69,7 +70,7 @@ def start(config: bi.Config, size: str, ranks: int, steps: int, workdir: Path,
         cmd += ["-var", "opts", config.opts]
     return subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, stdin=subprocess.DEVNULL,
-                            env={**bi.os.environ, **dict(config.env)} if config.env else None)
+                            env={**os.environ, **dict(config.env)} if config.env else None)
 
 
 def functions(path: Path) -> dict:
