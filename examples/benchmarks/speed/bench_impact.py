@@ -80,8 +80,8 @@ from __future__ import annotations
 
 import argparse
 import csv
-import os
 import math
+import os
 import re
 import shutil
 import statistics
@@ -330,9 +330,9 @@ class Results:
 
     def split(self, size, key):
         """(share of the 2-rank loop inside MPI calls, t1 / own work): the 2-rank efficiency
-        t1 / (2 t2) is their product's complement, (1 - share) x t1 / own work, where own work
-        is the sum over the ranks of (loop - MPI time) per particle-step. The first factor is
-        what waiting for the other rank and moving data cost; the second, how fast the ranks
+        t1 / (2 t2) is (1 - share) x t1 / own work, where own work is the sum over the ranks
+        of (loop - MPI time) per particle-step. The first factor is what waiting for the other
+        rank and moving data cost; the second, how fast the ranks
         did their halves against the serial run doing the whole (less than 1: extra work on 2
         ranks, or two busy cores slowing each other). None without mpi_time.c's report."""
         t1, share, work = (self.med(size, key, 1), self.med(size, key, 2, "mpi_share"),
