@@ -113,9 +113,11 @@ PASSES = re.compile(r"^Pair peri/nosb: bond passes (.*)$", re.M)
 # "Nlocal:        27013.5 ave       27702 max       26325 min" (owned atoms per rank, at the end)
 NLOCAL = re.compile(r"^Nlocal:\s+([0-9.eE+-]+) ave\s+([0-9.eE+-]+) max", re.M)
 ITERATIONS = "f_integrate[3]"            # fix sissm output 3: mean iterations per step
-# mpi_time.c, preloaded into the multi-rank runs: "MPITIME rank 0 loop 4.55 mpi 0.25 calls 967"
+# mpi_time.c, preloaded into the multi-rank runs, one line per interval between two barriers:
+# "MPITIME rank 0 interval 3 loop 4.55 mpi 0.25"
 MPI_TIME_SRC = HERE / "mpi_time.c"
-MPITIME = re.compile(r"^MPITIME rank (\d+) loop ([0-9.eE+-]+) mpi ([0-9.eE+-]+)", re.M)
+MPITIME = re.compile(r"^MPITIME rank (\d+) interval (\d+) loop ([0-9.eE+-]+) mpi ([0-9.eE+-]+)",
+                     re.M)
 
 
 @dataclass(frozen=True)
@@ -186,16 +188,19 @@ def build_mpi_time(tmp: Path):
 
 
 def start(config: Config, size: str, ranks: int, steps: int, workdir: Path, lmp: Path,
-          prefix: list, preload: Path | None = None) -> subprocess.Popen:
+          prefix: list, preload: Path | None = None,
+          launcher: list | None = None) -> subprocess.Popen:
     """Start one run of a configuration in a fresh workdir (prefix: e.g. taskset; preload: the
-    library of mpi_time.c, given to the ranks of a multi-rank run)."""
+    library of mpi_time.c, given to the ranks of a multi-rank run; launcher: what runs each
+    rank's lmp, by default /usr/bin/time writing the peak memory to rss.txt)."""
     workdir.mkdir(parents=True)
     shutil.copy(GEOMETRY[size], workdir / "impact.geometry")
     mpirun = mpirun_prefix(ranks)
     if mpirun and preload:
         mpirun += ["-x", f"LD_PRELOAD={preload}"]
-    cmd = prefix + mpirun + [
-        "/usr/bin/time", "-a", "-o", str(workdir / "rss.txt"), "-f", "PEAKRSS %M",
+    if launcher is None:
+        launcher = ["/usr/bin/time", "-a", "-o", str(workdir / "rss.txt"), "-f", "PEAKRSS %M"]
+    cmd = prefix + mpirun + launcher + [
         str(lmp), "-in", str(deck_path(config, workdir)), "-log", str(workdir / "log.lammps"),
         "-echo", "log", "-nocite", "-var", "nsteps", str(steps), "-var", "thermo_every",
         str(steps)]
@@ -261,16 +266,11 @@ def parse_run(log: str, rss: str, ranks: int, stderr: str = "") -> dict:
     passes = PASSES.findall(log)
     nlocal = NLOCAL.findall(log)
     ave, most = (float(v) for v in nlocal[-1]) if nlocal else (float("nan"), float("nan"))
-    per_rank = {int(r): (float(loop), float(mpi)) for r, loop, mpi in MPITIME.findall(stderr)}
-    # the wrapper's interval is the loop only if no barrier ran inside it: its mean over the
-    # ranks against the log's loop time (LAMMPS's mean of the same per-rank intervals)
-    timed = ranks > 1 and len(per_rank) == ranks and abs(
-        statistics.mean(loop for loop, _ in per_rank.values()) / float(seconds) - 1) < 0.01
     us = float(seconds) / (int(steps) * atoms) * 1e6
+    loop = run_loop_intervals(MPITIME.findall(stderr), ranks, float(seconds))
     # each rank's share of its own loop interval (the ranks leave the closing barrier a moment
     # apart), applied to LAMMPS's loop time
-    share = (statistics.mean(mpi / loop for loop, mpi in per_rank.values()) if timed
-             else float("nan"))
+    share = statistics.mean(mpi / t for t, mpi in loop) if loop else float("nan")
     return dict(
         us=us, atoms=atoms, mpi_share=share, work_us=ranks * us * (1 - share),
         cpu=float(cpu[-1]) if cpu else float("nan"),
@@ -280,6 +280,24 @@ def parse_run(log: str, rss: str, ranks: int, stderr: str = "") -> dict:
         nlocal_ave=ave, balance=ave / most if nlocal else float("nan"),
         rss_bytes=sum(rss_kb) * 1024 / atoms if len(rss_kb) == ranks else float("nan"),
         lammps_bytes=float(MEMORY.findall(log)[-1][1]) * 2**20 * ranks / atoms)
+
+
+def run_loop_intervals(found: list, ranks: int, seconds: float) -> list:
+    """[(loop, mpi)] of each rank in the run loop, from mpi_time.c's intervals [(rank,
+    interval, loop, mpi)]: the interval, the same on every rank (every barrier is collective),
+    whose loop time averaged over the ranks is LAMMPS's loop time (its average of the same
+    per-rank times) within 1 %, the closest one; [] where none is (no report, or a barrier
+    inside the loop cut it)."""
+    by = {}
+    for rank, k, loop, mpi in found:
+        by.setdefault(int(k), {})[int(rank)] = (float(loop), float(mpi))
+    whole = [k for k, per in by.items() if len(per) == ranks]
+    if ranks < 2 or not whole:
+        return []
+    def off(k):
+        return abs(statistics.mean(t for t, _ in by[k].values()) / seconds - 1)
+    best = min(whole, key=off)
+    return list(by[best].values()) if off(best) < 0.01 else []
 
 
 def median(runs: list, name: str) -> float:
@@ -340,6 +358,11 @@ class Results:
         if not (t1 and share is not None and work and math.isfinite(share * work)):
             return None
         return share, t1 / work
+
+    def split_text(self, size, keys) -> str:
+        """"label share % / t1 over own work" of split() for each key that has it, joined."""
+        return ", ".join(f"{BY_KEY[k].label} {100 * sp[0]:.1f} % / {sp[1]:.2f}" for k in keys
+                         if (sp := self.split(size, k)))
 
     def beside(self, size):
         """(t_x2 / t1, t_x2 / (2 t2)) of peri/nosb linear, t_x2 from two serial runs at once:
@@ -422,12 +445,10 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
             print(f"2-rank parallel efficiency t1 / (2 t2) of the {which}: " + ", ".join(
                 f"{c.label} {e:.2f}" for c in configs if (e := stats.efficiency(size, c.key))))
         for which, stats in views:
-            parts = [f"{c.label} {100 * sp[0]:.1f} % / {sp[1]:.2f}" for c in configs
-                     if (sp := stats.split(size, c.key))]
-            if parts:
+            if (parts := stats.split_text(size, [c.key for c in configs])):
                 print(f"2 ranks ({which}): % of the loop inside MPI calls, waits and transfers "
                       f"(mean over the ranks) / t1 / (own work: sum over the ranks of loop - "
-                      f"MPI time): " + ", ".join(parts))
+                      f"MPI time): " + parts)
         for which, stats in views:
             if (both := stats.beside(size)):
                 print(f"both cores busy ({which}): two serial peri/nosb linear runs at once, "
@@ -484,11 +505,9 @@ def print_acceptance(res: Results, sizes: list, ranks: list, which: str) -> None
               f"one; the nve efficiency against that rate {both[1]:.2f})")
     goal("[54k] 2-rank efficiency >= 0.9 sissm (jacobi and krylov block)", sissm, 0.9, 2,
          above=True)
-    parts = [f"{BY_KEY[k].label} {100 * sp[0]:.1f} % / {sp[1]:.2f}" for k in ("nosb",)
-             + ACCEPTED_SISSM if (sp := res.split("54k", k))]
-    if parts:
+    if (parts := res.split_text("54k", ("nosb",) + ACCEPTED_SISSM)):
         print("    (2 ranks, % of the loop inside MPI calls / the ranks' own work against the "
-              "serial run: " + ", ".join(parts) + ")")
+              "serial run: " + parts + ")")
 
 
 def main():

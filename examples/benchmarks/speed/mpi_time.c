@@ -3,30 +3,32 @@
 
    LAMMPS's run command calls MPI_Barrier right before the loop and right after it
    (Timer::barrier_start/barrier_stop) and reads the clock after each. The wrapper keeps, for
-   every interval between the returns of two barriers, the wall time and the time inside the
-   MPI calls below (point-to-point sends, receives and waits of the halo exchanges, and
-   collectives, the closing barrier included); at MPI_Finalize each rank prints the longest
-   interval (the loop of the longest run) on stderr:
+   every interval between the returns of two barriers (the last 1024 of them), the wall time and
+   the time inside the MPI calls below (point-to-point sends, receives and waits of the halo
+   exchanges, and collectives, the closing barrier included); at MPI_Finalize each rank prints
+   them on stderr, one line per interval k:
 
-     MPITIME rank R loop L mpi M calls N
+     MPITIME rank R interval k loop L mpi M
 
-   M is what the rank spent waiting for the other ranks and moving data; L - M is its own work.
-   A barrier inside the loop (none in the benchmark's decks) would cut it short: bench_impact.py
-   uses the report only where the mean of L over the ranks is LAMMPS's loop time within 1 %.
+   The run loop is the interval whose L, averaged over the ranks, is LAMMPS's loop time (which
+   is that average); bench_impact.py picks it so, within 1 %, and uses no MPI time where none
+   matches. (Taking the longest interval was wrong for short runs, whose set-up between two
+   barriers can outlast the loop.) M is what the rank spent waiting for the other ranks and
+   moving data; L - M is its own work.
    Build: mpicc -shared -fPIC -O2 -o libmpi_time.so mpi_time.c */
 
 #include <mpi.h>
 #include <stdio.h>
 
-static double interval_start, in_mpi, best_loop = -1.0, best_mpi;
-static long calls, best_calls;
+enum { KEPT = 1024 };
+static double interval_start, in_mpi, kept_loop[KEPT], kept_mpi[KEPT];
+static long intervals;
 
 #define TIMED(call)                       \
   do {                                    \
     const double t0_ = PMPI_Wtime();      \
     const int rc_ = call;                 \
     in_mpi += PMPI_Wtime() - t0_;         \
-    calls++;                              \
     return rc_;                           \
   } while (0)
 
@@ -37,14 +39,11 @@ int MPI_Barrier(MPI_Comm comm)
   const double now = PMPI_Wtime();
   // the interval ends when the barrier returns, as LAMMPS's loop time does (it reads the clock
   // after Timer::barrier_stop's barrier): a rank's wait in it is MPI time of the interval
-  if (now - interval_start > best_loop) {
-    best_loop = now - interval_start;
-    best_mpi = in_mpi + (now - enter);
-    best_calls = calls + 1;
-  }
+  kept_loop[intervals % KEPT] = now - interval_start;
+  kept_mpi[intervals % KEPT] = in_mpi + (now - enter);
+  intervals++;
   interval_start = now;
   in_mpi = 0.0;
-  calls = 0;
   return rc;
 }
 
@@ -134,8 +133,9 @@ int MPI_Finalize(void)
 {
   int rank;
   PMPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  fprintf(stderr, "MPITIME rank %d loop %.6f mpi %.6f calls %ld\n", rank, best_loop, best_mpi,
-          best_calls);
+  for (long k = intervals > KEPT ? intervals - KEPT : 0; k < intervals; k++)
+    fprintf(stderr, "MPITIME rank %d interval %ld loop %.6f mpi %.6f\n", rank, k,
+            kept_loop[k % KEPT], kept_mpi[k % KEPT]);
   fflush(stderr);
   return PMPI_Finalize();
 }

@@ -32,7 +32,6 @@ own work against the serial run says which). About 6 minutes for the three confi
 from __future__ import annotations
 
 import argparse
-import os
 import re
 import shutil
 import subprocess
@@ -55,22 +54,6 @@ TOGGLE = "LAMMPS_NS::Verlet::run(int)"
 def callgrind_command(out: Path) -> list:
     return ["valgrind", "--tool=callgrind", "--trace-children=yes", "--collect-atstart=no",
             f"--toggle-collect={TOGGLE}", f"--callgrind-out-file={out}"]
-
-
-def start(config: bi.Config, size: str, ranks: int, steps: int, workdir: Path,
-          lmp: Path) -> subprocess.Popen:
-    """Start one counted run in a fresh workdir (one callgrind file per process, cg.<pid>)."""
-    workdir.mkdir(parents=True)
-    shutil.copy(bi.GEOMETRY[size], workdir / "impact.geometry")
-    cmd = bi.mpirun_prefix(ranks) + callgrind_command(workdir / "cg.%p") + [
-        str(lmp), "-in", str(bi.deck_path(config, workdir)), "-log", str(workdir / "log.lammps"),
-        "-echo", "log", "-nocite", "-screen", "none", "-var", "nsteps", str(steps),
-        "-var", "thermo_every", str(steps)]
-    if config.opts:
-        cmd += ["-var", "opts", config.opts]
-    return subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, stdin=subprocess.DEVNULL,
-                            env={**os.environ, **dict(config.env)} if config.env else None)
 
 
 def functions(path: Path) -> dict:
@@ -111,31 +94,25 @@ def atom_balance(workdir: Path) -> float:
     return ave / most
 
 
-def report(label: str, serial: dict, ranks: list, atoms: float, top: int) -> dict:
-    """Print one configuration's split (atoms: the atom balance); return its numbers."""
+def report(label: str, serial: dict, ranks: list, atoms: float, top: int) -> None:
+    """Print one configuration's split (atoms: the atom balance)."""
     w1 = split(serial)[0]
-    works = [split(c)[0] for c in ranks]
-    mpis = [split(c)[1] for c in ranks]
+    works, mpis = zip(*(split(c) for c in ranks))
     n = len(ranks)
-    out = dict(serial=w1, ranks=works, mpi=mpis, extra=sum(works) / w1 - 1, atoms=atoms,
-               balance=sum(works) / n / max(works), efficiency=w1 / (n * max(works)))
     print(f"\n{label}: serial work {w1 / 1e9:.3f}; on {n} ranks work "
           + ", ".join(f"{w / 1e9:.3f}" for w in works) + " (MPI libraries "
           + ", ".join(f"{m / 1e9:.3f}" for m in mpis) + ") x 10^9 instructions")
-    print(f"  extra work {100 * out['extra']:+.2f} %, work balance {out['balance']:.4f} (atoms "
-          f"{atoms:.4f}), work efficiency {out['efficiency']:.4f}")
+    print(f"  extra work {100 * (sum(works) / w1 - 1):+.2f} %, work balance "
+          f"{sum(works) / n / max(works):.4f} (atoms {atoms:.4f}), work efficiency "
+          f"{w1 / (n * max(works)):.4f}")
     grown = {}
-    for c in ranks:
-        for key, v in c.items():
+    for counts, sign in [(c, 1) for c in ranks] + [(serial, -1)]:
+        for key, v in counts.items():
             if not MPI_OBJECT.search(key[1]):
-                grown[key] = grown.get(key, 0) + v
-    for key, v in serial.items():
-        if not MPI_OBJECT.search(key[1]):
-            grown[key] = grown.get(key, 0) - v
-    for (fn, obj), v in sorted(grown.items(), key=lambda kv: -kv[1])[:top]:
+                grown[key] = grown.get(key, 0) + sign * v
+    for (fn, _), v in sorted(grown.items(), key=lambda kv: -kv[1])[:top]:
         if v > 0:
             print(f"  +{v / w1 * 100:6.2f} % of the serial work: {fn[:110]}")
-    return out
 
 
 def main():
@@ -159,7 +136,9 @@ def main():
         for c in configs:
             for r in (1, args.ranks):
                 d = Path(tmp) / f"{c.key}-{r}"
-                runs[c.key, r] = (d, start(c, args.size, r, args.steps, d, args.lmp))
+                # bench_impact's run, each rank's lmp under callgrind instead of /usr/bin/time
+                runs[c.key, r] = (d, bi.start(c, args.size, r, args.steps, d, args.lmp, [],
+                                              launcher=callgrind_command(d / "cg.%p")))
         failed = []
         for (key, r), (d, proc) in runs.items():
             _, err = proc.communicate()
