@@ -160,10 +160,17 @@ def test_impact_speed_driver(tmp_path):
     runs = tmp_path / "runs.csv"
     out = run_driver("speed/bench_impact.py", "--ranks", 1, 2, "--csv", runs).stdout
     rows = read_csv(runs)
-    configs = ("pmb", "lps", "nosb", "plain", "stvk", "neohookean", "jacobi", "block", "amg")
+    configs = ("pmb", "lps", "nosb", "plain", "stvk", "neohookean", "jacobi", "block", "amg",
+               "lockstep")
     # beside (two serial runs at once, one per core) runs on 1 rank only
     assert sorted((r["config"], int(r["ranks"])) for r in rows) == \
         sorted([(c, n) for c in configs for n in (1, 2)] + [("beside", 1)])
+    # the machine's probe (lockstep.c, not LAMMPS): its quick chunk count, no atoms
+    probe = {int(r["ranks"]): r for r in rows if r["config"] == "lockstep"}
+    rows = [r for r in rows if r["config"] != "lockstep"]
+    for r in probe.values():
+        assert (r["size"], r["steps"], r["atoms"]) == ("small", "1200", "0"), r
+        assert float(r["us"]) > 0 and 0.0 <= float(r["mpi_share"]) < 1.0, r
     for r in rows:
         assert (r["size"], r["steps"], r["atoms"]) == ("small", "20", "3487"), r
         for name in ("us", "rss_bytes", "lammps_bytes"):
@@ -239,6 +246,45 @@ def test_impact_speed_driver(tmp_path):
         assert share == pytest.approx(100 * float(row["mpi_share"]), abs=0.06), label
         assert own == pytest.approx(us[key, 1] / float(row["work_us"]), abs=0.006), label
         assert (1 - share / 100) * own == pytest.approx(effs[label], abs=0.02), label
+    # the machine's own ceiling: the probe's t1 / (2 t2) and 2-rank waiting share from the csv,
+    # and each efficiency printed over it
+    top = re.search(r"^the machine's own 2-rank ceiling \(medians; .*\): t1 / \(2 t2\) "
+                    r"([0-9.]+), ([0-9.]+) % of the 2-rank time waiting; each efficiency over "
+                    r"it: (.*)$", out, re.M)
+    assert top, out[-3000:]
+    ceiling = float(probe[1]["us"]) / (2 * float(probe[2]["us"]))
+    assert float(top.group(1)) == pytest.approx(ceiling, abs=0.006)
+    assert float(top.group(2)) == pytest.approx(100 * float(probe[2]["mpi_share"]), abs=0.06)
+    over = {m.group(1): float(m.group(2)) for m in
+            (re.fullmatch(r"(.*) ([0-9.]+)", part) for part in top.group(3).split(", "))}
+    assert set(over) == set(effs), (over, effs)
+    for label, e in effs.items():
+        assert over[label] == pytest.approx(e / ceiling, rel=0.02, abs=0.006), label
+
+
+@pytest.mark.mpi
+def test_lockstep_probe(tmp_path):
+    # lockstep.c, the benchmark's probe of the machine: the same work whatever the meetings
+    # (its checksum depends only on the chunks per rank), every rank meets, and bad arguments
+    # end with the usage and exit 2
+    exe = tmp_path / "lockstep"
+    subprocess.run(["mpicc", "-O2", "-o", str(exe), str(BENCH / "speed" / "lockstep.c")],
+                   check=True)
+    mpirun = ["mpirun", "--allow-run-as-root", "-np", "2", str(exe)]
+    runs = {}
+    for every in (1, 7, 1000):
+        done = subprocess.run(mpirun + ["200", str(every)], capture_output=True, text=True)
+        assert done.returncode == 0, done.stderr
+        found = re.fullmatch(r"LOCKSTEP ranks 2 chunks 200 every (\d+) seconds ([0-9.]+) mpi "
+                             r"([0-9.]+) checksum (\S+)\n", done.stdout)
+        assert found and int(found.group(1)) == every, done.stdout
+        seconds, mpi = float(found.group(2)), float(found.group(3))
+        assert 0 < mpi < seconds, done.stdout
+        runs[every] = found.group(4)
+    assert len(set(runs.values())) == 1, runs
+    for bad in (["201", "5"], ["0", "5"], ["200", "0"], ["200"]):
+        done = subprocess.run(mpirun + bad, capture_output=True, text=True)
+        assert done.returncode != 0 and "usage: mpirun -np R lockstep" in done.stderr, bad
 
 
 @pytest.mark.mpi

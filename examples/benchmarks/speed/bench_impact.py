@@ -25,11 +25,20 @@ Configurations (--styles keys), each run on every rank count of --ranks:
     block               the same with "solver krylov precond block external lagged"
     amg                 the same with "solver krylov precond amg external lagged" (information
                         only: its loop time includes the set-ups of PETSc's multigrid hierarchy)
+    lockstep            not LAMMPS: lockstep.c (this folder, built with mpicc), the same
+                        arithmetic alone and split over 2 ranks that meet in an MPI_Allreduce
+                        every 64 chunks (about 10 ms of one rank's work, as often as a 54K force
+                        evaluation's halo exchanges), nothing to communicate: its t1 / (2 t2) is
+                        the 2-rank efficiency the machine gives perfectly balanced work with
+                        free communication in the same minutes as the other runs (1 on two
+                        idle cores of their own)
 
 Sizes: small, the deck as it is (3487 particles, --steps default 500); 54k, the same decks with
 impact54k.geometry (this folder; 53784 particles, --steps default 100) copied into the work
-directory as impact.geometry. 54k runs lps, nosb, plain, beside, jacobi and block only. A
-second --steps value is the 54k step count; one value sets both.
+directory as impact.geometry. 54k runs lps, nosb, plain, beside, jacobi, block and lockstep
+only. A second --steps value is the 54k step count; one value sets both. lockstep does 12000
+chunks of arithmetic per run with the small size, 24000 with 54k (about 2 and 4 s alone on one
+core), 1200 with --quick.
 
 Runs alternate: each of the --rounds rounds (default 3) runs every configuration of every size
 on every rank count once, so a slow moment of the shared machine hits them alike. Per
@@ -55,7 +64,10 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
 - 2-rank parallel efficiency t1 / (2 t2) where both rank counts ran; with beside, t_x2 / t1
   (1: the cores do not slow each other) and t_x2 / (2 t2), the 2-rank efficiency of peri/nosb
   linear against the rate of two busy cores (what is left is communication, waiting and the
-  ranks' extra work); for the 2-rank runs, the share of the loop each rank spent inside MPI
+  ranks' extra work); with lockstep, the machine's own ceiling t1 / (2 t2) of the probe and its
+  share of the 2-rank time waiting at the meetings, and each configuration's efficiency over
+  that ceiling (about 1: the code loses no more than the machine makes any lock-step 2-rank
+  code lose); for the 2-rank runs, the share of the loop each rank spent inside MPI
   calls (waiting for the other rank and moving data; mpi_time.c, built with mpicc and preloaded
   into the ranks: mean over the ranks) and t1 / own work, own work the sum over the ranks of
   (loop - MPI time): the efficiency is (1 - share) x t1 / own work, what communication and
@@ -70,11 +82,13 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
 - the acceptance lines of issue 13 with PASS/FAIL: peri/nosb linear / peri/lps <= 0.5 (1 and 2
   ranks); one fix sissm iteration / peri/nosb step <= 1.0 (jacobi and krylov block,
   (t - t_nve) / k); 2-rank efficiency at 54K >= 0.95 for nve (peri/nosb linear + fix nve),
-  >= 0.9 for fix sissm (jacobi and krylov block). A goal whose runs were not made says "not
-  measured". Given twice: from the medians, and from the minima over the rounds.
+  >= 0.9 for fix sissm (jacobi and krylov block), with lockstep followed by the ceiling and
+  the efficiencies over it (information: PASS and FAIL judge the efficiencies themselves). A
+  goal whose runs were not made says "not measured". Given twice: from the medians, and from
+  the minima over the rounds.
 
 --quick: 20 steps, 1 round, small size (a smoke test; explicit options override). --csv writes
-one row per run. A run that fails is reported at the end, and the exit status is 1.
+one row per run (lockstep's: us per chunk, steps its chunks, atoms 0). A run that fails is reported at the end, and the exit status is 1.
 """
 from __future__ import annotations
 
@@ -116,6 +130,16 @@ ITERATIONS = "f_integrate[3]"            # fix sissm output 3: mean iterations p
 # mpi_time.c, preloaded into the multi-rank runs, one line per interval between two barriers:
 # "MPITIME rank 0 interval 3 loop 4.55 mpi 0.25"
 MPI_TIME_SRC = HERE / "mpi_time.c"
+# lockstep.c, the machine's own 2-rank ceiling: "LOCKSTEP ranks 2 chunks 24000 every 64 seconds
+# 2.1 mpi 0.2 checksum 1572.1"; chunks per run (about 4 s alone on one core of the 2026 guests at
+# 54k), and chunks between two meetings of the ranks (about 10 ms of one rank's work: a 54K force
+# evaluation on 2 ranks meets the other rank about as often, in its halo exchanges)
+LOCKSTEP_SRC = HERE / "lockstep.c"
+LOCKSTEP = re.compile(r"^LOCKSTEP ranks (\d+) chunks (\d+) every (\d+) seconds ([0-9.eE+-]+) "
+                      r"mpi ([0-9.eE+-]+)", re.M)
+PROBE_CHUNKS = {"small": 12000, "54k": 24000}
+QUICK_PROBE_CHUNKS = 1200
+PROBE_EVERY = 64
 MPITIME = re.compile(r"^MPITIME rank (\d+) interval (\d+) loop ([0-9.eE+-]+) mpi ([0-9.eE+-]+)",
                      re.M)
 
@@ -130,6 +154,7 @@ class Config:
     large: bool = False      # also runs at the 54k size
     env: tuple = ()          # environment variables of the run, (name, value) pairs
     beside: bool = False     # two serial runs at once, one pinned to each of two cores
+    probe: bool = False      # lockstep.c, not LAMMPS: the machine's 2-rank ceiling
 
     def runs_on(self, ranks: int) -> bool:
         """Whether the configuration runs on that rank count (beside: serial runs only)."""
@@ -151,6 +176,7 @@ CONFIGS = [
            opts="solver krylov precond block external lagged", large=True),
     Config("amg", "sissm krylov amg", "in.impact.sissm",
            opts="solver krylov precond amg external lagged"),
+    Config("lockstep", "machine lockstep probe", "", large=True, probe=True),
 ]
 BY_KEY = {c.key: c for c in CONFIGS}
 SISSM = ("jacobi", "block", "amg")
@@ -176,15 +202,19 @@ def deck_path(config: Config, workdir: Path) -> Path:
 
 def build_mpi_time(tmp: Path):
     """mpi_time.c built as a library to preload (None, with the reason, where it cannot be)."""
-    lib = tmp / "libmpi_time.so"
+    return mpicc(MPI_TIME_SRC, tmp / "libmpi_time.so", ["-shared", "-fPIC"])
+
+
+def mpicc(source: Path, out: Path, flags: list):
+    """source built with mpicc -O2 into out: (out, "") or (None, the reason it could not be)."""
     try:
-        done = subprocess.run(["mpicc", "-shared", "-fPIC", "-O2", "-o", str(lib),
-                               str(MPI_TIME_SRC)], capture_output=True, text=True)
+        done = subprocess.run(["mpicc", *flags, "-O2", "-o", str(out), str(source)],
+                              capture_output=True, text=True)
     except OSError as err:
         return None, f"mpicc: {err}"
     if done.returncode != 0:
         return None, "mpicc: " + (done.stderr.strip().splitlines() or ["failed"])[-1]
-    return lib, ""
+    return out, ""
 
 
 def start(config: Config, size: str, ranks: int, steps: int, workdir: Path, lmp: Path,
@@ -224,11 +254,14 @@ def finish(proc: subprocess.Popen, workdir: Path, ranks: int) -> dict:
 
 
 def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
-             lmp: Path, preload: Path | None = None) -> dict:
+             lmp: Path, preload: Path | None = None, probe: tuple = ()) -> dict:
     """Run one configuration once in a fresh workdir; return parse_run() of what it wrote. A
     beside configuration starts two serial runs at once, each pinned to one of the first two
     cores this process may use (unpinned where it may use only one), and returns the first's
-    with the mean of the two's times and CPU use."""
+    with the mean of the two's times and CPU use. The probe runs lockstep.c instead, probe =
+    (its binary, chunks): run_probe()."""
+    if config.probe:
+        return run_probe(*probe, ranks)
     if not config.beside:
         return finish(start(config, size, ranks, steps, workdir, lmp, [], preload), workdir,
                       ranks)
@@ -246,6 +279,24 @@ def run_once(config: Config, size: str, ranks: int, steps: int, workdir: Path,
         raise failed
     return {**runs[0], "us": statistics.mean(r["us"] for r in runs),
             "cpu": statistics.mean(r["cpu"] for r in runs)}
+
+
+def run_probe(binary: Path, chunks: int, ranks: int) -> dict:
+    """One run of lockstep.c on that many ranks: the keys of parse_run(), with us the
+    microseconds per chunk of the whole (wall time / chunks) and mpi_share the ranks' mean share
+    of it spent waiting at the meetings (the rest NaN or empty: no atoms, no LAMMPS log)."""
+    done = subprocess.run(mpirun_prefix(ranks) + [str(binary), str(chunks), str(PROBE_EVERY)],
+                          capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    found = LOCKSTEP.findall(done.stdout)
+    if done.returncode != 0 or not found or int(found[-1][0]) != ranks:
+        tail = (done.stdout + done.stderr).strip().splitlines()[-3:]
+        raise RunFailed(f"lockstep exit {done.returncode}: " + " | ".join(tail))
+    seconds, mpi = float(found[-1][3]), float(found[-1][4])
+    us = seconds / chunks * 1e6
+    nan = float("nan")
+    return dict(us=us, atoms=0, mpi_share=mpi / seconds, work_us=ranks * us * (1 - mpi / seconds),
+                cpu=nan, iterations=None, amg_setups=None, passes="", nlocal_ave=nan,
+                balance=nan, rss_bytes=nan, lammps_bytes=nan)
 
 
 def parse_run(log: str, rss: str, ranks: int, stderr: str = "") -> dict:
@@ -372,6 +423,19 @@ class Results:
                       self.med(size, "nosb", 2))
         return (tx / t1, tx / (2 * t2)) if tx and t1 and t2 else None
 
+    def ceiling(self, size):
+        """(t1 / (2 t2), 2-rank share waiting) of lockstep.c in the rounds of this size: the
+        2-rank efficiency the machine gave perfectly balanced arithmetic with free communication
+        in the same minutes (None without the probe's runs)."""
+        eff = self.efficiency(size, "lockstep")
+        return (eff, self.med(size, "lockstep", 2, "mpi_share")) if eff else None
+
+    def against_ceiling(self, size, keys) -> str:
+        """"label efficiency / ceiling" for each key with both, joined."""
+        top = self.ceiling(size)
+        return ", ".join(f"{BY_KEY[k].label} {e / top[0]:.2f}" for k in keys
+                         if top and (e := self.efficiency(size, k)))
+
 
 W = 32          # width of a table cell
 
@@ -396,8 +460,11 @@ def missing(key: str, r: int) -> str:
 
 def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) -> None:
     """The tables of one size."""
-    atoms = next((r[0]["atoms"] for (s, _, _), r in res.runs.items() if s == size), "?")
+    atoms = next((r[0]["atoms"] for (s, k, _), r in res.runs.items()
+                  if s == size and not BY_KEY[k].probe), "?")
     print(f"\n== {size}: {atoms} atoms, {steps} steps ==")
+    probe = [c for c in configs if c.probe]
+    configs = [c for c in configs if not c.probe]
     rows = [(c.label, c.key) for c in configs]
     for c in configs:
         versions = sorted({x["passes"] for r in ranks for x in res.get(size, c.key, r)} - {""})
@@ -445,10 +512,19 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
             print(f"2-rank parallel efficiency t1 / (2 t2) of the {which}: " + ", ".join(
                 f"{c.label} {e:.2f}" for c in configs if (e := stats.efficiency(size, c.key))))
         for which, stats in views:
-            if (parts := stats.split_text(size, [c.key for c in configs])):
+            if (parts := stats.split_text(size, [c.key for c in configs + probe])):
                 print(f"2 ranks ({which}): % of the loop inside MPI calls, waits and transfers "
                       f"(mean over the ranks) / t1 / (own work: sum over the ranks of loop - "
                       f"MPI time): " + parts)
+        for which, stats in views:
+            if probe and (top := stats.ceiling(size)):
+                base = stats.med(size, "lockstep", 1)
+                print(f"the machine's own 2-rank ceiling ({which}; lockstep.c: the same "
+                      f"arithmetic alone and split over 2 ranks that meet every {PROBE_EVERY} "
+                      f"chunks, {base * PROBE_EVERY / 1000:.1f} ms of one rank's work, no data to "
+                      f"move): t1 / (2 t2) {top[0]:.2f}, {100 * top[1]:.1f} % of the 2-rank time "
+                      f"waiting; each efficiency over it: "
+                      + stats.against_ceiling(size, [c.key for c in configs]))
         for which, stats in views:
             if (both := stats.beside(size)):
                 print(f"both cores busy ({which}): two serial peri/nosb linear runs at once, "
@@ -505,7 +581,11 @@ def print_acceptance(res: Results, sizes: list, ranks: list, which: str) -> None
               f"one; the nve efficiency against that rate {both[1]:.2f})")
     goal("[54k] 2-rank efficiency >= 0.9 sissm (jacobi and krylov block)", sissm, 0.9, 2,
          above=True)
-    if (parts := res.split_text("54k", ("nosb",) + ACCEPTED_SISSM)):
+    if (top := res.ceiling("54k")):
+        print(f"    (the machine's own ceiling in these rounds, lockstep.c: {top[0]:.2f}; each "
+              f"efficiency over it: "
+              + res.against_ceiling("54k", ("nosb",) + ACCEPTED_SISSM) + ")")
+    if (parts := res.split_text("54k", ("nosb",) + ACCEPTED_SISSM + ("lockstep",))):
         print("    (2 ranks, % of the loop inside MPI calls / the ranks' own work against the "
               "serial run: " + parts + ")")
 
@@ -535,25 +615,34 @@ def main():
     # rounds x (size, configuration, ranks), round-robin; progress weighted by particle-steps
     # (x6 for fix sissm's evaluations)
     order = [(s, c, r) for s in sizes for c in configs[s] for r in args.ranks if c.runs_on(r)]
-    weight = {(s, c): steps[s] * PARTICLES[s] * (6 if c.opts else 1) * (2 if c.beside else 1)
-              for s, c, _ in order}
+    chunks = {s: QUICK_PROBE_CHUNKS if args.quick else PROBE_CHUNKS[s] for s in sizes}
+    # (a chunk of the probe takes about as long as 80 particle-steps)
+    weight = {(s, c): (80 * chunks[s] if c.probe else steps[s] * PARTICLES[s])
+              * (6 if c.opts else 1) * (2 if c.beside else 1) for s, c, _ in order}
     progress = Progress(rounds * sum(weight[s, c] for s, c, _ in order), "bench_impact")
     res, failures, rows = Results(), [], []
     with tempfile.TemporaryDirectory(prefix="bench_impact-") as tmp:
         preload, why = build_mpi_time(Path(tmp)) if max(args.ranks) > 1 else (None, "")
+        lockstep = None
+        if any(c.probe for _, c, _ in order):
+            lockstep, no_probe = mpicc(LOCKSTEP_SRC, Path(tmp) / "lockstep", [])
+            if not lockstep:
+                failures.append(f"machine lockstep probe: {no_probe}")
+                order = [(s, c, r) for s, c, r in order if not c.probe]
         for n in range(1, rounds + 1):
             for size, config, ranks in order:
                 what = f"{size} {config.label} on {ranks} rank(s), round {n}"
                 try:
                     run = run_once(config, size, ranks, steps[size],
                                    Path(tmp) / f"{size}-{config.key}-{ranks}-{n}", args.lmp,
-                                   preload)
+                                   preload, (lockstep, chunks[size]))
                 except RunFailed as err:
                     failures.append(f"{what}: {err}")
                 else:
                     res.runs.setdefault((size, config.key, ranks), []).append(run)
                     rows.append(dict(round=n, size=size, config=config.key, ranks=ranks,
-                                     steps=steps[size], **run))
+                                     steps=chunks[size] if config.probe else steps[size],
+                                     **run))
                 progress.step(what, weight[size, config])
     progress.done()
     if args.csv and rows:
