@@ -88,7 +88,8 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
   the minima over the rounds.
 
 --quick: 20 steps, 1 round, small size (a smoke test; explicit options override). --csv writes
-one row per run (lockstep's: us per chunk, steps its chunks, atoms 0). A run that fails is reported at the end, and the exit status is 1.
+one row per run (lockstep's: us per chunk, steps its chunks, atoms 0). A run that fails is
+reported at the end, and the exit status is 1.
 """
 from __future__ import annotations
 
@@ -130,6 +131,8 @@ ITERATIONS = "f_integrate[3]"            # fix sissm output 3: mean iterations p
 # mpi_time.c, preloaded into the multi-rank runs, one line per interval between two barriers:
 # "MPITIME rank 0 interval 3 loop 4.55 mpi 0.25"
 MPI_TIME_SRC = HERE / "mpi_time.c"
+MPITIME = re.compile(r"^MPITIME rank (\d+) interval (\d+) loop ([0-9.eE+-]+) mpi ([0-9.eE+-]+)",
+                     re.M)
 # lockstep.c, the machine's own 2-rank ceiling: "LOCKSTEP ranks 2 chunks 24000 every 64 seconds
 # 2.1 mpi 0.2 checksum 1572.1"; chunks per run (about 4 s alone on one core of the 2026 guests at
 # 54k), and chunks between two meetings of the ranks (about 10 ms of one rank's work: a 54K force
@@ -140,8 +143,6 @@ LOCKSTEP = re.compile(r"^LOCKSTEP ranks (\d+) chunks (\d+) every (\d+) seconds (
 PROBE_CHUNKS = {"small": 12000, "54k": 24000}
 QUICK_PROBE_CHUNKS = 1200
 PROBE_EVERY = 64
-MPITIME = re.compile(r"^MPITIME rank (\d+) interval (\d+) loop ([0-9.eE+-]+) mpi ([0-9.eE+-]+)",
-                     re.M)
 
 
 @dataclass(frozen=True)
