@@ -620,7 +620,6 @@ def main():
     # (a chunk of the probe takes about as long as 80 particle-steps)
     weight = {(s, c): (80 * chunks[s] if c.probe else steps[s] * PARTICLES[s])
               * (6 if c.opts else 1) * (2 if c.beside else 1) for s, c, _ in order}
-    progress = Progress(rounds * sum(weight[s, c] for s, c, _ in order), "bench_impact")
     res, failures, rows = Results(), [], []
     with tempfile.TemporaryDirectory(prefix="bench_impact-") as tmp:
         preload, why = build_mpi_time(Path(tmp)) if max(args.ranks) > 1 else (None, "")
@@ -630,6 +629,7 @@ def main():
             if not lockstep:
                 failures.append(f"machine lockstep probe: {no_probe}")
                 order = [(s, c, r) for s, c, r in order if not c.probe]
+        progress = Progress(rounds * sum(weight[s, c] for s, c, _ in order), "bench_impact")
         for n in range(1, rounds + 1):
             for size, config, ranks in order:
                 what = f"{size} {config.label} on {ranks} rank(s), round {n}"
