@@ -2,9 +2,16 @@
 
 #include "linalg/fast_svd.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
+
+#ifdef PERISISSM_CPU_DISPATCH
+#include "linalg/fused.h"
+
+#include <immintrin.h>
+#endif
 
 namespace PeriSISSM {
 
@@ -189,7 +196,7 @@ bool load(const Eigen::Matrix3d &F, Columns &m, int &exponent, SignedSVD &out)
       }
       m.b[c][r] = a;
       m.v[c][r] = (r == c) ? 1.0 : 0.0;
-      fmax = std::fmax(fmax, std::fabs(a));
+      fmax = std::max(fmax, std::fabs(a));
     }
   exponent = 0;
   if (fmax != 0.0 && (fmax > 0x1p400 || fmax < 0x1p-400)) {
@@ -198,6 +205,23 @@ bool load(const Eigen::Matrix3d &F, Columns &m, int &exponent, SignedSVD &out)
       for (double &a : col) a = std::ldexp(a, -exponent);
   }
   return true;
+}
+
+// The end of step 4: U, V (V[k][r]: row r of column k), s = the diagonal of R into out, the
+// order repaired, the scaling undone
+void unload(const double U[3][3], const double V[3][3], const double s[3], int exponent,
+            SignedSVD &out)
+{
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) {
+      out.U(r, c) = U[r][c];
+      out.V(r, c) = V[c][r];
+    }
+  // (+ 0.0 turns a -0 into +0: "s_3 < 0" means inverted, not singular)
+  out.s = Eigen::Vector3d(s[0] + 0.0, s[1] + 0.0, s[2] + 0.0);
+  order(out);
+  if (exponent != 0)
+    for (int k = 0; k < 3; k++) out.s(k) = std::ldexp(out.s(k), exponent);
 }
 
 // Steps 3 and 4 of the method (fast_signed_svd() below)
@@ -210,18 +234,188 @@ void finish(Columns &m, int exponent, SignedSVD &out)
   givens(R, U, 0, 1, 0);
   givens(R, U, 0, 2, 0);
   givens(R, U, 1, 2, 1);
+  const double s[3] = {R[0][0], R[1][1], R[2][2]};
+  unload(U, m.v, s, exponent, out);
+}
 
+#ifdef PERISISSM_CPU_DISPATCH
+// Four matrices at once, one per lane of 4-wide AVX registers (compiled for x86-64-v3): every
+// lane does the scalar operations of orthogonalize(Columns &), sort_columns() and the three
+// givens() of finish() on its matrix in the same order, each correctly rounded (add, subtract, multiply, divide, square root; no fused multiply-add:
+// this file is compiled with -ffp-contract=off), so each matrix ends with the same bits as it
+// would alone. A rotation or swap a lane skips (its pair counts as orthogonal, its matrix is
+// done, its columns are in order) leaves its lane untouched by a blend, not by a rotation
+// through angle 0.
+struct Columns4 {
+  __m256d b[3][3];    // b[k][r]: row r of column k of B, lane l of matrix l
+  __m256d v[3][3];
+};
+
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline __m256d dot3x4(const __m256d *x,
+                                                                  const __m256d *y)
+{
+  return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x[0], y[0]), _mm256_mul_pd(x[1], y[1])),
+                       _mm256_mul_pd(x[2], y[2]));
+}
+
+// rotate(x, y, c, s) in the lanes of mask
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void rotate4(__m256d *x, __m256d *y,
+                                                                __m256d c, __m256d s,
+                                                                __m256d mask)
+{
+  for (int k = 0; k < 3; k++) {
+    const __m256d a = x[k], b = y[k];
+    const __m256d xn = _mm256_sub_pd(_mm256_mul_pd(c, a), _mm256_mul_pd(s, b));
+    const __m256d yn = _mm256_add_pd(_mm256_mul_pd(s, a), _mm256_mul_pd(c, b));
+    x[k] = _mm256_blendv_pd(a, xn, mask);
+    y[k] = _mm256_blendv_pd(b, yn, mask);
+  }
+}
+
+// jacobi_rotation(m, r) in the lanes of active; returns the lanes that rotated
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline __m256d jacobi_rotation4(Columns4 &m, int r,
+                                                                            __m256d active)
+{
+  static constexpr int P[3] = {0, 0, 1}, Q[3] = {1, 2, 2};
+  const __m256d tol2 = _mm256_set1_pd(kOrthogonal * kOrthogonal);
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  __m256d *bp = m.b[P[r]], *bq = m.b[Q[r]];
+  const __m256d alpha = dot3x4(bp, bp), beta = dot3x4(bq, bq), gamma = dot3x4(bp, bq);
+  const __m256d go = _mm256_and_pd(
+      active, _mm256_cmp_pd(_mm256_mul_pd(gamma, gamma),
+                            _mm256_mul_pd(_mm256_mul_pd(tol2, alpha), beta), _CMP_GT_OQ));
+  if (_mm256_movemask_pd(go) == 0) return go;
+  const __m256d d = _mm256_mul_pd(_mm256_set1_pd(0.5), _mm256_sub_pd(beta, alpha));
+  const __m256d absd = _mm256_andnot_pd(sign, d);
+  const __m256d g2 = _mm256_mul_pd(gamma, gamma);
+  const __m256d a = _mm256_add_pd(absd, _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(d, d), g2)));
+  const __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0),
+                                    _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(a, a), g2)));
+  __m256d c = _mm256_mul_pd(a, inv);
+  __m256d s = _mm256_mul_pd(
+      _mm256_mul_pd(_mm256_or_pd(_mm256_and_pd(sign, d), _mm256_set1_pd(1.0)), gamma), inv);
+  const __m256d small = _mm256_and_pd(
+      go, _mm256_cmp_pd(_mm256_andnot_pd(sign, gamma),
+                        _mm256_mul_pd(_mm256_set1_pd(kSmallAngle), absd), _CMP_LT_OQ));
+  if (_mm256_movemask_pd(small) != 0) {
+    const __m256d t = _mm256_div_pd(gamma, _mm256_mul_pd(_mm256_set1_pd(2.0), d));
+    const __m256d ct = _mm256_sub_pd(_mm256_set1_pd(1.0),
+                                     _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(0.5), t), t));
+    c = _mm256_blendv_pd(c, ct, small);
+    s = _mm256_blendv_pd(s, t, small);
+  }
+  rotate4(bp, bq, c, s, go);
+  rotate4(m.v[P[r]], m.v[Q[r]], c, s, go);
+  return go;
+}
+
+// orthogonalize(Columns &) of each lane not set in done (lanes set there are left alone)
+PERISISSM_FUSED_TARGET void orthogonalize4(Columns4 &m, __m256d done)
+{
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  for (int sweep = 0; sweep < kMaxSweeps && _mm256_movemask_pd(done) != 0xF; sweep++) {
+    const __m256d active = _mm256_andnot_pd(done, all);
+    __m256d rotated = _mm256_setzero_pd();
+    for (int r = 0; r < 3; r++) rotated = _mm256_or_pd(rotated, jacobi_rotation4(m, r, active));
+    done = _mm256_or_pd(done, _mm256_andnot_pd(rotated, all));
+  }
+}
+
+// swap(p, q) of sort_columns() in the lanes where n[p] < n[q]
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void swap_columns4(Columns4 &m,
+                                                                      __m256d n[3], int p,
+                                                                      int q)
+{
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  const __m256d mask = _mm256_cmp_pd(n[p], n[q], _CMP_LT_OQ);
+  const __m256d np = n[p];
+  n[p] = _mm256_blendv_pd(np, n[q], mask);
+  n[q] = _mm256_blendv_pd(n[q], np, mask);
+  for (int k = 0; k < 3; k++) {
+    const __m256d bp = m.b[p][k], bq = m.b[q][k], vp = m.v[p][k], vq = m.v[q][k];
+    m.b[p][k] = _mm256_blendv_pd(bp, bq, mask);
+    m.b[q][k] = _mm256_blendv_pd(bq, _mm256_xor_pd(bp, sign), mask);
+    m.v[p][k] = _mm256_blendv_pd(vp, vq, mask);
+    m.v[q][k] = _mm256_blendv_pd(vq, _mm256_xor_pd(vp, sign), mask);
+  }
+}
+
+// sort_columns(m) in every lane
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void sort_columns4(Columns4 &m)
+{
+  __m256d n[3] = {dot3x4(m.b[0], m.b[0]), dot3x4(m.b[1], m.b[1]), dot3x4(m.b[2], m.b[2])};
+  swap_columns4(m, n, 0, 1);
+  swap_columns4(m, n, 0, 2);
+  swap_columns4(m, n, 1, 2);
+}
+
+// a <- c a + s b, b <- -s a + c b in the lanes of mask (a row or column pair of givens())
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void turn4(__m256d &a, __m256d &b,
+                                                              __m256d c, __m256d s,
+                                                              __m256d minus_s, __m256d mask)
+{
+  const __m256d an = _mm256_add_pd(_mm256_mul_pd(c, a), _mm256_mul_pd(s, b));
+  const __m256d bn = _mm256_add_pd(_mm256_mul_pd(minus_s, a), _mm256_mul_pd(c, b));
+  a = _mm256_blendv_pd(a, an, mask);
+  b = _mm256_blendv_pd(b, bn, mask);
+}
+
+// givens(R, U, p, q, col) in every lane
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void givens4(__m256d R[3][3],
+                                                                __m256d U[3][3], int p, int q,
+                                                                int col)
+{
+  const __m256d x = R[p][col], y = R[q][col];
+  const __m256d r = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)));
+  const __m256d go = _mm256_cmp_pd(r, _mm256_setzero_pd(), _CMP_NEQ_UQ);
+  if (_mm256_movemask_pd(go) == 0) return;
+  const __m256d c = _mm256_div_pd(x, r), s = _mm256_div_pd(y, r);
+  const __m256d minus_s = _mm256_xor_pd(s, _mm256_set1_pd(-0.0));
+  for (int k = 0; k < 3; k++) turn4(R[p][k], R[q][k], c, s, minus_s, go);
+  R[q][col] = _mm256_blendv_pd(R[q][col], _mm256_setzero_pd(), go);
+  for (int k = 0; k < 3; k++) turn4(U[k][p], U[k][q], c, s, minus_s, go);
+}
+
+// Steps 2 and 3 of the method for four matrices (lanes with ok[l] false: zeros, left alone):
+// m[l] in, U[l], V[l] (by columns as Columns::v) and the diagonal s[l] of R out
+PERISISSM_FUSED_TARGET void svd4(const Columns m[4], const bool ok[4], double U[4][3][3],
+                                 double V[4][3][3], double s[4][3])
+{
+  Columns4 m4;
+  for (int k = 0; k < 3; k++)
+    for (int r = 0; r < 3; r++) {
+      m4.b[k][r] = _mm256_setr_pd(ok[0] ? m[0].b[k][r] : 0.0, ok[1] ? m[1].b[k][r] : 0.0,
+                                  ok[2] ? m[2].b[k][r] : 0.0, ok[3] ? m[3].b[k][r] : 0.0);
+      m4.v[k][r] = _mm256_setr_pd(ok[0] ? m[0].v[k][r] : 0.0, ok[1] ? m[1].v[k][r] : 0.0,
+                                  ok[2] ? m[2].v[k][r] : 0.0, ok[3] ? m[3].v[k][r] : 0.0);
+    }
+  const __m256d done = _mm256_castsi256_pd(_mm256_setr_epi64x(
+      ok[0] ? 0 : -1, ok[1] ? 0 : -1, ok[2] ? 0 : -1, ok[3] ? 0 : -1));
+  orthogonalize4(m4, done);
+  sort_columns4(m4);
+  __m256d R[3][3], Q[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) {
-      out.U(r, c) = U[r][c];
-      out.V(r, c) = m.v[c][r];
+      R[r][c] = m4.b[c][r];
+      Q[r][c] = _mm256_set1_pd(r == c ? 1.0 : 0.0);
     }
-  // (+ 0.0 turns a -0 into +0: "s_3 < 0" means inverted, not singular)
-  out.s = Eigen::Vector3d(R[0][0] + 0.0, R[1][1] + 0.0, R[2][2] + 0.0);
-  order(out);
-  if (exponent != 0)
-    for (int k = 0; k < 3; k++) out.s(k) = std::ldexp(out.s(k), exponent);
+  givens4(R, Q, 0, 1, 0);
+  givens4(R, Q, 0, 2, 0);
+  givens4(R, Q, 1, 2, 1);
+  double lanes[4];
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) {
+      _mm256_storeu_pd(lanes, Q[r][c]);
+      for (int l = 0; l < 4; l++) U[l][r][c] = lanes[l];
+      _mm256_storeu_pd(lanes, m4.v[r][c]);
+      for (int l = 0; l < 4; l++) V[l][r][c] = lanes[l];
+    }
+  for (int k = 0; k < 3; k++) {
+    _mm256_storeu_pd(lanes, R[k][k]);
+    for (int l = 0; l < 4; l++) s[l][k] = lanes[l];
+  }
 }
+#endif
 
 }  // namespace
 
@@ -257,6 +451,29 @@ void fast_signed_svd(const Eigen::Matrix3d &Fa, const Eigen::Matrix3d &Fb, Signe
   else if (fb) orthogonalize(mb);
   if (fa) finish(ma, ea, a);
   if (fb) finish(mb, eb, b);
+}
+
+void fast_signed_svd(const Eigen::Matrix3d F[4], SignedSVD out[4])
+{
+#ifdef PERISISSM_CPU_DISPATCH
+  static const bool wide = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }();
+  if (wide) {
+    Columns m[4];
+    int e[4];
+    bool ok[4];
+    for (int l = 0; l < 4; l++) ok[l] = load(F[l], m[l], e[l], out[l]);
+    double U[4][3][3], V[4][3][3], s[4][3];
+    svd4(m, ok, U, V, s);
+    for (int l = 0; l < 4; l++)
+      if (ok[l]) unload(U[l], V[l], s[l], e[l], out[l]);
+    return;
+  }
+#endif
+  fast_signed_svd(F[0], F[1], out[0], out[1]);
+  fast_signed_svd(F[2], F[3], out[2], out[3]);
 }
 
 }  // namespace PeriSISSM

@@ -31,6 +31,12 @@ SignedSVD fast_signed_svd(const Eigen::Matrix3d& F);
 void fast_signed_svd(const Eigen::Matrix3d& Fa, const Eigen::Matrix3d& Fb, SignedSVD& a,
                      SignedSVD& b);
 
+// Four at once: out[l] = fast_signed_svd(F[l]) to the last bit, one matrix per lane of 4-wide
+// registers on processors with AVX2 (with -DPERISISSM_CPU_DISPATCH=ON, the default with GCC on
+// x86-64), otherwise as two pairs. Rotated small strains, the common case of a force
+// evaluation: about 185 ns a matrix against 315 in pairs and 460 alone.
+void fast_signed_svd(const Eigen::Matrix3d F[4], SignedSVD out[4]);
+
 }  // namespace PeriSISSM
 
 #endif  // PERISISSM_FAST_SVD_H

@@ -141,9 +141,12 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
   const int nlocal = p.nlocal;
   constexpr double ACC0 = BreakingRule::initial<UNIFORM>();
   BondRows rows(fam, nlocal);
-  double mrow[2][9];    // M of the particle waiting for its stress, and of the current one
-  CorrespondenceState wait{};
-  bool waiting = false;
+  // the stresses of regular particles G at a time (their SVDs side by side; 4 in the lanes of
+  // the fused version's registers, fast_svd.h): M of those waiting, and of the current one
+  constexpr int G = FUSED ? 4 : 2;
+  double mrow[G][9];
+  CorrespondenceState wait[G];
+  int nwait = 0;
 
   for (int i = 0; i < nlocal; i++) {
     const int itype = type[i];
@@ -153,7 +156,7 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
 
     // the breaking check, and M = sum omega eta (x) xi over the unbroken bonds (M of a
     // regular particle goes to the free row of mrow)
-    double *M = mrow[waiting ? 1 : 0];
+    double *M = mrow[nwait];
     // (the 4-wide loop with the other 4-wide passes: where fields.cols is given)
 #ifdef PERISISSM_CPU_DISPATCH
     if (FUSED && fields.cols)
@@ -185,8 +188,7 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
       fields.w[i] =
           membrane_state(model.material(itype), M, fam.kinv[i], fam.normal[i], g, h, k);
     } else if (fam.kregular[i]) {
-      // the stresses of regular particles two at a time (their SVDs run side by side): this
-      // one waits for the next, or goes with the one waiting
+      // this one waits for the next, or goes with those waiting
       g[ParticleFields::G_C] = model.stabilization_modulus(itype, fam.kinv[i]);
       double *k = blocks ? fields.k + NK * i : nullptr;
       if (k) {
@@ -196,9 +198,12 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
       g[ParticleFields::G_REG] = 1.0;
       const CorrespondenceState state{&model.material(itype), M, fam.kinv[i], g, h, k,
                                       fields.w + i};
-      if (waiting) correspondence_states(wait, state);
-      else wait = state;
-      waiting = !waiting;
+      wait[nwait++] = state;
+      if (nwait == G) {
+        if constexpr (G == 4) correspondence_states(wait);
+        else correspondence_states(wait[0], wait[1]);
+        nwait = 0;
+      }
     } else {
       // singular K: F is undefined, the particle carries no force state of its own (H = 0,
       // C = 0, W = 0) and F is reported as the identity
@@ -214,8 +219,11 @@ template <int MODE, int UNIFORM, int PBC, int MEMBRANE, bool FUSED>
     }
   }
 
-  if (waiting)
-    *wait.W = correspondence_state(*wait.material, wait.M, wait.Kinv, wait.F, wait.A, wait.H);
+  for (int q = 0; q + 1 < nwait; q += 2) correspondence_states(wait[q], wait[q + 1]);
+  if (nwait % 2) {
+    const CorrespondenceState &last = wait[nwait - 1];
+    *last.W = correspondence_state(*last.material, last.M, last.Kinv, last.F, last.A, last.H);
+  }
 
   if (MODE != BreakingRule::NOBREAK)
     for (int i = 0; i < nlocal; i++) s0[i] = fields.smin_new[i];

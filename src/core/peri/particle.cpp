@@ -107,6 +107,16 @@ void correspondence_states(const CorrespondenceState& a, const CorrespondenceSta
   *b.W = finish_state(*b.material, fb, sb, b.Kinv, b.F, b.A, b.H);
 }
 
+void correspondence_states(const CorrespondenceState (&s)[4])
+{
+  Eigen::Matrix3d f[4];
+  SignedSVD svd[4];
+  for (int l = 0; l < 4; l++) f[l] = gradient(s[l].M, s[l].Kinv);
+  fast_signed_svd(f, svd);
+  for (int l = 0; l < 4; l++)
+    *s[l].W = finish_state(*s[l].material, f[l], svd[l], s[l].Kinv, s[l].F, s[l].A, s[l].H);
+}
+
 // tau = P F^T = U diag(phat) V^T V diag(s) U^T = U diag(phat .* s) U^T.
 double cauchy_stress(const Material& material, const double F[9], double sigma[6], double& J)
 {
