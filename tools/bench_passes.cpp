@@ -4,22 +4,26 @@
 // a busy machine slows them alike; per pass the minimum and the median over the rounds.
 // Compares variants of one pass (state with and without the breaking check, force with and
 // without the SISSM blocks) and sums the passes of an explicit step and of a fix sissm
-// iteration (no halo, contact or solver: the bond loops only). Built and run by
+// iteration (no halo, contact or solver: the bond loops only); times the state pass's signed
+// SVD alone, one, two and four matrices at a time. Built and run by
 // tools/bench_passes.sh; nothing is asserted.
 
 #include "peri/cluster.h"
 
+#include "linalg/fast_svd.h"
 #include "linalg/fused.h"
 #include "materials/material.h"
 #include "peri/elastic.h"
 #include "peri/stabilization.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <new>
+#include <random>
 #include <vector>
 
 using namespace PeriSISSM;
@@ -88,16 +92,34 @@ int main(int argc, char **argv)
 
   enum {
     STATE_BREAK, STATE_BREAK_SCALAR, STATE, STATE_K, STAB, STAB_SCALAR, FORCE, FORCE_SCALAR,
-    FORCE_BLOCKS, NPASS
+    FORCE_BLOCKS, SVD1, SVD2, SVD4, NPASS
   };
   const char *names[NPASS] = {"state, breaking check",   "state, check, scalar",
                               "state, no check",         "state, no check, k rows",
                               "stabilization",           "stabilization, scalar",
                               "force",                   "force, scalar",
-                              "force and blocks"};
+                              "force and blocks",
+                              "svd, one at a time",      "svd, two side by side",
+                              "svd, four (lanes)"};
   // the scalar code of the fused version: without the columns scratch
   ParticleFields scalar = fields;
   scalar.cols = nullptr;
+  // the state pass's signed SVD alone, as many matrices as particles (a multiple of 4): F of a
+  // body that turns, rotations of small strains (the lattice's own F are nearly diagonal,
+  // which the Jacobi sweeps finish at once), one at a time, two and four side by side
+  std::vector<Eigen::Matrix3d> turned(c.nlocal - c.nlocal % 4);
+  std::vector<SignedSVD> svd(turned.size());
+  {
+    std::mt19937_64 rng(3u);
+    std::normal_distribution<double> normal;
+    for (Eigen::Matrix3d &F : turned) {
+      Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+      Eigen::Matrix3d e;
+      for (int k = 0; k < 9; k++) e(k) = 1.0e-4 * normal(rng);
+      F = q.normalized().toRotationMatrix() * (Eigen::Matrix3d::Identity() + e);
+    }
+  }
+  const size_t nsvd = turned.size();
   std::vector<std::vector<double>> t(NPASS);
   auto timed = [&](int q, auto &&pass) {
     const double t0 = now();
@@ -123,6 +145,16 @@ int main(int argc, char **argv)
     timed(FORCE_SCALAR, [&] { elastic_force_pass(p, fam, c.box, scalar, virial, nullptr); });
     timed(FORCE_BLOCKS,
           [&] { elastic_force_pass(p, fam, c.box, fields, virial, rows.data()); });
+    timed(SVD1, [&] {
+      for (size_t i = 0; i < nsvd; i++) svd[i] = fast_signed_svd(turned[i]);
+    });
+    timed(SVD2, [&] {
+      for (size_t i = 0; i < nsvd; i += 2)
+        fast_signed_svd(turned[i], turned[i + 1], svd[i], svd[i + 1]);
+    });
+    timed(SVD4, [&] {
+      for (size_t i = 0; i < nsvd; i += 4) fast_signed_svd(&turned[i], &svd[i]);
+    });
   }
   if (!broke.empty()) std::fprintf(stderr, "warning: %zu families lost bonds\n", broke.size());
 
@@ -142,6 +174,9 @@ int main(int argc, char **argv)
               " = %.3f x the step\n", iter, iter / step);
   std::printf("breaking check: %.3f x the state pass without it; blocks: %.3f x the force pass\n",
               lo[STATE_BREAK] / lo[STATE], lo[FORCE_BLOCKS] / lo[FORCE]);
+  std::printf("signed SVD of %zu turned F (rotated small strains): ns per matrix alone %.0f,"
+              " two side by side %.0f, four %.0f (%.3f x two)\n", nsvd, 1e6 * lo[SVD1] / nsvd,
+              1e6 * lo[SVD2] / nsvd, 1e6 * lo[SVD4] / nsvd, lo[SVD4] / lo[SVD2]);
   const double step_scalar = lo[STATE_BREAK_SCALAR] + lo[STAB_SCALAR] + lo[FORCE_SCALAR];
   std::printf("4-wide against scalar (fields.cols given or not): state with check %.3f x,"
               " stabilization %.3f x, force %.3f x; explicit step %.3f x (%.2f ms scalar)\n",

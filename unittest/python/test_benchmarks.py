@@ -354,7 +354,9 @@ def test_bench_passes_tool():
               re.findall(r"^  (\S.*?)\s+([0-9.]+)\s+([0-9.]+)$", out, re.M)}
     assert set(passes) == {"state, breaking check", "state, check, scalar", "state, no check",
                            "state, no check, k rows", "stabilization", "stabilization, scalar",
-                           "force", "force, scalar", "force and blocks"}, out
+                           "force", "force, scalar", "force and blocks",
+                           "svd, one at a time", "svd, two side by side",
+                           "svd, four (lanes)"}, out
     for lo, mid in passes.values():
         assert 0.0 < lo <= mid, out
     step = float(re.search(r"^explicit step .*: ([0-9.]+) ms$", out, re.M).group(1))
@@ -368,3 +370,14 @@ def test_bench_passes_tool():
                                + lo["force and blocks"], abs=0.021)
     # (the ratio comes from the unrounded times: passes of ~1 ms, printed to 0.01 ms)
     assert ratio == pytest.approx(it / step, rel=0.03)
+    # the SVD line: as many matrices as particles (1000, a multiple of 4), ns per matrix from
+    # the same minima (1000 matrices: a printed 0.01 ms is 10 ns a matrix)
+    nsvd, alone, two, four, rel = re.search(
+        r"^signed SVD of (\d+) turned F \(rotated small strains\): ns per matrix alone (\d+), "
+        r"two side by side (\d+), four (\d+) \(([0-9.]+) x two\)$", out, re.M).groups()
+    assert int(nsvd) == 1000, out
+    for printed, name in ((alone, "svd, one at a time"), (two, "svd, two side by side"),
+                          (four, "svd, four (lanes)")):
+        assert float(printed) == pytest.approx(1e3 * lo[name], abs=6.0), out
+    assert float(rel) == pytest.approx(lo["svd, four (lanes)"] / lo["svd, two side by side"],
+                                       rel=0.1), out
