@@ -379,5 +379,7 @@ def test_bench_passes_tool():
     for printed, name in ((alone, "svd, one at a time"), (two, "svd, two side by side"),
                           (four, "svd, four (lanes)")):
         assert float(printed) == pytest.approx(1e3 * lo[name], abs=6.0), out
-    assert float(rel) == pytest.approx(lo["svd, four (lanes)"] / lo["svd, two side by side"],
-                                       rel=0.1), out
+    # the ratio of the unrounded times: within what the rows' rounding to 0.005 ms allows
+    four_ms, two_ms = lo["svd, four (lanes)"], lo["svd, two side by side"]
+    assert (four_ms - 0.005) / (two_ms + 0.005) - 0.0005 <= float(rel) \
+        <= (four_ms + 0.005) / max(two_ms - 0.005, 1e-9) + 0.0005, out

@@ -8,9 +8,7 @@
 #include <utility>
 
 #ifdef PERISISSM_CPU_DISPATCH
-#include "linalg/fused.h"
-
-#include <immintrin.h>
+#include "linalg/double4.h"
 #endif
 
 namespace PeriSISSM {
@@ -199,7 +197,9 @@ bool load(const Eigen::Matrix3d &F, Columns &m, int &exponent, SignedSVD &out)
       fmax = std::max(fmax, std::fabs(a));
     }
   exponent = 0;
-  if (fmax != 0.0 && (fmax > 0x1p400 || fmax < 0x1p-400)) {
+  // (the convergence test squares Gram entries: fourth powers of F's entries, which must
+  // neither overflow nor underflow)
+  if (fmax != 0.0 && (fmax > 0x1p200 || fmax < 0x1p-200)) {
     std::frexp(fmax, &exponent);
     for (auto &col : m.b)
       for (double &a : col) a = std::ldexp(a, -exponent);
@@ -207,7 +207,7 @@ bool load(const Eigen::Matrix3d &F, Columns &m, int &exponent, SignedSVD &out)
   return true;
 }
 
-// The end of step 4: U, V (V[k][r]: row r of column k), s = the diagonal of R into out, the
+// The end of steps 3 and 4: U, V (V[k][r]: row r of column k), s = the diagonal of R into out, the
 // order repaired, the scaling undone
 void unload(const double U[3][3], const double V[3][3], const double s[3], int exponent,
             SignedSVD &out)
@@ -241,11 +241,14 @@ void finish(Columns &m, int exponent, SignedSVD &out)
 #ifdef PERISISSM_CPU_DISPATCH
 // Four matrices at once, one per lane of 4-wide AVX registers (compiled for x86-64-v3): every
 // lane does the scalar operations of orthogonalize(Columns &), sort_columns() and the three
-// givens() of finish() on its matrix in the same order, each correctly rounded (add, subtract, multiply, divide, square root; no fused multiply-add:
-// this file is compiled with -ffp-contract=off), so each matrix ends with the same bits as it
-// would alone. A rotation or swap a lane skips (its pair counts as orthogonal, its matrix is
-// done, its columns are in order) leaves its lane untouched by a blend, not by a rotation
-// through angle 0.
+// givens() of finish() on its matrix in the same order, each correctly rounded (add, subtract,
+// multiply, divide, square root; no fused multiply-add: this file is compiled with
+// -ffp-contract=off), so each matrix ends with the same bits as it would alone. A rotation,
+// swap or Givens rotation a lane skips (its pair counts as orthogonal, its matrix is done, its
+// columns are in order, its r is 0) leaves its lane untouched by a blend, not by a rotation
+// through angle 0. The skipped lanes' arithmetic is still done and may divide by zero: that
+// sets the floating-point exception flags (results unaffected; nothing here runs with
+// exceptions trapped).
 struct Columns4 {
   __m256d b[3][3];    // b[k][r]: row r of column k of B, lane l of matrix l
   __m256d v[3][3];
@@ -456,11 +459,7 @@ void fast_signed_svd(const Eigen::Matrix3d &Fa, const Eigen::Matrix3d &Fb, Signe
 void fast_signed_svd(const Eigen::Matrix3d F[4], SignedSVD out[4])
 {
 #ifdef PERISISSM_CPU_DISPATCH
-  static const bool wide = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  }();
-  if (wide) {
+  if (x86_64_v3()) {
     Columns m[4];
     int e[4];
     bool ok[4];

@@ -10,8 +10,8 @@
 
 namespace PeriSISSM {
 
-// Signed SVD of a 3x3 matrix by Jacobi rotations on F^T F and a Givens QR of F V (McAdams et
-// al., "Computing the singular value decomposition of 3x3 matrices with minimal branching and
+// Signed SVD of a 3x3 matrix by one-sided Jacobi rotations of the columns of F and a Givens QR
+// of F V (McAdams et al., "Computing the singular value decomposition of 3x3 matrices with minimal branching and
 // elementary floating point operations", Univ. Wisconsin TR1690, 2011; here in double precision
 // with exact rotation angles and a convergence test instead of a fixed number of sweeps).
 //
@@ -32,9 +32,10 @@ void fast_signed_svd(const Eigen::Matrix3d& Fa, const Eigen::Matrix3d& Fb, Signe
                      SignedSVD& b);
 
 // Four at once: out[l] = fast_signed_svd(F[l]) to the last bit, one matrix per lane of 4-wide
-// registers on processors with AVX2 (with -DPERISISSM_CPU_DISPATCH=ON, the default with GCC on
-// x86-64), otherwise as two pairs. Rotated small strains, the common case of a force
-// evaluation: about 185 ns a matrix against 315 in pairs and 460 alone.
+// registers where the build has the x86-64-v3 code (-DPERISISSM_CPU_DISPATCH=ON, the default
+// with GCC or Clang on x86-64) and the processor runs it (x86_64_v3(), fused.h), otherwise as
+// two pairs. Rotated small strains, the common case of a force evaluation, measured once with
+// tools/bench_passes.sh on a 2-core x86-64 guest: 185 ns a matrix, 330 in pairs, 475 alone.
 void fast_signed_svd(const Eigen::Matrix3d F[4], SignedSVD out[4]);
 
 }  // namespace PeriSISSM

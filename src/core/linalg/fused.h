@@ -26,9 +26,12 @@ template <bool FUSED> [[gnu::always_inline]] inline double madd(double a, double
   else return a * b + c;
 }
 
-// True when the bond passes run their fused version: built with the dispatch
-// (-DPERISISSM_CPU_DISPATCH=ON, the default with GCC on x86-64), the processor has AVX2 and FMA,
-// and the environment variable PERI_SISSM_PASSES is not "plain".
+// True when the build has the x86-64-v3 code (-DPERISISSM_CPU_DISPATCH=ON, the default with GCC
+// or Clang on x86-64) and the processor has AVX2 and FMA to run it.
+bool x86_64_v3();
+
+// True when the bond passes run their fused version: x86_64_v3() and the environment variable
+// PERI_SISSM_PASSES is not "plain".
 bool fused_passes();
 
 }  // namespace PeriSISSM

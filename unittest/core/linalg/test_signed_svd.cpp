@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -277,6 +278,13 @@ TEST(FastSignedSVD, FoursEqualSingles)
   for (const Vector3d& s : {Vector3d(1, 1, 1 + 1e-9), Vector3d(2, 1, -1 + 1e-12),
                             Vector3d(1, 0, 0), Vector3d(1e8, 1, 1e-8)})
     for (int i = 0; i < 4; ++i) cases.push_back(PeriSISSMTest::rotated_diag(rng, s));
+  // a nearly diagonal matrix, whose first sweep takes the small-angle branch, falls in the same
+  // four as matrices that take the general one
+  for (int i = 0; i < 8; ++i) {
+    Matrix3d near = Vector3d(2, 1.5, 1).asDiagonal().toDenseMatrix();
+    near(0, 1) = near(2, 1) = 1e-10 * (i + 1);
+    cases.push_back(near);
+  }
   cases.push_back(Matrix3d::Identity());
   cases.push_back(Matrix3d::Zero());
   cases.push_back(1e200 * PeriSISSMTest::random_rotation(rng));    // scaled by 2^-k first
@@ -286,9 +294,13 @@ TEST(FastSignedSVD, FoursEqualSingles)
   cases.push_back(bad);
   bad(0, 1) = std::numeric_limits<double>::infinity();
   cases.push_back(bad);
+  // the same bits (a -0 and a +0 differ), NaN in s where either has NaN
   auto same = [](const SignedSVD& x, const SignedSVD& y) {
-    return (x.U.array() == y.U.array()).all() && (x.V.array() == y.V.array()).all() &&
-        ((x.s.array() == y.s.array()) || (x.s.array().isNaN() && y.s.array().isNaN())).all();
+    if (x.s.array().isNaN().any() || y.s.array().isNaN().any())
+      return x.s.array().isNaN().all() && y.s.array().isNaN().all();
+    return std::memcmp(x.U.data(), y.U.data(), sizeof(double) * 9) == 0 &&
+        std::memcmp(x.V.data(), y.V.data(), sizeof(double) * 9) == 0 &&
+        std::memcmp(x.s.data(), y.s.data(), sizeof(double) * 3) == 0;
   };
   const size_t n = cases.size();
   for (size_t i = 0; i < n; i++) {
@@ -299,6 +311,26 @@ TEST(FastSignedSVD, FoursEqualSingles)
     for (int l = 0; l < 4; l++)
       ASSERT_TRUE(same(out[l], PeriSISSM::fast_signed_svd(F[l]))) << "lane " << l << ", F =\n"
                                                                   << F[l];
+  }
+}
+
+// A power-of-two scale of F scales s exactly and leaves U and V as they are, however far from 1
+// (the convergence test squares Gram entries, fourth powers of F's entries: matrices with entries
+// near 2^300 or 2^-300 were once left unrotated).
+TEST(FastSignedSVD, PowerOfTwoScalesAreExact)
+{
+  std::mt19937_64 rng(17u);
+  for (int i = 0; i < 20; ++i) {
+    const Matrix3d F = PeriSISSMTest::gaussian_matrix(rng);
+    const SignedSVD one = PeriSISSM::fast_signed_svd(F);
+    for (int e : {-900, -600, -300, -150, 150, 300, 600, 900}) {
+      const Matrix3d G = F.unaryExpr([e](double a) { return std::ldexp(a, e); });
+      const SignedSVD scaled = PeriSISSM::fast_signed_svd(G);
+      for (int k = 0; k < 3; k++)
+        ASSERT_EQ(scaled.s(k), std::ldexp(one.s(k), e)) << "2^" << e << " F, F =\n" << F;
+      ASSERT_TRUE((scaled.U.array() == one.U.array()).all()) << "2^" << e << ", F =\n" << F;
+      ASSERT_TRUE((scaled.V.array() == one.V.array()).all()) << "2^" << e << ", F =\n" << F;
+    }
   }
 }
 
