@@ -423,8 +423,9 @@ PERISISSM_FUSED_TARGET void svd4(const Columns m[4], const bool ok[4], double U[
 }  // namespace
 
 // Method:
-// 1. Scale F by a power of two (exact) when its largest entry is outside [2^-400, 2^400], so
-//    that the squared norms below neither overflow nor underflow.
+// 1. Scale F by a power of two (exact) when its largest entry is outside [2^-200, 2^200], so
+//    that the squared Gram entries of the convergence test (fourth powers of F's entries)
+//    neither overflow nor underflow.
 // 2. One-sided Jacobi on B = F, V = I: B = F V with orthogonal columns, V a product of
 //    rotations (det +1).
 // 3. Sort the columns by norm; QR of B by three Givens rotations: B = U R, U a rotation; the
