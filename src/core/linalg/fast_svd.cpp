@@ -250,60 +250,60 @@ void finish(Columns &m, int exponent, SignedSVD &out)
 // sets the floating-point exception flags (results unaffected; nothing here runs with
 // exceptions trapped).
 struct Columns4 {
-  __m256d b[3][3];    // b[k][r]: row r of column k of B, lane l of matrix l
-  __m256d v[3][3];
+  Double4 b[3][3];    // b[k][r]: row r of column k of B, lane l of matrix l
+  Double4 v[3][3];
 };
 
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline __m256d dot3x4(const __m256d *x,
-                                                                  const __m256d *y)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 dot3x4(const Double4 *x,
+                                                                  const Double4 *y)
 {
   return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x[0], y[0]), _mm256_mul_pd(x[1], y[1])),
                        _mm256_mul_pd(x[2], y[2]));
 }
 
 // rotate(x, y, c, s) in the lanes of mask
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void rotate4(__m256d *x, __m256d *y,
-                                                                __m256d c, __m256d s,
-                                                                __m256d mask)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void rotate4(Double4 *x, Double4 *y,
+                                                                Double4 c, Double4 s,
+                                                                Double4 mask)
 {
   for (int k = 0; k < 3; k++) {
-    const __m256d a = x[k], b = y[k];
-    const __m256d xn = _mm256_sub_pd(_mm256_mul_pd(c, a), _mm256_mul_pd(s, b));
-    const __m256d yn = _mm256_add_pd(_mm256_mul_pd(s, a), _mm256_mul_pd(c, b));
+    const Double4 a = x[k], b = y[k];
+    const Double4 xn = _mm256_sub_pd(_mm256_mul_pd(c, a), _mm256_mul_pd(s, b));
+    const Double4 yn = _mm256_add_pd(_mm256_mul_pd(s, a), _mm256_mul_pd(c, b));
     x[k] = _mm256_blendv_pd(a, xn, mask);
     y[k] = _mm256_blendv_pd(b, yn, mask);
   }
 }
 
 // jacobi_rotation(m, r) in the lanes of active; returns the lanes that rotated
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline __m256d jacobi_rotation4(Columns4 &m, int r,
-                                                                            __m256d active)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 jacobi_rotation4(Columns4 &m, int r,
+                                                                            Double4 active)
 {
   static constexpr int P[3] = {0, 0, 1}, Q[3] = {1, 2, 2};
-  const __m256d tol2 = _mm256_set1_pd(kOrthogonal * kOrthogonal);
-  const __m256d sign = _mm256_set1_pd(-0.0);
-  __m256d *bp = m.b[P[r]], *bq = m.b[Q[r]];
-  const __m256d alpha = dot3x4(bp, bp), beta = dot3x4(bq, bq), gamma = dot3x4(bp, bq);
-  const __m256d go = _mm256_and_pd(
+  const Double4 tol2 = splat(kOrthogonal * kOrthogonal);
+  const Double4 sign = splat(-0.0);
+  Double4 *bp = m.b[P[r]], *bq = m.b[Q[r]];
+  const Double4 alpha = dot3x4(bp, bp), beta = dot3x4(bq, bq), gamma = dot3x4(bp, bq);
+  const Double4 go = _mm256_and_pd(
       active, _mm256_cmp_pd(_mm256_mul_pd(gamma, gamma),
                             _mm256_mul_pd(_mm256_mul_pd(tol2, alpha), beta), _CMP_GT_OQ));
   if (_mm256_movemask_pd(go) == 0) return go;
-  const __m256d d = _mm256_mul_pd(_mm256_set1_pd(0.5), _mm256_sub_pd(beta, alpha));
-  const __m256d absd = _mm256_andnot_pd(sign, d);
-  const __m256d g2 = _mm256_mul_pd(gamma, gamma);
-  const __m256d a = _mm256_add_pd(absd, _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(d, d), g2)));
-  const __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0),
+  const Double4 d = _mm256_mul_pd(splat(0.5), _mm256_sub_pd(beta, alpha));
+  const Double4 absd = _mm256_andnot_pd(sign, d);
+  const Double4 g2 = _mm256_mul_pd(gamma, gamma);
+  const Double4 a = _mm256_add_pd(absd, _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(d, d), g2)));
+  const Double4 inv = _mm256_div_pd(splat(1.0),
                                     _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(a, a), g2)));
-  __m256d c = _mm256_mul_pd(a, inv);
-  __m256d s = _mm256_mul_pd(
-      _mm256_mul_pd(_mm256_or_pd(_mm256_and_pd(sign, d), _mm256_set1_pd(1.0)), gamma), inv);
-  const __m256d small = _mm256_and_pd(
+  Double4 c = _mm256_mul_pd(a, inv);
+  Double4 s = _mm256_mul_pd(
+      _mm256_mul_pd(_mm256_or_pd(_mm256_and_pd(sign, d), splat(1.0)), gamma), inv);
+  const Double4 small = _mm256_and_pd(
       go, _mm256_cmp_pd(_mm256_andnot_pd(sign, gamma),
-                        _mm256_mul_pd(_mm256_set1_pd(kSmallAngle), absd), _CMP_LT_OQ));
+                        _mm256_mul_pd(splat(kSmallAngle), absd), _CMP_LT_OQ));
   if (_mm256_movemask_pd(small) != 0) {
-    const __m256d t = _mm256_div_pd(gamma, _mm256_mul_pd(_mm256_set1_pd(2.0), d));
-    const __m256d ct = _mm256_sub_pd(_mm256_set1_pd(1.0),
-                                     _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(0.5), t), t));
+    const Double4 t = _mm256_div_pd(gamma, _mm256_mul_pd(splat(2.0), d));
+    const Double4 ct = _mm256_sub_pd(splat(1.0),
+                                     _mm256_mul_pd(_mm256_mul_pd(splat(0.5), t), t));
     c = _mm256_blendv_pd(c, ct, small);
     s = _mm256_blendv_pd(s, t, small);
   }
@@ -313,12 +313,12 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline __m256d jacobi_rotation4(Co
 }
 
 // orthogonalize(Columns &) of each lane not set in done (lanes set there are left alone)
-PERISISSM_FUSED_TARGET void orthogonalize4(Columns4 &m, __m256d done)
+PERISISSM_FUSED_TARGET void orthogonalize4(Columns4 &m, Double4 done)
 {
-  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  const Double4 all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
   for (int sweep = 0; sweep < kMaxSweeps && _mm256_movemask_pd(done) != 0xF; sweep++) {
-    const __m256d active = _mm256_andnot_pd(done, all);
-    __m256d rotated = _mm256_setzero_pd();
+    const Double4 active = _mm256_andnot_pd(done, all);
+    Double4 rotated = _mm256_setzero_pd();
     for (int r = 0; r < 3; r++) rotated = _mm256_or_pd(rotated, jacobi_rotation4(m, r, active));
     done = _mm256_or_pd(done, _mm256_andnot_pd(rotated, all));
   }
@@ -326,16 +326,16 @@ PERISISSM_FUSED_TARGET void orthogonalize4(Columns4 &m, __m256d done)
 
 // swap(p, q) of sort_columns() in the lanes where n[p] < n[q]
 PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void swap_columns4(Columns4 &m,
-                                                                      __m256d n[3], int p,
+                                                                      Double4 n[3], int p,
                                                                       int q)
 {
-  const __m256d sign = _mm256_set1_pd(-0.0);
-  const __m256d mask = _mm256_cmp_pd(n[p], n[q], _CMP_LT_OQ);
-  const __m256d np = n[p];
+  const Double4 sign = splat(-0.0);
+  const Double4 mask = _mm256_cmp_pd(n[p], n[q], _CMP_LT_OQ);
+  const Double4 np = n[p];
   n[p] = _mm256_blendv_pd(np, n[q], mask);
   n[q] = _mm256_blendv_pd(n[q], np, mask);
   for (int k = 0; k < 3; k++) {
-    const __m256d bp = m.b[p][k], bq = m.b[q][k], vp = m.v[p][k], vq = m.v[q][k];
+    const Double4 bp = m.b[p][k], bq = m.b[q][k], vp = m.v[p][k], vq = m.v[q][k];
     m.b[p][k] = _mm256_blendv_pd(bp, bq, mask);
     m.b[q][k] = _mm256_blendv_pd(bq, _mm256_xor_pd(bp, sign), mask);
     m.v[p][k] = _mm256_blendv_pd(vp, vq, mask);
@@ -346,61 +346,59 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void swap_columns4(Columns4
 // sort_columns(m) in every lane
 PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void sort_columns4(Columns4 &m)
 {
-  __m256d n[3] = {dot3x4(m.b[0], m.b[0]), dot3x4(m.b[1], m.b[1]), dot3x4(m.b[2], m.b[2])};
+  Double4 n[3] = {dot3x4(m.b[0], m.b[0]), dot3x4(m.b[1], m.b[1]), dot3x4(m.b[2], m.b[2])};
   swap_columns4(m, n, 0, 1);
   swap_columns4(m, n, 0, 2);
   swap_columns4(m, n, 1, 2);
 }
 
 // a <- c a + s b, b <- -s a + c b in the lanes of mask (a row or column pair of givens())
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void turn4(__m256d &a, __m256d &b,
-                                                              __m256d c, __m256d s,
-                                                              __m256d minus_s, __m256d mask)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void turn4(Double4 &a, Double4 &b,
+                                                              Double4 c, Double4 s,
+                                                              Double4 minus_s, Double4 mask)
 {
-  const __m256d an = _mm256_add_pd(_mm256_mul_pd(c, a), _mm256_mul_pd(s, b));
-  const __m256d bn = _mm256_add_pd(_mm256_mul_pd(minus_s, a), _mm256_mul_pd(c, b));
+  const Double4 an = _mm256_add_pd(_mm256_mul_pd(c, a), _mm256_mul_pd(s, b));
+  const Double4 bn = _mm256_add_pd(_mm256_mul_pd(minus_s, a), _mm256_mul_pd(c, b));
   a = _mm256_blendv_pd(a, an, mask);
   b = _mm256_blendv_pd(b, bn, mask);
 }
 
 // givens(R, U, p, q, col) in every lane
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void givens4(__m256d R[3][3],
-                                                                __m256d U[3][3], int p, int q,
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void givens4(Double4 R[3][3],
+                                                                Double4 U[3][3], int p, int q,
                                                                 int col)
 {
-  const __m256d x = R[p][col], y = R[q][col];
-  const __m256d r = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)));
-  const __m256d go = _mm256_cmp_pd(r, _mm256_setzero_pd(), _CMP_NEQ_UQ);
+  const Double4 x = R[p][col], y = R[q][col];
+  const Double4 r = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)));
+  const Double4 go = _mm256_cmp_pd(r, _mm256_setzero_pd(), _CMP_NEQ_UQ);
   if (_mm256_movemask_pd(go) == 0) return;
-  const __m256d c = _mm256_div_pd(x, r), s = _mm256_div_pd(y, r);
-  const __m256d minus_s = _mm256_xor_pd(s, _mm256_set1_pd(-0.0));
+  const Double4 c = _mm256_div_pd(x, r), s = _mm256_div_pd(y, r);
+  const Double4 minus_s = _mm256_xor_pd(s, splat(-0.0));
   for (int k = 0; k < 3; k++) turn4(R[p][k], R[q][k], c, s, minus_s, go);
   R[q][col] = _mm256_blendv_pd(R[q][col], _mm256_setzero_pd(), go);
   for (int k = 0; k < 3; k++) turn4(U[k][p], U[k][q], c, s, minus_s, go);
 }
 
-// Steps 2 and 3 of the method for four matrices (lanes with ok[l] false: zeros, left alone):
-// m[l] in, U[l], V[l] (by columns as Columns::v) and the diagonal s[l] of R out
+// Steps 2 and 3 of the method for four matrices (lanes with ok[l] false are left alone): m[l]
+// in, U[l], V[l] (by columns as Columns::v) and the diagonal s[l] of R out
 PERISISSM_FUSED_TARGET void svd4(const Columns m[4], const bool ok[4], double U[4][3][3],
                                  double V[4][3][3], double s[4][3])
 {
   Columns4 m4;
   for (int k = 0; k < 3; k++)
     for (int r = 0; r < 3; r++) {
-      m4.b[k][r] = _mm256_setr_pd(ok[0] ? m[0].b[k][r] : 0.0, ok[1] ? m[1].b[k][r] : 0.0,
-                                  ok[2] ? m[2].b[k][r] : 0.0, ok[3] ? m[3].b[k][r] : 0.0);
-      m4.v[k][r] = _mm256_setr_pd(ok[0] ? m[0].v[k][r] : 0.0, ok[1] ? m[1].v[k][r] : 0.0,
-                                  ok[2] ? m[2].v[k][r] : 0.0, ok[3] ? m[3].v[k][r] : 0.0);
+      m4.b[k][r] = _mm256_setr_pd(m[0].b[k][r], m[1].b[k][r], m[2].b[k][r], m[3].b[k][r]);
+      m4.v[k][r] = _mm256_setr_pd(m[0].v[k][r], m[1].v[k][r], m[2].v[k][r], m[3].v[k][r]);
     }
-  const __m256d done = _mm256_castsi256_pd(_mm256_setr_epi64x(
+  const Double4 done = _mm256_castsi256_pd(_mm256_setr_epi64x(
       ok[0] ? 0 : -1, ok[1] ? 0 : -1, ok[2] ? 0 : -1, ok[3] ? 0 : -1));
   orthogonalize4(m4, done);
   sort_columns4(m4);
-  __m256d R[3][3], Q[3][3];
+  Double4 R[3][3], Q[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) {
       R[r][c] = m4.b[c][r];
-      Q[r][c] = _mm256_set1_pd(r == c ? 1.0 : 0.0);
+      Q[r][c] = splat(r == c ? 1.0 : 0.0);
     }
   givens4(R, Q, 0, 1, 0);
   givens4(R, Q, 0, 2, 0);
@@ -408,13 +406,13 @@ PERISISSM_FUSED_TARGET void svd4(const Columns m[4], const bool ok[4], double U[
   double lanes[4];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) {
-      _mm256_storeu_pd(lanes, Q[r][c]);
+      store4(lanes, Q[r][c]);
       for (int l = 0; l < 4; l++) U[l][r][c] = lanes[l];
-      _mm256_storeu_pd(lanes, m4.v[r][c]);
+      store4(lanes, m4.v[r][c]);
       for (int l = 0; l < 4; l++) V[l][r][c] = lanes[l];
     }
   for (int k = 0; k < 3; k++) {
-    _mm256_storeu_pd(lanes, R[k][k]);
+    store4(lanes, R[k][k]);
     for (int l = 0; l < 4; l++) s[l][k] = lanes[l];
   }
 }
@@ -464,7 +462,10 @@ void fast_signed_svd(const Eigen::Matrix3d F[4], SignedSVD out[4])
     Columns m[4];
     int e[4];
     bool ok[4];
-    for (int l = 0; l < 4; l++) ok[l] = load(F[l], m[l], e[l], out[l]);
+    for (int l = 0; l < 4; l++) {
+      ok[l] = load(F[l], m[l], e[l], out[l]);
+      if (!ok[l]) m[l] = Columns{};    // (load stops at a non-finite entry: zeros instead)
+    }
     double U[4][3][3], V[4][3][3], s[4][3];
     svd4(m, ok, U, V, s);
     for (int l = 0; l < 4; l++)

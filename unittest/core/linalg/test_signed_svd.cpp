@@ -240,6 +240,16 @@ TEST(FastSignedSVD, AgreesWithReference)
   }
 }
 
+// The same bits (a -0 and a +0 differ); a non-finite F's NaN s on both sides
+bool same_bits(const SignedSVD& x, const SignedSVD& y)
+{
+  if (x.s.array().isNaN().any() || y.s.array().isNaN().any())
+    return x.s.array().isNaN().all() && y.s.array().isNaN().all();
+  return std::memcmp(x.U.data(), y.U.data(), sizeof(double) * 9) == 0 &&
+      std::memcmp(x.V.data(), y.V.data(), sizeof(double) * 9) == 0 &&
+      std::memcmp(x.s.data(), y.s.data(), sizeof(double) * 3) == 0;
+}
+
 // Two at once: each exactly as alone, whatever its partner (one may converge sweeps before the
 // other, or be non-finite).
 TEST(FastSignedSVD, PairsEqualSingles)
@@ -251,16 +261,12 @@ TEST(FastSignedSVD, PairsEqualSingles)
   Matrix3d bad = Matrix3d::Identity();
   bad(0, 1) = std::numeric_limits<double>::quiet_NaN();
   cases.push_back(bad);
-  auto same = [](const SignedSVD& x, const SignedSVD& y) {
-    return (x.U.array() == y.U.array()).all() && (x.V.array() == y.V.array()).all() &&
-        ((x.s.array() == y.s.array()) || (x.s.array().isNaN() && y.s.array().isNaN())).all();
-  };
   for (size_t i = 0; i < cases.size(); i++) {
     const size_t j = (7 * i + 3) % cases.size();
     SignedSVD a, b;
     PeriSISSM::fast_signed_svd(cases[i], cases[j], a, b);
-    ASSERT_TRUE(same(a, PeriSISSM::fast_signed_svd(cases[i]))) << "F =\n" << cases[i];
-    ASSERT_TRUE(same(b, PeriSISSM::fast_signed_svd(cases[j]))) << "F =\n" << cases[j];
+    ASSERT_TRUE(same_bits(a, PeriSISSM::fast_signed_svd(cases[i]))) << "F =\n" << cases[i];
+    ASSERT_TRUE(same_bits(b, PeriSISSM::fast_signed_svd(cases[j]))) << "F =\n" << cases[j];
   }
 }
 
@@ -294,14 +300,6 @@ TEST(FastSignedSVD, FoursEqualSingles)
   cases.push_back(bad);
   bad(0, 1) = std::numeric_limits<double>::infinity();
   cases.push_back(bad);
-  // the same bits (a -0 and a +0 differ), NaN in s where either has NaN
-  auto same = [](const SignedSVD& x, const SignedSVD& y) {
-    if (x.s.array().isNaN().any() || y.s.array().isNaN().any())
-      return x.s.array().isNaN().all() && y.s.array().isNaN().all();
-    return std::memcmp(x.U.data(), y.U.data(), sizeof(double) * 9) == 0 &&
-        std::memcmp(x.V.data(), y.V.data(), sizeof(double) * 9) == 0 &&
-        std::memcmp(x.s.data(), y.s.data(), sizeof(double) * 3) == 0;
-  };
   const size_t n = cases.size();
   for (size_t i = 0; i < n; i++) {
     const Matrix3d F[4] = {cases[i], cases[(7 * i + 3) % n], cases[(13 * i + 5) % n],
@@ -309,7 +307,7 @@ TEST(FastSignedSVD, FoursEqualSingles)
     SignedSVD out[4];
     PeriSISSM::fast_signed_svd(F, out);
     for (int l = 0; l < 4; l++)
-      ASSERT_TRUE(same(out[l], PeriSISSM::fast_signed_svd(F[l]))) << "lane " << l << ", F =\n"
+      ASSERT_TRUE(same_bits(out[l], PeriSISSM::fast_signed_svd(F[l]))) << "lane " << l << ", F =\n"
                                                                   << F[l];
   }
 }
