@@ -7,7 +7,9 @@
 //
 // Loads are chosen so that a bond needs no shuffles (the one shuffle port is what 4-wide code
 // waits on): a number that multiplies a whole vector comes as a broadcast from memory, a
-// 3-vector as a masked load; values leave the registers through stores, never by lane.
+// 3-vector as a masked load; values leave the registers through stores, never by lane. The
+// exception is the breaking check (peri/elastic.cpp), where seven shuffles (columns3) turn four
+// bonds' rows into columns in place of some twenty scalar operations per bond.
 //
 // Only in builds with PERISISSM_CPU_DISPATCH; compiled for x86-64-v3 (PERISISSM_FUSED_TARGET),
 // so only functions with that target may call them.
@@ -72,6 +74,63 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 fma4(double w, cons
                                                                 Double4 c)
 {
   return fma4(splat(w), load4(a), c);
+}
+
+// a[j0], a[j1], a[j2], a[j3] (four loads and the shuffles that join them)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 load_at(const double *a, int j0,
+                                                                   int j1, int j2, int j3)
+{
+  return _mm256_set_pd(a[j3], a[j2], a[j1], a[j0]);
+}
+
+// std::max(a, b) per lane: b where a < b, else a (also where either is NaN)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 max4(Double4 a, Double4 b)
+{
+  return _mm256_max_pd(b, a);
+}
+
+// masks: all bits of a lane set where a < b (a > b), clear where not or where either is NaN
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 less4(Double4 a, Double4 b)
+{
+  return _mm256_cmp_pd(a, b, _CMP_LT_OQ);
+}
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 greater4(Double4 a, Double4 b)
+{
+  return _mm256_cmp_pd(a, b, _CMP_GT_OQ);
+}
+
+// the lanes set in a or b
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 or4(Double4 a, Double4 b)
+{
+  return _mm256_or_pd(a, b);
+}
+
+// whether any lane of a mask is set
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline bool any4(Double4 mask)
+{
+  return _mm256_movemask_pd(mask) != 0;
+}
+
+// (a0, b1, c2, d3): lane l of the l-th argument (three blends)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 lanes(Double4 a, Double4 b,
+                                                                 Double4 c, Double4 d)
+{
+  return _mm256_blend_pd(_mm256_blend_pd(a, b, 0x2), _mm256_blend_pd(c, d, 0x8), 0xC);
+}
+
+// lanes 0-2 of the rows a, b, c, d as columns: c0 = (a0, b0, c0, d0), c1 = (a1, b1, c1, d1),
+// c2 = (a2, b2, c2, d2); seven shuffles, for code that does one thing to four 3-vectors' like
+// components at once
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void columns3(Double4 a, Double4 b,
+                                                                 Double4 c, Double4 d,
+                                                                 Double4 &c0, Double4 &c1,
+                                                                 Double4 &c2)
+{
+  const Double4 ab02 = _mm256_unpacklo_pd(a, b), ab13 = _mm256_unpackhi_pd(a, b);
+  const Double4 cd02 = _mm256_unpacklo_pd(c, d), cd13 = _mm256_unpackhi_pd(c, d);
+  c0 = _mm256_permute2f128_pd(ab02, cd02, 0x20);
+  c1 = _mm256_permute2f128_pd(ab13, cd13, 0x20);
+  c2 = _mm256_permute2f128_pd(ab02, cd02, 0x31);
 }
 
 // M x with M given by its columns c0, c1, c2 (lanes 0-2: rows) and x by its components, each

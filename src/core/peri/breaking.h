@@ -87,6 +87,10 @@ class BreakingRule {
     return false;
   }
 
+  // the s00 and alpha of every pair when uniform()
+  double uniform_s00() const { return s00u_; }
+  double uniform_alpha() const { return alphau_; }
+
   // start value of acc for check()
   template <int UNIFORM> static constexpr double initial() { return UNIFORM ? 1.0 : DBL_MAX; }
 

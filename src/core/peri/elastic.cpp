@@ -79,6 +79,17 @@ template <int MODE, int UNIFORM, int PBC, bool FUSED>
 // state_bonds of the fused version, 4-wide (linalg/double4.h): eta in lanes 0-2, each
 // component of xi in every lane of its own register, M by columns summed bond by bond; the
 // same operations in the same order as state_bonds<..., FUSED = true>, so the same bits.
+//
+// The uniform breaking check (one rule for all pairs: the common case) goes
+// four bonds at a time, one per lane (four consecutive slots without a broken bond; other
+// bonds one at a time): |eta|^2, |xi|^2, the limit and both comparisons of BreakingRule::check
+// are its scalar operations lane by lane, |xi|^2 from the terms of M. Bonds break rarely, and
+// whether one breaks depends on itself alone (s_min of its ends from the last evaluation), so
+// the four add their terms of M first; the smallest stretch is updated lane after lane only
+// where one of the four is smaller than the kept one against the state before them (none
+// can be otherwise). If a bond of the family breaks, M and the smallest stretch are made
+// again one bond at a time from the start. Either way: the same bits, the same broken bonds
+// as the scalar code.
 template <int MODE, int UNIFORM, int PBC>
 PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Particles &p,
                                              const Families &fam, const ReferenceBox &box,
@@ -96,9 +107,9 @@ PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Par
   const double *om = fam.omega[i];
   int broke = 0;
   Double4 m0 = splat(0.0), m1 = m0, m2 = m0;
-  for (int b = 0; b < n; b++) {
-    const int j = jl[b];
-    if (j < 0) continue;
+
+  // bond b to partner j: the check (one bond), and its term of M if it holds
+  auto one_bond = [&](int b, int j) PERISISSM_FUSED_TARGET PERISISSM_INLINE {
     const double *xj = xf + 3 * j;
     Double4 x0, x1, x2;
     bond_xi<PBC>(rf + 3 * j, ri0, ri1, ri2, box, x0, x1, x2);
@@ -108,13 +119,78 @@ PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Par
                                          lane0(x2), acc, den)) {
       jl[b] = -1;
       broke = 1;
-      continue;
+      return;
     }
     const Double4 we = bcast(om + b) * (load3(xj) - xiv);
     m0 = fma4(we, x0, m0);
     m1 = fma4(we, x1, m1);
     m2 = fma4(we, x2, m2);
+  };
+
+  if constexpr (MODE != BreakingRule::NOBREAK && UNIFORM) {
+    const Double4 one_s00 = splat(1.0 + rule.uniform_s00()), alpha = splat(rule.uniform_alpha());
+    const Double4 smin_i = splat(smini);
+    const double acc0 = acc, den0 = den;
+    bool breaks = false;
+    int b = 0;
+    while (b + 4 <= n && !breaks) {
+      const int j0 = jl[b], j1 = jl[b + 1], j2 = jl[b + 2], j3 = jl[b + 3];
+      if ((j0 | j1 | j2 | j3) < 0) {
+        if (j0 >= 0) one_bond(b, j0);
+        b++;
+        continue;
+      }
+      // the four terms of M, in order
+      const Double4 e0 = load3(xf + 3 * j0) - xiv, e1 = load3(xf + 3 * j1) - xiv;
+      const Double4 e2 = load3(xf + 3 * j2) - xiv, e3 = load3(xf + 3 * j3) - xiv;
+      // (and |xi|^2 of each in every lane)
+      auto term = [&](int bb, int j, Double4 e) PERISISSM_FUSED_TARGET PERISISSM_INLINE {
+        const double *rj = rf + 3 * j;
+        const Double4 we = bcast(om + bb) * e;
+        Double4 x0, x1, x2;
+        bond_xi<PBC>(rj, ri0, ri1, ri2, box, x0, x1, x2);
+        m0 = fma4(we, x0, m0);
+        m1 = fma4(we, x1, m1);
+        m2 = fma4(we, x2, m2);
+        return fma4(x2, x2, fma4(x1, x1, x0 * x0));
+      };
+      const Double4 q20 = term(b, j0, e0), q21 = term(b + 1, j1, e1);
+      const Double4 q22 = term(b + 2, j2, e2), q23 = term(b + 3, j3, e3);
+      const Double4 q2 = lanes(q20, q21, q22, q23);
+      // the four checks, one per lane
+      Double4 c0, c1, c2;
+      columns3(e0, e1, e2, e3, c0, c1, c2);
+      const Double4 r2 = fma4(c2, c2, fma4(c1, c1, c0 * c0));
+      if (MODE == BreakingRule::BREAK) {
+        const Double4 lim = one_s00 - alpha * max4(smin_i, load_at(p.smin, j0, j1, j2, j3));
+        breaks |= any4(or4(less4(lim, splat(0.0)), greater4(r2, lim * lim * q2)));
+      }
+      if (any4(less4(r2 * splat(den), splat(acc) * q2))) {
+        double r2l[4], q2l[4];
+        store4(r2l, r2);
+        store4(q2l, q2);
+        for (int l = 0; l < 4; l++)
+          if (r2l[l] * den < acc * q2l[l]) {
+            acc = r2l[l];
+            den = q2l[l];
+          }
+      }
+      b += 4;
+    }
+    if (breaks) {
+      // a bond of the family breaks: M and the smallest stretch again, one bond at a time
+      m0 = m1 = m2 = splat(0.0);
+      acc = acc0;
+      den = den0;
+      b = 0;
+    }
+    for (; b < n; b++)
+      if (jl[b] >= 0) one_bond(b, jl[b]);
+  } else {
+    for (int b = 0; b < n; b++)
+      if (jl[b] >= 0) one_bond(b, jl[b]);
   }
+
   double c[12];
   store4(c, m0);
   store4(c + 4, m1);

@@ -125,8 +125,10 @@ TEST(FourWidePasses, MembraneEvaluationHasTheBitsOfTheScalarCode)
 }
 
 // The state pass with the breaking check (BREAK and S0ONLY), one rule for all pairs (uniform:
-// the comparison of squares) and a rule per type pair: the same bonds break, the same s_min,
-// F, H and W, bit for bit. Two identical clusters, one per version.
+// the comparison of squares, four bonds at a time where no slot is broken) and a rule per type
+// pair: the same bonds break, the same s_min, F, H and W, bit for bit. Two identical clusters,
+// one per version; some families have broken slots (so their bonds also go one at a time), and
+// one particle's s_min is so large that the limit of its bonds is negative (all of them break).
 TEST(FourWidePasses, BreakingCheckHasTheBitsOfTheScalarCode)
 {
   if (!PeriSISSM::fused_passes()) GTEST_SKIP() << "the fused version does not run here";
@@ -148,6 +150,9 @@ TEST(FourWidePasses, BreakingCheckHasTheBitsOfTheScalarCode)
           for (int i = 0; i < cl.nall; i++) cl.type[i] = 1 + (i % ntypes);
           cl.build(model);
           for (int i = 0; i < cl.nall; i++) cl.smin[i] = 0.002 * (i % 5);
+          cl.smin[5] = 10.0;
+          for (int i = 0; i < cl.nlocal; i += 3)
+            for (int b = i % 5; b < cl.npartner[i]; b += 7) cl.jl[i][b] = -1;
           cl.x = cl.positions_of(moved(cl, 9u, 0.02, 0.03));
           std::vector<double> f(3 * cl.nall), g(ParticleFields::NG * cl.nall),
               h(9 * cl.nall), w(cl.nall), sn(cl.nall), cols(ParticleFields::NCOLS * cl.nall);
