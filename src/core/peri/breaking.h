@@ -66,17 +66,7 @@ class BreakingRule {
         const double lim = 1.0 + s00u_ - alphau_ * smax;
         if (lim < 0.0 || r2 > lim * lim * q2) return true;
       }
-      if (r2 * den < acc * q2) {
-        acc = r2;
-        den = q2;
-        // kept a branch, not a conditional move: a family's smallest stretch changes a few
-        // times (about ln n of its n bonds in random order), and conditional moves would chain
-        // every bond's comparison to the one before (an empty asm statement is not
-        // if-converted; in a 54K lattice this took s_min from ~15 % of the state pass to ~7 %)
-#if defined(__GNUC__)
-        asm volatile("");
-#endif
-      }
+      keep_smaller(r2, q2, acc, den);
     } else {
       const double stretch = sqrt(r2 / q2) - 1.0;
       const int ij = itype * n_ + jtype;
@@ -90,6 +80,23 @@ class BreakingRule {
   // the s00 and alpha of every pair when uniform()
   double uniform_s00() const { return s00u_; }
   double uniform_alpha() const { return alphau_; }
+
+  // The UNIFORM check's smallest r2/q2, kept as the fraction acc/den: r2, q2 replace it if
+  // smaller.
+  static inline void keep_smaller(double r2, double q2, double &acc, double &den)
+  {
+    if (r2 * den < acc * q2) {
+      acc = r2;
+      den = q2;
+      // kept a branch, not a conditional move: a family's smallest stretch changes a few
+      // times (about ln n of its n bonds in random order), and conditional moves would chain
+      // every bond's comparison to the one before (an empty asm statement is not
+      // if-converted; in a 54K lattice this took s_min from ~15 % of the state pass to ~7 %)
+#if defined(__GNUC__)
+      asm volatile("");
+#endif
+    }
+  }
 
   // start value of acc for check()
   template <int UNIFORM> static constexpr double initial() { return UNIFORM ? 1.0 : DBL_MAX; }

@@ -108,6 +108,14 @@ PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Par
   int broke = 0;
   Double4 m0 = splat(0.0), m1 = m0, m2 = m0;
 
+  // the term omega eta (x) xi of bond b (eta in e, xi by components)
+  auto add_term = [&](int b, Double4 e, Double4 x0, Double4 x1,
+                      Double4 x2) PERISISSM_FUSED_TARGET PERISISSM_INLINE {
+    const Double4 we = bcast(om + b) * e;
+    m0 = fma4(we, x0, m0);
+    m1 = fma4(we, x1, m1);
+    m2 = fma4(we, x2, m2);
+  };
   // bond b to partner j: the check (one bond), and its term of M if it holds
   auto one_bond = [&](int b, int j) PERISISSM_FUSED_TARGET PERISISSM_INLINE {
     const double *xj = xf + 3 * j;
@@ -121,18 +129,15 @@ PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Par
       broke = 1;
       return;
     }
-    const Double4 we = bcast(om + b) * (load3(xj) - xiv);
-    m0 = fma4(we, x0, m0);
-    m1 = fma4(we, x1, m1);
-    m2 = fma4(we, x2, m2);
+    add_term(b, load3(xj) - xiv, x0, x1, x2);
   };
 
+  int b = 0;
   if constexpr (MODE != BreakingRule::NOBREAK && UNIFORM) {
     const Double4 one_s00 = splat(1.0 + rule.uniform_s00()), alpha = splat(rule.uniform_alpha());
     const Double4 smin_i = splat(smini);
     const double acc0 = acc, den0 = den;
     bool breaks = false;
-    int b = 0;
     while (b + 4 <= n && !breaks) {
       const int j0 = jl[b], j1 = jl[b + 1], j2 = jl[b + 2], j3 = jl[b + 3];
       if ((j0 | j1 | j2 | j3) < 0) {
@@ -145,13 +150,9 @@ PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Par
       const Double4 e2 = load3(xf + 3 * j2) - xiv, e3 = load3(xf + 3 * j3) - xiv;
       // (and |xi|^2 of each in every lane)
       auto term = [&](int bb, int j, Double4 e) PERISISSM_FUSED_TARGET PERISISSM_INLINE {
-        const double *rj = rf + 3 * j;
-        const Double4 we = bcast(om + bb) * e;
         Double4 x0, x1, x2;
-        bond_xi<PBC>(rj, ri0, ri1, ri2, box, x0, x1, x2);
-        m0 = fma4(we, x0, m0);
-        m1 = fma4(we, x1, m1);
-        m2 = fma4(we, x2, m2);
+        bond_xi<PBC>(rf + 3 * j, ri0, ri1, ri2, box, x0, x1, x2);
+        add_term(bb, e, x0, x1, x2);
         return fma4(x2, x2, fma4(x1, x1, x0 * x0));
       };
       const Double4 q20 = term(b, j0, e0), q21 = term(b + 1, j1, e1);
@@ -169,11 +170,7 @@ PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Par
         double r2l[4], q2l[4];
         store4(r2l, r2);
         store4(q2l, q2);
-        for (int l = 0; l < 4; l++)
-          if (r2l[l] * den < acc * q2l[l]) {
-            acc = r2l[l];
-            den = q2l[l];
-          }
+        for (int l = 0; l < 4; l++) BreakingRule::keep_smaller(r2l[l], q2l[l], acc, den);
       }
       b += 4;
     }
@@ -184,12 +181,9 @@ PERISISSM_FUSED_TARGET int state_bonds_fused(const BreakingRule &rule, const Par
       den = den0;
       b = 0;
     }
-    for (; b < n; b++)
-      if (jl[b] >= 0) one_bond(b, jl[b]);
-  } else {
-    for (int b = 0; b < n; b++)
-      if (jl[b] >= 0) one_bond(b, jl[b]);
   }
+  for (; b < n; b++)
+    if (jl[b] >= 0) one_bond(b, jl[b]);
 
   double c[12];
   store4(c, m0);
