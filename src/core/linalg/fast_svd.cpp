@@ -284,10 +284,9 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 jacobi_rotation4(Co
   const Double4 sign = splat(-0.0);
   Double4 *bp = m.b[P[r]], *bq = m.b[Q[r]];
   const Double4 alpha = dot3x4(bp, bp), beta = dot3x4(bq, bq), gamma = dot3x4(bp, bq);
-  const Double4 go = _mm256_and_pd(
-      active, _mm256_cmp_pd(_mm256_mul_pd(gamma, gamma),
-                            _mm256_mul_pd(_mm256_mul_pd(tol2, alpha), beta), _CMP_GT_OQ));
-  if (_mm256_movemask_pd(go) == 0) return go;
+  const Double4 tol = _mm256_mul_pd(_mm256_mul_pd(tol2, alpha), beta);
+  const Double4 go = _mm256_and_pd(active, greater4(_mm256_mul_pd(gamma, gamma), tol));
+  if (!any4(go)) return go;
   const Double4 d = _mm256_mul_pd(splat(0.5), _mm256_sub_pd(beta, alpha));
   const Double4 absd = _mm256_andnot_pd(sign, d);
   const Double4 g2 = _mm256_mul_pd(gamma, gamma);
@@ -298,9 +297,8 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 jacobi_rotation4(Co
   Double4 s = _mm256_mul_pd(
       _mm256_mul_pd(_mm256_or_pd(_mm256_and_pd(sign, d), splat(1.0)), gamma), inv);
   const Double4 small = _mm256_and_pd(
-      go, _mm256_cmp_pd(_mm256_andnot_pd(sign, gamma),
-                        _mm256_mul_pd(splat(kSmallAngle), absd), _CMP_LT_OQ));
-  if (_mm256_movemask_pd(small) != 0) {
+      go, less4(_mm256_andnot_pd(sign, gamma), _mm256_mul_pd(splat(kSmallAngle), absd)));
+  if (any4(small)) {
     const Double4 t = _mm256_div_pd(gamma, _mm256_mul_pd(splat(2.0), d));
     const Double4 ct = _mm256_sub_pd(splat(1.0),
                                      _mm256_mul_pd(_mm256_mul_pd(splat(0.5), t), t));
@@ -319,8 +317,8 @@ PERISISSM_FUSED_TARGET void orthogonalize4(Columns4 &m, Double4 done)
   for (int sweep = 0; sweep < kMaxSweeps && _mm256_movemask_pd(done) != 0xF; sweep++) {
     const Double4 active = _mm256_andnot_pd(done, all);
     Double4 rotated = _mm256_setzero_pd();
-    for (int r = 0; r < 3; r++) rotated = _mm256_or_pd(rotated, jacobi_rotation4(m, r, active));
-    done = _mm256_or_pd(done, _mm256_andnot_pd(rotated, all));
+    for (int r = 0; r < 3; r++) rotated = or4(rotated, jacobi_rotation4(m, r, active));
+    done = or4(done, _mm256_andnot_pd(rotated, all));
   }
 }
 
@@ -330,7 +328,7 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void swap_columns4(Columns4
                                                                       int q)
 {
   const Double4 sign = splat(-0.0);
-  const Double4 mask = _mm256_cmp_pd(n[p], n[q], _CMP_LT_OQ);
+  const Double4 mask = less4(n[p], n[q]);
   const Double4 np = n[p];
   n[p] = _mm256_blendv_pd(np, n[q], mask);
   n[q] = _mm256_blendv_pd(n[q], np, mask);
@@ -371,7 +369,7 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void givens4(Double4 R[3][3
   const Double4 x = R[p][col], y = R[q][col];
   const Double4 r = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)));
   const Double4 go = _mm256_cmp_pd(r, _mm256_setzero_pd(), _CMP_NEQ_UQ);
-  if (_mm256_movemask_pd(go) == 0) return;
+  if (!any4(go)) return;
   const Double4 c = _mm256_div_pd(x, r), s = _mm256_div_pd(y, r);
   const Double4 minus_s = _mm256_xor_pd(s, splat(-0.0));
   for (int k = 0; k < 3; k++) turn4(R[p][k], R[q][k], c, s, minus_s, go);
