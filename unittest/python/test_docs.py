@@ -1,6 +1,9 @@
 """The HTML manual builds with Sphinx (Debian's python3-sphinx and python3-myst-parser, which
 tools/setup.sh installs) with warnings as errors, and no internal link of it is broken: every
-relative href or src points to a file of the build, and every #fragment to an id in its page."""
+relative href or src points to a file of the build, and every #fragment to an id in its page
+(the Sphinx build runs in the full tier, bash tools/test.sh --full). The project's docs state
+what the code does and what was measured, not the story of the work."""
+import re
 import shutil
 import subprocess
 import sys
@@ -35,6 +38,38 @@ def parse(page: Path) -> Links:
     return links
 
 
+# Narration of the work's history (its numbered sessions and issues), which belongs in commit
+# messages, not in the docs
+NARRATION = [r"\bsessions? \d+", r"\bissues? \d+", r"\bsince (session|issue)", r"\bpreviously\b",
+             r"\bsince then\b"]
+
+
+def project_docs():
+    """README.md, doc/ (pages and reports) and every README.md under examples/."""
+    return ([REPO / "README.md"] + sorted((REPO / "doc").rglob("*.rst"))
+            + sorted((REPO / "doc").rglob("*.md")) + sorted((REPO / "examples").rglob("README.md")))
+
+
+def narration(text: str) -> list:
+    return [f"{n}: {line.strip()}" for n, line in enumerate(text.splitlines(), 1)
+            if any(re.search(p, line, re.IGNORECASE) for p in NARRATION)]
+
+
+def test_the_narration_patterns_find_narration():
+    assert narration("Since session 17 the fused passes\nissue 13 acceptance\nok\n") == \
+        ["1: Since session 17 the fused passes", "2: issue 13 acceptance"]
+    assert narration("as previously measured") and narration("Since then the loops")
+    assert not narration("at step 20 the run stops; since the step is implicit, ...")
+
+
+def test_docs_hold_no_numbered_history():
+    docs = project_docs()
+    assert len(docs) > 10 and REPO / "examples" / "benchmarks" / "speed" / "README.md" in docs
+    hits = [f"{path.relative_to(REPO)}:{hit}" for path in docs
+            for hit in narration(path.read_text(errors="replace"))]
+    assert not hits, "\n".join(hits)
+
+
 @pytest.fixture(scope="module")
 def html(tmp_path_factory):
     probe = subprocess.run([PYTHON, "-c", "import sphinx, myst_parser"], capture_output=True)
@@ -50,18 +85,21 @@ def html(tmp_path_factory):
     shutil.rmtree(out, ignore_errors=True)
 
 
+@pytest.mark.full
 def test_every_page_is_built(html):
     for page in ["index", "pair_peri_nosb", "fix_sissm", "compute_nosb_atom", "read_mesh", "theory",
                  "reports/error-vs-time", "reports/stability"]:
         assert (html / f"{page}.html").is_file(), page
 
 
+@pytest.mark.full
 def test_links_to_the_lammps_manual_resolve_to_it(html):
     links = parse(html / "pair_peri_nosb.html").links
     assert "https://docs.lammps.org/pair_peri.html" in links    # :doc:`peri/lps <pair_peri>`
     assert "compute_nosb_atom.html" in links                   # our own pages stay internal
 
 
+@pytest.mark.full
 def test_no_broken_internal_link(html):
     pages = {page: parse(page) for page in html.rglob("*.html")}
     broken = []
