@@ -26,8 +26,8 @@ lammps_options=(-DCMAKE_BUILD_TYPE=Release -DBUILD_MPI=on -DBUILD_SHARED_LIBS=on
   -DPKG_PERI=on -DPKG_PLUGIN=on -DWITH_JPEG=on -DWITH_PNG=on -DWITH_GZIP=on)
 
 debian_packages=(cmake g++ make libopenmpi-dev openmpi-bin libeigen3-dev libgtest-dev
-  python3-pytest python3-numpy python3-matplotlib xz-utils ccache libjpeg-dev libpng-dev
-  zlib1g-dev ca-certificates python3-sphinx python3-myst-parser libjs-mathjax
+  python3-pytest python3-pytest-xdist python3-numpy python3-matplotlib xz-utils ccache
+  libjpeg-dev libpng-dev zlib1g-dev ca-certificates python3-sphinx python3-myst-parser libjs-mathjax
   petsc-dev pkg-config valgrind)
 
 say() { printf '[setup] %s\n' "$*"; }

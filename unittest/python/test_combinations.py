@@ -153,7 +153,7 @@ def test_hybrid_pair_styles_are_refused(tmp_path, style):
     # Before: the runs went through silently; type 2 (no peri/nosb coefficients) got bond
     # families built from uninitialised horizon, moduli and model index (valgrind: 158
     # uninitialised reads in init_style, bond_weight and compute_state).
-    run = run_deck(HYBRID.format(pair=HYBRID_PAIRS[style]), tmp_path, check=False, timeout=60)
+    run = run_deck(HYBRID.format(pair=HYBRID_PAIRS[style]), tmp_path, check=False)
     line = assert_clean_error(run)
     for words in ("peri/nosb", f"pair_style {style}", "sub-style", "pair_style peri/nosb alone"):
         assert words in line, (words, line)
@@ -163,7 +163,7 @@ def test_missing_pair_coeff_of_a_type_is_an_error(tmp_path):
     # plain peri/nosb with pair_coeff for type 1 only: LAMMPS's Pair::init stops before
     # PairPeriNosb::init_style reads the unset coefficients of type 2
     pair = f"pair_style peri/nosb\npair_coeff 1 1 {NOSB_COEFF}"
-    run = run_deck(HYBRID.format(pair=pair), tmp_path, check=False, timeout=60)
+    run = run_deck(HYBRID.format(pair=pair), tmp_path, check=False)
     line = assert_clean_error(run)
     assert "All pair coeffs are not set" in line, line
 
@@ -171,7 +171,7 @@ def test_missing_pair_coeff_of_a_type_is_an_error(tmp_path):
 def test_mixed_type_pair_without_its_own_line_is_not_an_error(tmp_path):
     # the positive counterpart: with both I I lines, the 1 2 pair is mixed (documented rule)
     pair = f"pair_style peri/nosb\npair_coeff 1 1 {NOSB_COEFF}\npair_coeff 2 2 {NOSB_COEFF}"
-    run = run_deck(HYBRID.format(pair=pair), tmp_path, timeout=60)
+    run = run_deck(HYBRID.format(pair=pair), tmp_path)
     assert "bonds/atom" in run.log
 
 
@@ -413,7 +413,7 @@ def test_change_box_to_a_short_periodic_direction_is_an_error(tmp_path):
     # side, and the run went on with pe 4.5e9 instead of 7.1e6 and no message.
     run = run_deck(BLOCKS, tmp_path, variables={**CASES["jacobi"], "before_run": "cbox"},
                    files={"cbox": "change_box all z final -0.0005 0.0045 boundary s s p "
-                                  "units box\n"}, check=False, timeout=60)
+                                  "units box\n"}, check=False)
     line = assert_clean_error(run)
     for words in ("peri/nosb", "periodic", "wide in z", "two horizons"):
         assert words in line, (words, line)

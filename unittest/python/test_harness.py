@@ -19,8 +19,8 @@ PINNED_VERSION = "4 Feb 2025"   # what tools/setup.sh builds when LAMMPS_SRC is 
 
 
 def lmp_help() -> str:
-    # lmp -h takes well under a second; 60 s only guards against a hung binary
-    return subprocess.run([str(LMP), "-h"], capture_output=True, text=True, timeout=60).stdout
+    # lmp -h takes well under a second; the timeout only guards against a hung binary
+    return subprocess.run([str(LMP), "-h"], capture_output=True, text=True, timeout=600).stdout
 
 
 def cmake_cache() -> dict:

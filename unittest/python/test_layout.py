@@ -53,10 +53,11 @@ def test_no_pointers_outside_the_repository():
     assert not hits, "\n".join(hits)
 
 
+@pytest.mark.full
 @pytest.mark.skipif(shutil.which("cmake") is None, reason="cmake not installed")
 def test_core_builds_and_passes_alone(tmp_path):
     """Configure the project without LAMMPS: only the core and its unit tests are built, and
-    they pass."""
+    they pass (a second build of the core: full tier)."""
     build = tmp_path / "core"
     # (without the fused version, as -DPERISISSM_CPU_DISPATCH=OFF and compilers or processors
     # other than GCC/Clang on x86-64 build it; the plugin's own build has it)

@@ -164,7 +164,7 @@ run             0
 
 
 def test_two_dimensions_is_an_error(tmp_path):
-    run = run_deck(TWO_D, tmp_path, check=False, timeout=60)
+    run = run_deck(TWO_D, tmp_path, check=False)
     assert run.returncode > 0, run.describe()
     line = error_line(run)
     assert "peri/nosb" in line and "3d" in line, line
@@ -177,7 +177,7 @@ def error_line(run) -> str:
 
 @pytest.mark.parametrize("case,changes,expected", BAD_INPUT, ids=[c[0] for c in BAD_INPUT])
 def test_bad_input_is_an_error(tmp_path, case, changes, expected):
-    run = run_deck(deck(**changes), tmp_path, check=False, timeout=60)
+    run = run_deck(deck(**changes), tmp_path, check=False)
     assert run.returncode > 0, run.describe()  # an error exit, not a signal, not success
     line = error_line(run)
     for word in expected:
@@ -222,7 +222,7 @@ def test_partner_lost_from_the_ghosts_is_an_error(tmp_path):
     # Unbreakable bonds pulled 20 spacings long on 2 ranks: the partners are beyond the ghost
     # cutoff (horizon + skin = 4 spacings). The family fix must say which partner of which
     # atom is missing and what to change, not read a wrong atom or crash.
-    run = run_deck(LOST_PARTNER, tmp_path, nprocs=2, check=False, timeout=60)
+    run = run_deck(LOST_PARTNER, tmp_path, nprocs=2, check=False)
     assert "with 2 MPI tasks" in run.log or "2 by 1 by 1" in run.log + run.stdout
     assert run.returncode > 0, run.describe()
     line = next(ln for ln in (run.stdout + run.log).splitlines() if "ERROR" in ln)

@@ -154,8 +154,7 @@ BAD_G0 = [
 
 @pytest.mark.parametrize("case,args,expected", BAD_G0, ids=[c[0] for c in BAD_G0])
 def test_bad_g0_input_is_an_error(tmp_path, case, args, expected):
-    run = run_deck(BLOCK.format(coeff=f"pair_coeff      * * {args}"), tmp_path, check=False,
-                   timeout=60)
+    run = run_deck(BLOCK.format(coeff=f"pair_coeff      * * {args}"), tmp_path, check=False)
     assert run.returncode > 0, run.describe()
     assert run.errors, run.describe()
     line = run.errors[0]

@@ -87,7 +87,7 @@ def test_cgs_deck_gets_the_converted_material(tmp_path):
 ])
 def test_bad_material_lookups_name_what_is_wrong(tmp_path, coeff, expected):
     run = run_deck(stretched_block("si", coeff, 7850, 0.001), tmp_path,
-                   check=False, timeout=60)
+                   check=False)
     assert run.returncode > 0 and run.errors, run.describe()
     for text in expected:
         assert text in run.errors[0], run.errors[0]
@@ -97,7 +97,7 @@ def test_bad_material_lookups_name_what_is_wrong(tmp_path, coeff, expected):
 def test_unit_styles_without_a_conversion_are_refused(tmp_path, units):
     run = run_deck(stretched_block(units, "linear material materials.nosb steel 3.0 0.1 0.25",
                                    7.85, 1.0), tmp_path,
-                   check=False, timeout=60)
+                   check=False)
     assert run.returncode > 0 and run.errors, run.describe()
     assert f"cannot be converted to '{units}'" in run.errors[0]
     assert "si, cgs, micro, nano" in run.errors[0]

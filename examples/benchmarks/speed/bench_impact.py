@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Speed and memory of the peridynamic styles on the projectile-impact deck (examples/impact),
-and the acceptance lines of issue 13, from one invocation.
+and the speed goals of the package, from one invocation.
 
     /usr/bin/python3 examples/benchmarks/speed/bench_impact.py [--quick] [--rounds 3]
         [--steps 500 [100]] [--ranks 1 2] [--sizes small 54k] [--styles lps nosb ...]
-        [--csv runs.csv] [--lmp build/lmp]
+        [--csv runs.csv] [--json summary.json] [--lmp build/lmp]
 
 Configurations (--styles keys), each run on every rank count of --ranks:
 
@@ -43,7 +43,7 @@ core), 1200 with --quick.
 Runs alternate: each of the --rounds rounds (default 3) runs every configuration of every size
 on every rank count once, so a slow moment of the shared machine hits them alike. Per
 configuration the tables give the median over the rounds and the spread min..max; every ratio
-is formed from medians of this invocation, and the efficiencies and acceptance lines once more
+is formed from medians of this invocation, and the efficiencies and goal lines once more
 from the minima over the rounds (the best of N: a busy moment of the shared machine only ever
 adds time, so with enough rounds the minimum is the undisturbed run). Printed:
 
@@ -57,7 +57,7 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
   evaluations. With t_nve the us per particle-step of peri/nosb linear with fix nve (an
   explicit step, which costs what the step's regular evaluation does), the cost of one
   iteration is given three ways, relative to t_nve: (t - t_nve) / k, what one iteration adds
-  (the acceptance line uses this); t / k, the regular evaluation charged to the iterations;
+  (the goal line uses this); t / k, the regular evaluation charged to the iterations;
   t / (k + 1), per force evaluation. jacobi takes exactly 5 iterations per step; krylov may
   take 4 (when CG meets its Eisenstat-Walker target early, one evaluation left is too few for
   a CG product and the check of its Newton iterate: that step ends with a SISSM sweep);
@@ -69,7 +69,8 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
   that ceiling (about 1: the code loses no more than the machine makes any lock-step 2-rank
   code lose); for the 2-rank runs, the share of the loop each rank spent inside MPI
   calls (waiting for the other rank and moving data; mpi_time.c, built with mpicc and preloaded
-  into the ranks: mean over the ranks) and t1 / own work, own work the sum over the ranks of
+  into the ranks: mean over the ranks; a run whose loop interval mpi_time.c's report does not
+  match has none, and the statistics leave it out) and t1 / own work, own work the sum over the ranks of
   (loop - MPI time): the efficiency is (1 - share) x t1 / own work, what communication and
   waiting cost times how fast the ranks did their halves (work_split.py counts the work itself
   in instructions, free of the machine's noise); the load balance of
@@ -79,7 +80,7 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
 - memory per particle: peak resident memory (/usr/bin/time, per rank) summed over the ranks /
   atoms, and LAMMPS's "Per MPI rank memory allocation" avg x ranks / atoms, with the ratios to
   peri/lps;
-- the acceptance lines of issue 13 with PASS/FAIL: peri/nosb linear / peri/lps <= 0.5 (1 and 2
+- the goal lines with PASS/FAIL: peri/nosb linear / peri/lps <= 0.5 (1 and 2
   ranks); one fix sissm iteration / peri/nosb step <= 1.0 (jacobi and krylov block,
   (t - t_nve) / k); 2-rank efficiency at 54K >= 0.95 for nve (peri/nosb linear + fix nve),
   >= 0.9 for fix sissm (jacobi and krylov block), with lockstep followed by the ceiling and
@@ -88,13 +89,15 @@ adds time, so with enough rounds the minimum is the undisturbed run). Printed:
   the minima over the rounds.
 
 --quick: 20 steps, 1 round, small size (a smoke test; explicit options override). --csv writes
-one row per run (lockstep's: us per chunk, steps its chunks, atoms 0). A run that fails is
+one row per run (lockstep's: us per chunk, steps its chunks, atoms 0); --json the figures the
+tables and goal lines print, unrounded, per statistic and size (summary()). A run that fails is
 reported at the end, and the exit status is 1.
 """
 from __future__ import annotations
 
 import argparse
 import csv
+import json
 import math
 import os
 import re
@@ -181,7 +184,7 @@ CONFIGS = [
 ]
 BY_KEY = {c.key: c for c in CONFIGS}
 SISSM = ("jacobi", "block", "amg")
-ACCEPTED_SISSM = ("jacobi", "block")     # the per-iteration acceptance line
+ACCEPTED_SISSM = ("jacobi", "block")     # the per-iteration goal line
 
 
 class RunFailed(Exception):
@@ -352,8 +355,10 @@ def run_loop_intervals(found: list, ranks: int, seconds: float) -> list:
     return list(by[best].values()) if off(best) < 0.01 else []
 
 
-def median(runs: list, name: str) -> float:
-    return statistics.median(r[name] for r in runs)
+def finite(runs: list, name: str) -> list:
+    """The values of name over the runs that have a finite one (mpi_time.c's figures are NaN in
+    a run whose loop interval its report did not match)."""
+    return [r[name] for r in runs if r[name] is not None and math.isfinite(r[name])]
 
 
 class Results:
@@ -361,13 +366,13 @@ class Results:
     medians (or, from best(), the minima) and ratios formed from them (None where a run is
     missing)."""
 
-    def __init__(self, stat=median):
+    def __init__(self, stat=statistics.median):
         self.runs = {}
         self.stat = stat
 
     def best(self) -> "Results":
         """The same runs, every statistic the minimum over the rounds instead of the median."""
-        other = Results(lambda runs, name: min(r[name] for r in runs))
+        other = Results(min)
         other.runs = self.runs
         return other
 
@@ -375,9 +380,10 @@ class Results:
         return self.runs.get((size, key, ranks), [])
 
     def med(self, size, key, ranks, name="us"):
-        """The statistic of this view (median, or minimum from best()) over the rounds."""
-        found = self.get(size, key, ranks)
-        return self.stat(found, name) if found else None
+        """The statistic of this view (median, or minimum from best()) over the rounds' finite
+        values (None without one)."""
+        values = finite(self.get(size, key, ranks), name)
+        return self.stat(values) if values else None
 
     def ratio(self, size, key, ranks, name="us"):
         """key over peri/lps, each by med()."""
@@ -407,7 +413,7 @@ class Results:
         ranks, or two busy cores slowing each other). None without mpi_time.c's report."""
         t1, share, work = (self.med(size, key, 1), self.med(size, key, 2, "mpi_share"),
                            self.med(size, key, 2, "work_us"))
-        if not (t1 and share is not None and work and math.isfinite(share * work)):
+        if not (t1 and share is not None and work):
             return None
         return share, t1 / work
 
@@ -551,37 +557,53 @@ def print_size(res: Results, size: str, configs: list, ranks: list, steps: int) 
           "atoms | LAMMPS's\nper-rank allocation avg x ranks / atoms", rows, ranks, memory, 36)
 
 
-def goal(text: str, values: list, limit: float, expected: int, above: bool = False) -> None:
-    """One acceptance line: values [(name, value)] against <= limit (>= with above); "not
-    measured" unless all expected values are there."""
+def goal(text: str, values: list, limit: float, expected: int, above: bool = False) -> dict:
+    """One goal line: values [(name, value)] against <= limit (>= with above); "not measured"
+    unless all expected values are there."""
     if len(values) < expected:
         outcome = "not measured"
     else:
         ok = all(v >= limit if above else v <= limit for _, v in values)
         outcome = "PASS" if ok else "FAIL"
-    shown = ", ".join(f"{n} {v:.2f}" for n, v in values) or "(not run)"
-    print(f"  {text}: {shown} -> {outcome}")
+    return dict(text=text, values=values, limit=limit, above=above, outcome=outcome)
 
 
-def print_acceptance(res: Results, sizes: list, ranks: list, which: str) -> None:
+def goals(res: Results, sizes: list, ranks: list) -> list:
+    """The goal lines of one statistic (goal() of each)."""
     both = [r for r in (1, 2) if r in ranks]
-    print(f"\nissue 13 acceptance ({which}):")
+    found = []
     for size in sizes:
-        goal(f"[{size}] peri/nosb linear / peri/lps <= 0.5 (1 and 2 ranks)",
-             [(rank_text(r), v) for r in both if (v := res.ratio(size, "nosb", r))],
-             0.5, 2)
-        goal(f"[{size}] one fix sissm iteration / peri/nosb step <= 1.0 (jacobi and krylov "
-             "block; (t - t_nve) / k)",
-             [(f"{BY_KEY[k].label} {rank_text(r)}", v) for k in ACCEPTED_SISSM for r in both
-              if (v := res.per_iteration(size, k, r, marginal=True))], 1.0, 4)
+        found.append(goal(f"[{size}] peri/nosb linear / peri/lps <= 0.5 (1 and 2 ranks)",
+                          [(rank_text(r), v) for r in both if (v := res.ratio(size, "nosb", r))],
+                          0.5, 2))
+        found.append(goal(
+            f"[{size}] one fix sissm iteration / peri/nosb step <= 1.0 (jacobi and krylov "
+            "block; (t - t_nve) / k)",
+            [(f"{BY_KEY[k].label} {rank_text(r)}", v) for k in ACCEPTED_SISSM for r in both
+             if (v := res.per_iteration(size, k, r, marginal=True))], 1.0, 4))
     nve = [("nve", e) for e in [res.efficiency("54k", "nosb")] if e]
     sissm = [(BY_KEY[k].label, e) for k in ACCEPTED_SISSM if (e := res.efficiency("54k", k))]
-    goal("[54k] 2-rank efficiency >= 0.95 nve (peri/nosb linear)", nve, 0.95, 1, above=True)
+    found.append(goal("[54k] 2-rank efficiency >= 0.95 nve (peri/nosb linear)", nve, 0.95, 1,
+                      above=True))
+    found.append(goal("[54k] 2-rank efficiency >= 0.9 sissm (jacobi and krylov block)", sissm,
+                      0.9, 2, above=True))
+    return found
+
+
+def print_goal(line: dict) -> None:
+    shown = ", ".join(f"{n} {v:.2f}" for n, v in line["values"]) or "(not run)"
+    print(f"  {line['text']}: {shown} -> {line['outcome']}")
+
+
+def print_goals(res: Results, sizes: list, ranks: list, which: str) -> None:
+    print(f"\ngoals ({which}):")
+    lines = goals(res, sizes, ranks)
+    for line in lines[:-1]:
+        print_goal(line)
     if (both := res.beside("54k")):
         print(f"    (both cores busy: two serial runs at once each take {both[0]:.2f} x a lone "
               f"one; the nve efficiency against that rate {both[1]:.2f})")
-    goal("[54k] 2-rank efficiency >= 0.9 sissm (jacobi and krylov block)", sissm, 0.9, 2,
-         above=True)
+    print_goal(lines[-1])
     if (top := res.ceiling("54k")):
         print(f"    (the machine's own ceiling in these rounds, lockstep.c: {top[0]:.2f}; each "
               f"efficiency over it: "
@@ -589,6 +611,32 @@ def print_acceptance(res: Results, sizes: list, ranks: list, which: str) -> None
     if (parts := res.split_text("54k", ("nosb",) + ACCEPTED_SISSM + ("lockstep",))):
         print("    (2 ranks, % of the loop inside MPI calls / the ranks' own work against the "
               "serial run: " + parts + ")")
+
+
+def summary(res: Results, sizes: list, configs: dict, ranks: list) -> dict:
+    """What the tables and goal lines print, unrounded, for --json: per statistic ("medians",
+    "minima") and size, per configuration and rank count the us per particle-step ("us"), its
+    ratio to peri/lps ("ratio"), for fix sissm the iterations per step ("k") and
+    (t - t_nve) / k / t_nve ("iteration"); per configuration the 2-rank efficiency t1 / (2 t2)
+    ("efficiency") and [share inside MPI, t1 / own work] ("split"); "ceiling" [lockstep.c's
+    t1 / (2 t2), its share waiting] and "beside" [t_x2 / t1, t_x2 / (2 t2)] (null where not
+    measured); and the goal lines ("goals")."""
+    out = {}
+    for which, stats in (("medians", res), ("minima", res.best())):
+        view = {}
+        for size in sizes:
+            keys = [c.key for c in configs[size]]
+            per = {k: {str(r): dict(us=stats.med(size, k, r), ratio=stats.ratio(size, k, r),
+                                    k=stats.med(size, k, r, "iterations"),
+                                    iteration=stats.per_iteration(size, k, r, marginal=True))
+                       for r in ranks if stats.get(size, k, r)} for k in keys}
+            view[size] = dict(
+                runs=per, efficiency={k: stats.efficiency(size, k) for k in keys},
+                split={k: stats.split(size, k) for k in keys}, ceiling=stats.ceiling(size),
+                beside=stats.beside(size))
+        view["goals"] = goals(stats, sizes, ranks)
+        out[which] = view
+    return out
 
 
 def main():
@@ -602,6 +650,7 @@ def main():
     ap.add_argument("--sizes", nargs="+", choices=list(GEOMETRY), default=None)
     ap.add_argument("--styles", nargs="+", choices=list(BY_KEY), default=list(BY_KEY))
     ap.add_argument("--csv", type=Path, help="write one row per run here")
+    ap.add_argument("--json", type=Path, help="write the printed figures, unrounded, here")
     ap.add_argument("--lmp", type=Path, default=LMP)
     args = ap.parse_args()
     rounds = args.rounds or (1 if args.quick else 3)
@@ -661,9 +710,11 @@ def main():
         print(f"(no MPI timing of the multi-rank runs: {why})")
     for size in sizes:
         print_size(res, size, configs[size], args.ranks, steps[size])
-    print_acceptance(res, sizes, args.ranks, "medians of this invocation")
-    print_acceptance(res.best(), sizes, args.ranks, "minima over the rounds of this invocation; "
+    print_goals(res, sizes, args.ranks, "medians of this invocation")
+    print_goals(res.best(), sizes, args.ranks, "minima over the rounds of this invocation; "
                      "a busy machine only adds time")
+    if args.json:
+        args.json.write_text(json.dumps(summary(res, sizes, configs, args.ranks), indent=1))
     if failures:
         print("\nfailed runs:")
         for line in failures:
