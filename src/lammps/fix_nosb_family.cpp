@@ -34,7 +34,6 @@
 #include "error.h"
 #include "force.h"
 #include "memory.h"
-#include "modify.h"
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
@@ -66,7 +65,8 @@ static constexpr int RESTART_VERSION = 2;
 FixNosbFamily::FixNosbFamily(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), built(0), maxpartner(1), npartner(nullptr), partner(nullptr),
     omega(nullptr), kinv(nullptr), kregular(nullptr), vinit(nullptr), lamref(nullptr),
-    owntag(nullptr), jlocal(nullptr), tagmax0(0), model(nullptr), list(nullptr), sdiag(nullptr), last_check(-1), integrator_checks(0), dtstable0(0.0)
+    owntag(nullptr), jlocal(nullptr), tagmax0(0), model(nullptr), list(nullptr), sdiag(nullptr),
+    integrator_checks(0), dtstable0(0.0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix nosb/family command: no arguments expected");
 
@@ -130,10 +130,11 @@ void FixNosbFamily::init()
     if (comm->cutghostuser > cutdefault) req->set_cutoff(comm->cutghostuser);
   }
 
-  // fix sissm moves the atoms in its own post_integrate, which may come after this one: it
-  // calls check_motion() itself once it has
+  // an implicit integrator moves the atoms in its own post_integrate, which may come after
+  // this one, and calls check_motion() itself once it has (through the pair's ImplicitForces);
+  // from its first call of a run on, the check of post_integrate is left to it
 
-  integrator_checks = modify->get_fix_by_style("^sissm$").empty() ? 0 : 1;
+  integrator_checks = 0;
 
   // PD scale factor used by dump cfg, as set by the built-in PERI styles
 
@@ -217,13 +218,12 @@ void FixNosbFamily::build_families()
       const double delta = model->horizon(itype, type[j]);
       if (dx * dx + dy * dy + dz * dz <= delta * delta) fam[i].emplace_back(tag[j], j);
     }
-    std::sort(fam[i].begin(), fam[i].end());
-    for (size_t k = 1; k < fam[i].size(); k++)
-      if (fam[i][k].first == fam[i][k - 1].first)
-        error->one(FLERR,
-                   "Pair peri/nosb: atom {} appears twice in the bond family of atom {}: the "
-                   "periodic box is shorter than two horizons",
-                   fam[i][k].first, tag[i]);
+    const tagint twice = PeriSISSM::order_family(fam[i]);
+    if (twice)
+      error->one(FLERR,
+                 "Pair peri/nosb: atom {} appears twice in the bond family of atom {}: the "
+                 "periodic box is shorter than two horizons",
+                 twice, tag[i]);
   }
 
   int maxone = 0;
@@ -339,11 +339,7 @@ void FixNosbFamily::forget_broken(const std::vector<int> &atoms)
 
 double FixNosbFamily::damage(int i) const
 {
-  if (vinit[i] <= 0.0) return 0.0;
-  double vnow = 0.0;
-  for (int b = 0; b < npartner[i]; b++)
-    if (partner[i][b]) vnow += omega[i][b];
-  return 1.0 - vnow / vinit[i];
+  return PeriSISSM::damage(npartner[i], partner[i], omega[i], vinit[i]);
 }
 
 /* ----------------------------------------------------------------------

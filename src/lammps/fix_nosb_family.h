@@ -61,7 +61,8 @@ class FixNosbFamily : public Fix {
   // have moved farther than LAMMPS can follow (beyond one periodic image, or spread beyond
   // what its neighbor bins can index). Called every step in post_integrate, or by an
   // integrator that moves the atoms later in the step (fix sissm) right after it has, telling
-  // whether its step converged (1), did not (0), or -1 (explicit integrators).
+  // whether its step converged (1), did not (0), or -1 (explicit integrators); after a call
+  // with 0 or 1 the check of post_integrate is left to that integrator until the next init.
   void check_motion(int converged = -1);
   // estimate of the stable explicit time step of every owned atom (all ranks; dt[nlocal]):
   //   dt_i = f sqrt(2 rho_i / d_i),  d_i = sum_j omega_ij (s_i + s_j),
@@ -113,8 +114,7 @@ class FixNosbFamily : public Fix {
   std::vector<tagint> allgather_tags(const std::vector<tagint> &, int *offset = nullptr);
   std::vector<int> reshape;    // atoms whose K must be recomputed after a refresh
   double *sdiag;               // per atom s_i of stable_time_steps() (owned and ghosts)
-  bigint last_check;           // step of the last check_motion()
-  int integrator_checks;       // 1: an integrator calls check_motion() (fix sissm)
+  int integrator_checks;       // 1: an integrator has called check_motion(0 or 1) in this run
   double dtstable0;            // min_stable_time_step() at the setup of the run
   std::string likely_cause(int converged);
   void missing_partner(int i, tagint jtag);

@@ -102,7 +102,7 @@ void FixNosbFamily::post_integrate()
 
 void FixNosbFamily::check_motion(int converged)
 {
-  last_check = update->ntimestep;
+  if (converged >= 0) integrator_checks = 1;
 
   double **x = atom->x;
   double **v = atom->v;

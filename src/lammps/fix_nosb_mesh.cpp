@@ -16,22 +16,20 @@
    that no longer exists (delete_atoms, lost atoms), or whose ID now belongs to an atom of
    another mesh, is dropped by the vertices that still have it.
 
-   write_data writes the triangles as a section "Mesh Triangles" (one line per triangle: ID,
-   mesh id, thickness, the three vertex IDs in the triangle's orientation), announced by the
-   header line "N mesh triangles"; read_data ... fix NOSB_MESH "mesh triangles" "Mesh
-   Triangles" reads it back (doc/read_mesh.rst).
+   Per-atom records (exchange, restart, border): core mesh/vertex_records.h. Data files
+   (write_data, read_data ... fix): fix_nosb_mesh_data.cpp.
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_mesh.h"
 
 #include "mesh/mesh_geometry.h"
+#include "mesh/vertex_records.h"
 
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
 #include "memory.h"
 #include "modify.h"
-#include "tokenizer.h"
 
 #include <algorithm>
 #include <cstring>
@@ -40,9 +38,6 @@
 
 using namespace LAMMPS_NS;
 
-// per-atom doubles of a mesh vertex in exchange and restart buffers before its triangles:
-// mesh id, thickness, owntag, normal0 (3), ntri
-static constexpr int NATOMDATA = 7;
 // global restart data: format version, nmesh, ntriangles
 static constexpr int NGLOBAL = 3;
 static constexpr int RESTART_VERSION = 1;
@@ -76,8 +71,8 @@ FixNosbMesh::FixNosbMesh(LAMMPS *lmp, int narg, char **arg) :
   peratom_flag = 1;
   size_peratom_cols = NOUTPUT;
   peratom_freq = 1;
-  maxexchange = NATOMDATA + 2 * MAXTRI;
-  comm_border = 6 + 2 * MAXTRI;
+  maxexchange = PeriSISSM::kVertexScalars + 2 * MAXTRI;
+  comm_border = PeriSISSM::kVertexBorderScalars + 2 * MAXTRI;
   comm_forward = 3;
   wd_header = 1;
   wd_section = 1;
@@ -119,16 +114,22 @@ int FixNosbMesh::setmask()
 
 FixNosbMesh *FixNosbMesh::find(LAMMPS *lmp)
 {
+  const auto fixes = lmp->modify->get_fix_by_style("^nosb/mesh$");
+  return fixes.empty() ? nullptr : dynamic_cast<FixNosbMesh *>(fixes[0]);
+}
+
+/* ----------------------------------------------------------------------
+   after read_restart (until the first run or init clears the restart data), LAMMPS gives a
+   new fix the state stored under its ID and style. Modify keeps to itself which fixes the
+   file holds, so "NOSB_MESH all nosb/mesh" is defined and kept only if it got data.
+------------------------------------------------------------------------- */
+
+FixNosbMesh *FixNosbMesh::restore(LAMMPS *lmp)
+{
+  FixNosbMesh *fix = find(lmp);
   Modify *modify = lmp->modify;
-  const auto fixes = modify->get_fix_by_style("^nosb/mesh$");
-  if (!fixes.empty()) return dynamic_cast<FixNosbMesh *>(fixes[0]);
-
-  // after read_restart (until the first run or init clears the restart data), LAMMPS gives a
-  // new fix the state stored under its ID and style: a mesh fix of the file comes back here
-
-  if (modify->nfix_restart_global == 0 && modify->nfix_restart_peratom == 0) return nullptr;
-  auto fix = dynamic_cast<FixNosbMesh *>(
-      modify->add_fix(std::string(DEFAULT_ID) + " all nosb/mesh"));
+  if (fix || (modify->nfix_restart_global == 0 && modify->nfix_restart_peratom == 0)) return fix;
+  fix = dynamic_cast<FixNosbMesh *>(modify->add_fix(std::string(DEFAULT_ID) + " all nosb/mesh"));
   if (fix && fix->restart_reset) return fix;
   modify->delete_fix(DEFAULT_ID);
   return nullptr;
@@ -158,21 +159,14 @@ void FixNosbMesh::min_setup(int /*vflag*/)
 }
 
 /* ----------------------------------------------------------------------
-   fix_modify NOSB_MESH normals yes|no
+   fix_modify ID normals yes|no (or any of LAMMPS's boolean words)
 ------------------------------------------------------------------------- */
 
 int FixNosbMesh::modify_param(int narg, char **arg)
 {
   if (strcmp(arg[0], "normals") == 0) {
     if (narg < 2) utils::missing_cmd_args(FLERR, "fix_modify nosb/mesh normals", error);
-    const std::string v(arg[1]);
-    if (v == "yes")
-      normals_at_setup = 1;
-    else if (v == "no")
-      normals_at_setup = 0;
-    else
-      error->all(FLERR, "Illegal fix_modify {} command: normals must be yes or no, got '{}'", id,
-                 arg[1]);
+    normals_at_setup = utils::logical(FLERR, arg[1], false, lmp);
     return 2;
   }
   return 0;
@@ -215,19 +209,15 @@ void FixNosbMesh::vertex_normals(double **x, double **n)
   for (int i = 0; i < nlocal; i++) {
     n[i][0] = n[i][1] = n[i][2] = 0.0;
     if (!mesh[i]) continue;
-    for (int k = 0; k < ntri[i]; k++) {
-      const int ja = closest_image(i, tri[i][k][0], x);
-      const int jb = closest_image(i, tri[i][k][1], x);
-      if (ja < 0 || jb < 0) {
-        if (tag[i] < bad_atom) {
-          bad_atom = tag[i];
-          bad_vertex = (ja < 0) ? tri[i][k][0] : tri[i][k][1];
-        }
-        continue;
-      }
-      PeriSISSM::add_angle_weighted_normal(x[i], x[ja], x[jb], n[i]);
+    auto position = [&](tagint jtag) -> const double * {
+      const int j = closest_image(i, jtag, x);
+      return j < 0 ? nullptr : x[j];
+    };
+    const tagint missing = PeriSISSM::vertex_normal(x[i], ntri[i], tri[i], position, n[i]);
+    if (missing && tag[i] < bad_atom) {
+      bad_atom = tag[i];
+      bad_vertex = missing;
     }
-    PeriSISSM::normalize_or_zero(n[i]);
   }
 
   tagint bad_all;
@@ -383,16 +373,10 @@ void FixNosbMesh::drop_lost_triangles()
 
   // keep the triangles whose vertices all exist
 
+  const auto a = rows();
   for (int i = 0; i < nlocal; i++) {
     if (!mesh[i]) continue;
-    int n = 0;
-    for (int k = 0; k < ntri[i]; k++) {
-      if (tri[i][k][0] == 0 || tri[i][k][1] == 0) continue;
-      tri[i][n][0] = tri[i][k][0];
-      tri[i][n][1] = tri[i][k][1];
-      n++;
-    }
-    ntri[i] = n;
+    PeriSISSM::keep_complete_triangles(a, i);
     refresh_output(i);
   }
 
@@ -411,18 +395,25 @@ void FixNosbMesh::drop_lost_triangles()
 
 int FixNosbMesh::writes_triangle(int i, int k) const
 {
-  const tagint me = atom->tag[i];
-  return me < tri[i][k][0] && me < tri[i][k][1];
+  return PeriSISSM::writes_triangle(atom->tag[i], tri[i][k][0], tri[i][k][1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNosbMesh::owned_triangles() const
+{
+  int n = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mesh[i])
+      for (int k = 0; k < ntri[i]; k++) n += writes_triangle(i, k);
+  return n;
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixNosbMesh::count_triangles()
 {
-  bigint n = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mesh[i])
-      for (int k = 0; k < ntri[i]; k++) n += writes_triangle(i, k);
+  bigint n = owned_triangles();
   MPI_Allreduce(&n, &ntriangles, 1, MPI_LMP_BIGINT, MPI_SUM, world);
 }
 
@@ -436,6 +427,13 @@ void FixNosbMesh::refresh_output(int i)
   output[i][3] = normal0[i][0];
   output[i][4] = normal0[i][1];
   output[i][5] = normal0[i][2];
+}
+
+/* ---------------------------------------------------------------------- */
+
+PeriSISSM::VertexArrays<tagint> FixNosbMesh::rows() const
+{
+  return {mesh, thickness, owntag, normal0, ntri, tri};
 }
 
 /* ---------------------------------------------------------------------- */
@@ -465,15 +463,7 @@ void FixNosbMesh::grow_arrays(int nmax)
 
 void FixNosbMesh::copy_arrays(int i, int j, int /*delflag*/)
 {
-  mesh[j] = mesh[i];
-  thickness[j] = thickness[i];
-  ntri[j] = ntri[i];
-  for (int k = 0; k < ntri[i]; k++) {
-    tri[j][k][0] = tri[i][k][0];
-    tri[j][k][1] = tri[i][k][1];
-  }
-  for (int d = 0; d < 3; d++) normal0[j][d] = normal0[i][d];
-  owntag[j] = owntag[i];
+  PeriSISSM::copy_vertex(rows(), i, j);
   for (int d = 0; d < NOUTPUT; d++) output[j][d] = output[i][d];
 }
 
@@ -485,11 +475,7 @@ void FixNosbMesh::copy_arrays(int i, int j, int /*delflag*/)
 void FixNosbMesh::set_arrays(int i)
 {
   if (data_rows.erase(i)) return;
-  mesh[i] = 0;
-  thickness[i] = 0.0;
-  ntri[i] = 0;
-  normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
-  owntag[i] = 0;
+  PeriSISSM::clear_vertex(rows(), i);
   refresh_output(i);
 }
 
@@ -500,43 +486,15 @@ void FixNosbMesh::set_arrays(int i)
 
 int FixNosbMesh::pack_exchange(int i, double *buf)
 {
-  int m = 0;
-  buf[m++] = mesh[i];
-  if (!mesh[i]) return m;
-  buf[m++] = thickness[i];
-  buf[m++] = ubuf(owntag[i]).d;
-  for (int d = 0; d < 3; d++) buf[m++] = normal0[i][d];
-  buf[m++] = ntri[i];
-  for (int k = 0; k < ntri[i]; k++) {
-    buf[m++] = ubuf(tri[i][k][0]).d;
-    buf[m++] = ubuf(tri[i][k][1]).d;
-  }
-  return m;
+  return PeriSISSM::pack_vertex(rows(), i, buf);
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixNosbMesh::unpack_exchange(int nlocal, double *buf)
 {
-  int m = 0;
-  const int i = nlocal;
-  mesh[i] = static_cast<int>(buf[m++]);
-  if (!mesh[i]) {
-    thickness[i] = 0.0;
-    ntri[i] = 0;
-    normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
-    owntag[i] = 0;
-  } else {
-    thickness[i] = buf[m++];
-    owntag[i] = (tagint) ubuf(buf[m++]).i;
-    for (int d = 0; d < 3; d++) normal0[i][d] = buf[m++];
-    ntri[i] = static_cast<int>(buf[m++]);
-    for (int k = 0; k < ntri[i]; k++) {
-      tri[i][k][0] = (tagint) ubuf(buf[m++]).i;
-      tri[i][k][1] = (tagint) ubuf(buf[m++]).i;
-    }
-  }
-  refresh_output(i);
+  const int m = PeriSISSM::unpack_vertex(rows(), nlocal, buf);
+  refresh_output(nlocal);
   return m;
 }
 
@@ -546,21 +504,9 @@ int FixNosbMesh::unpack_exchange(int nlocal, double *buf)
 
 int FixNosbMesh::pack_border(int n, int *list, double *buf)
 {
+  const auto a = rows();
   int m = 0;
-  for (int l = 0; l < n; l++) {
-    const int j = list[l];
-    buf[m++] = mesh[j];
-    if (!mesh[j]) continue;
-    buf[m++] = thickness[j];
-    buf[m++] = normal0[j][0];
-    buf[m++] = normal0[j][1];
-    buf[m++] = normal0[j][2];
-    buf[m++] = ntri[j];
-    for (int k = 0; k < ntri[j]; k++) {
-      buf[m++] = ubuf(tri[j][k][0]).d;
-      buf[m++] = ubuf(tri[j][k][1]).d;
-    }
-  }
+  for (int l = 0; l < n; l++) m += PeriSISSM::pack_vertex_border(a, list[l], &buf[m]);
   return m;
 }
 
@@ -568,25 +514,9 @@ int FixNosbMesh::pack_border(int n, int *list, double *buf)
 
 int FixNosbMesh::unpack_border(int n, int first, double *buf)
 {
+  const auto a = rows();
   int m = 0;
-  for (int i = first; i < first + n; i++) {
-    mesh[i] = static_cast<int>(buf[m++]);
-    if (!mesh[i]) {
-      thickness[i] = 0.0;
-      normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
-      ntri[i] = 0;
-      continue;
-    }
-    thickness[i] = buf[m++];
-    normal0[i][0] = buf[m++];
-    normal0[i][1] = buf[m++];
-    normal0[i][2] = buf[m++];
-    ntri[i] = static_cast<int>(buf[m++]);
-    for (int k = 0; k < ntri[i]; k++) {
-      tri[i][k][0] = (tagint) ubuf(buf[m++]).i;
-      tri[i][k][1] = (tagint) ubuf(buf[m++]).i;
-    }
-  }
+  for (int i = first; i < first + n; i++) m += PeriSISSM::unpack_vertex_border(a, i, &buf[m]);
   return m;
 }
 
@@ -642,209 +572,14 @@ void FixNosbMesh::unpack_restart(int nlocal, int nth)
 
 int FixNosbMesh::maxsize_restart()
 {
-  return 1 + NATOMDATA + 2 * MAXTRI;
+  return 1 + PeriSISSM::kVertexScalars + 2 * MAXTRI;
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixNosbMesh::size_restart(int i)
 {
-  return mesh[i] ? 1 + NATOMDATA + 2 * ntri[i] : 2;
-}
-
-/* ----------------------------------------------------------------------
-   write_data: "N mesh triangles" in the header (rank 0 only: ntriangles is kept on all ranks,
-   counted at every init, which write_data does first)
-------------------------------------------------------------------------- */
-
-void FixNosbMesh::write_data_header(FILE *fp, int /*mth*/)
-{
-  utils::print(fp, "{} mesh triangles\n", ntriangles);
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixNosbMesh::write_data_section_size(int /*mth*/, int &nx, int &ny)
-{
-  int n = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mesh[i])
-      for (int k = 0; k < ntri[i]; k++) n += writes_triangle(i, k);
-  bigint nbig = n, nall;
-  MPI_Allreduce(&nbig, &nall, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (nall != ntriangles)
-    error->all(FLERR,
-               "Fix nosb/mesh: write_data found {} mesh triangles, but the header says {}: the "
-               "triangle lists of the atoms are inconsistent",
-               nall, ntriangles);
-  nx = n;
-  ny = 5;    // mesh id, thickness, three vertex IDs
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixNosbMesh::write_data_section_pack(int /*mth*/, double **buf)
-{
-  int n = 0;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!mesh[i]) continue;
-    for (int k = 0; k < ntri[i]; k++) {
-      if (!writes_triangle(i, k)) continue;
-      buf[n][0] = mesh[i];
-      buf[n][1] = thickness[i];
-      buf[n][2] = ubuf(atom->tag[i]).d;
-      buf[n][3] = ubuf(tri[i][k][0]).d;
-      buf[n][4] = ubuf(tri[i][k][1]).d;
-      n++;
-    }
-  }
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixNosbMesh::write_data_section_keyword(int /*mth*/, FILE *fp)
-{
-  fputs("\nMesh Triangles\n\n", fp);
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixNosbMesh::write_data_section(int /*mth*/, FILE *fp, int n, double **buf, int index)
-{
-  for (int k = 0; k < n; k++)
-    utils::print(fp, "{} {} {} {} {} {}\n", index + k, (int) buf[k][0], buf[k][1],
-                 (tagint) ubuf(buf[k][2]).i, (tagint) ubuf(buf[k][3]).i,
-                 (tagint) ubuf(buf[k][4]).i);
-}
-
-/* ----------------------------------------------------------------------
-   read_data ... fix ID "mesh triangles" "Mesh Triangles": the header line "N mesh triangles"
-   starts a new read; its mesh ids follow those of the deck
-------------------------------------------------------------------------- */
-
-void FixNosbMesh::read_data_header(char *line)
-{
-  try {
-    ValueTokenizer values(line);
-    data_ntriangles = values.next_bigint();
-  } catch (TokenizerException &e) {
-    error->all(FLERR, "Fix nosb/mesh: invalid mesh triangles line in the data file header: '{}'",
-               utils::trim(line));
-  }
-  if (data_ntriangles < 0)
-    error->all(FLERR, "Fix nosb/mesh: negative number of mesh triangles in the data file: '{}'",
-               utils::trim(line));
-  data_header = 1;
-  data_nread = 0;
-  data_mesh_offset = nmesh;
-  data_first_row = atom->nlocal;
-  data_rows.clear();
-}
-
-/* ---------------------------------------------------------------------- */
-
-bigint FixNosbMesh::read_data_skip_lines(char *keyword)
-{
-  if (!data_header)
-    error->all(FLERR,
-               "Fix nosb/mesh: the data file's {} section needs its header line 'N mesh "
-               "triangles': read it with read_data ... fix {} \"mesh triangles\" \"{}\"",
-               keyword, id, keyword);
-  if (data_nread == data_ntriangles) data_header = 0;    // an empty section
-  return data_ntriangles;
-}
-
-/* ----------------------------------------------------------------------
-   lines "ID mesh thickness v1 v2 v3": each owned vertex stores the triangle rotated to start
-   at it; every vertex must be an atom (of the data file: IDs get the read_data offset)
-------------------------------------------------------------------------- */
-
-void FixNosbMesh::read_data_section(char *keyword, int n, char *buf, tagint id_offset)
-{
-  const int nlocal = atom->nlocal;
-  tagint *tag = atom->tag;
-  std::vector<int> owned(3 * n, 0), owned_all(3 * n);
-  std::vector<tagint> vertices(3 * n);
-  std::vector<std::string> lines(n);
-  int meshmax = nmesh;
-
-  for (int l = 0; l < n; l++) {
-    char *next = strchr(buf, '\n');
-    if (!next) error->all(FLERR, "Unexpected end of file while reading data section {}", keyword);
-    *next = '\0';
-    lines[l] = utils::trim(buf);
-    int meshid = 0;
-    double t = 0.0;
-    tagint v[3];
-    try {
-      ValueTokenizer values(utils::trim_comment(buf));
-      if (values.count() != 6)
-        error->all(FLERR,
-                   "Fix nosb/mesh: line '{}' of the {} section of the data file has {} values "
-                   "instead of 6 (ID mesh thickness v1 v2 v3)",
-                   lines[l], keyword, values.count());
-      values.next_tagint();
-      meshid = values.next_int();
-      t = values.next_double();
-      for (int c = 0; c < 3; c++) v[c] = values.next_tagint() + id_offset;
-    } catch (TokenizerException &e) {
-      error->all(FLERR, "Fix nosb/mesh: invalid line '{}' in the {} section of the data file: {}",
-                 lines[l], keyword, e.what());
-    }
-    if (meshid < 1 || !(t > 0.0) || v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
-      error->all(FLERR,
-                 "Fix nosb/mesh: invalid line '{}' in the {} section of the data file: the mesh "
-                 "id must be >= 1, the thickness > 0 and the three vertex IDs distinct",
-                 lines[l], keyword);
-    meshid += data_mesh_offset;
-    meshmax = std::max(meshmax, meshid);
-
-    for (int c = 0; c < 3; c++) {
-      vertices[3 * l + c] = v[c];
-      const int i = local_index(v[c]);
-      if (i < 0 || i >= nlocal) continue;
-      owned[3 * l + c] = 1;
-      if (i >= data_first_row && !data_rows.count(i)) {    // new atom of this read_data
-        mesh[i] = 0;
-        ntri[i] = 0;
-      }
-      if (mesh[i] && mesh[i] != meshid)
-        error->one(FLERR,
-                   "Fix nosb/mesh: atom {} is a vertex of mesh {} and of mesh {} (line '{}' of "
-                   "the {} section of the data file)",
-                   tag[i], mesh[i], meshid, lines[l], keyword);
-      mesh[i] = meshid;
-      thickness[i] = t;
-      owntag[i] = tag[i];
-      normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
-      if (ntri[i] == MAXTRI)
-        error->one(FLERR,
-                   "Fix nosb/mesh: atom {} is in more than {} triangles of the {} section of the "
-                   "data file",
-                   tag[i], MAXTRI, keyword);
-      tri[i][ntri[i]][0] = v[(c + 1) % 3];
-      tri[i][ntri[i]][1] = v[(c + 2) % 3];
-      ntri[i]++;
-      refresh_output(i);
-      data_rows.insert(i);
-    }
-    buf = next + 1;
-  }
-
-  // every vertex is an atom on exactly one rank
-
-  MPI_Allreduce(owned.data(), owned_all.data(), 3 * n, MPI_INT, MPI_SUM, world);
-  for (int k = 0; k < 3 * n; k++)
-    if (owned_all[k] != 1)
-      error->all(FLERR,
-                 "Fix nosb/mesh: vertex {} of line '{}' of the {} section of the data file is no "
-                 "atom of the deck (vertex IDs are atom IDs of the data file)",
-                 vertices[k], lines[k / 3], keyword);
-
-  nmesh = meshmax;
-  ntriangles += n;
-  data_nread += n;
-  if (data_nread == data_ntriangles) data_header = 0;
+  return 1 + PeriSISSM::vertex_record_size(mesh[i], ntri[i]);
 }
 
 /* ----------------------------------------------------------------------

@@ -19,6 +19,10 @@ FixStyle(nosb/mesh,FixNosbMesh);
 
 #include <unordered_set>
 
+namespace PeriSISSM {
+template <class Id> struct VertexArrays;
+}
+
 namespace LAMMPS_NS {
 
 class FixNosbMesh : public Fix {
@@ -62,10 +66,14 @@ class FixNosbMesh : public Fix {
   void read_data_section(char *, int, char *, tagint) override;
   bigint read_data_skip_lines(char *) override;
 
-  // the deck's mesh fix, nullptr if none. After read_restart, before the first run, a mesh fix
-  // of the restart file is re-created here (as "NOSB_MESH all nosb/mesh", which takes its
-  // data from the file) the first time it is asked for.
+  // the deck's mesh fix, nullptr if none (a lookup: it defines and deletes no fix)
   static FixNosbMesh *find(class LAMMPS *);
+  // find(); if the deck has no mesh fix but the restart file read last holds the data of one
+  // as NOSB_MESH (LAMMPS keeps them until the first run or init), define it again ("NOSB_MESH
+  // all nosb/mesh", which takes its data from the file) and return it. Called by pair
+  // peri/nosb's init, before the fixes' init, so that a run split by write_restart and
+  // read_restart keeps its meshes without the fix being re-specified.
+  static FixNosbMesh *restore(class LAMMPS *);
 
   // angle-weighted unit vertex normal of every owned mesh atom from the positions x (owned and
   // ghost rows, as atom->x): n_i = sum over the triangles (i, a, b) at i of the triangle's unit
@@ -107,12 +115,14 @@ class FixNosbMesh : public Fix {
   int data_first_row;      // read_data: atoms from this row on are new (no data yet)
   std::unordered_set<int> data_rows;    // read_data: rows set by the section (set_arrays)
 
+  PeriSISSM::VertexArrays<tagint> rows() const;    // the per-atom arrays (core mesh/)
   void refresh_output(int i);
   void add_triangle(int i, tagint a, tagint b);
   int local_index(tagint) const;
   int closest_image(int i, tagint jtag, double **x) const;
   void check_ids();
   void drop_lost_triangles();
+  int owned_triangles() const;    // triangles this rank writes (writes_triangle)
   void count_triangles();
   int writes_triangle(int i, int k) const;
   void normals_where_missing();

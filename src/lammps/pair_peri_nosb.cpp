@@ -606,9 +606,9 @@ void PairPeriNosb::init_style()
 
 void PairPeriNosb::check_membranes()
 {
-  // (asked for in every deck: after read_restart, find() re-creates the mesh fix from the
-  // file's data before LAMMPS discards it)
-  FixNosbMesh *mesh = FixNosbMesh::find(lmp);
+  // (asked for in every deck: after read_restart, restore() defines the mesh fix of the file
+  // again before LAMMPS discards its data)
+  FixNosbMesh *mesh = FixNosbMesh::restore(lmp);
   meshfix = mesh;
   const int n = atom->ntypes;
   bend.resize(n + 1, 0.0);

@@ -52,22 +52,38 @@ struct Options {
   std::string group;
 };
 
-// a finite number for read_mesh, naming the keyword on error
-double number(const char *what, const char *str, Error *error)
+// a finite number for read_mesh (utils::numeric), naming the keyword on error
+double number(const char *what, const char *str, LAMMPS *lmp)
 {
-  char *end = nullptr;
-  const double value = std::strtod(str, &end);
-  if (end == str || *end != '\0' || !std::isfinite(value))
-    error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'", what,
-               str);
+  if (!utils::is_double(str))
+    lmp->error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'",
+                    what, str);
+  const double value = utils::numeric(FLERR, str, false, lmp);
+  if (!std::isfinite(value))
+    lmp->error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'",
+                    what, str);
   return value;
 }
 
-double positive(const char *what, const char *str, Error *error)
+double positive(const char *what, const char *str, LAMMPS *lmp)
 {
-  const double value = number(what, str, error);
+  const double value = number(what, str, lmp);
   if (!(value > 0.0))
-    error->all(FLERR, "Illegal read_mesh command: {} must be > 0, got '{}'", what, str);
+    lmp->error->all(FLERR, "Illegal read_mesh command: {} must be > 0, got '{}'", what, str);
+  return value;
+}
+
+// an atom type: a number or a type label (labelmap atom), from 1 to ntypes
+int atom_type(const char *str, LAMMPS *lmp)
+{
+  char *expanded = utils::expand_type(FLERR, str, Atom::ATOM, lmp);
+  const std::string type = expanded ? expanded : str;
+  delete[] expanded;
+  const int ntypes = lmp->atom->ntypes;
+  const int value = utils::is_integer(type) ? utils::inumeric(FLERR, type, false, lmp) : 0;
+  if (value < 1 || value > ntypes)
+    lmp->error->all(FLERR, "Illegal read_mesh command: type must be an atom type from 1 to {} "
+                    "or a type label, got '{}'", ntypes, str);
   return value;
 }
 
@@ -90,36 +106,32 @@ Options parse(int narg, char **arg, LAMMPS *lmp)
     const std::string keyword = arg[iarg];
     if (keyword == "type") {
       need("type", 1);
-      const char *str = arg[iarg + 1];
-      if (!utils::is_integer(str) || atoi(str) < 1 || atoi(str) > lmp->atom->ntypes)
-        error->all(FLERR, "Illegal read_mesh command: type must be an atom type from 1 to {}, "
-                   "got '{}'", lmp->atom->ntypes, str);
-      opt.type = atoi(str);
+      opt.type = atom_type(arg[iarg + 1], lmp);
       have_type = true;
       iarg += 2;
     } else if (keyword == "thickness") {
       need("thickness", 1);
-      opt.thickness = positive("thickness", arg[iarg + 1], error);
+      opt.thickness = positive("thickness", arg[iarg + 1], lmp);
       have_thickness = true;
       iarg += 2;
     } else if (keyword == "density") {
       need("density", 1);
-      opt.density = positive("density", arg[iarg + 1], error);
+      opt.density = positive("density", arg[iarg + 1], lmp);
       have_density = true;
       iarg += 2;
     } else if (keyword == "offset") {
       need("offset", 3);
-      for (int d = 0; d < 3; d++) opt.place.offset[d] = number("offset", arg[iarg + 1 + d], error);
+      for (int d = 0; d < 3; d++) opt.place.offset[d] = number("offset", arg[iarg + 1 + d], lmp);
       iarg += 4;
     } else if (keyword == "scale") {
       need("scale", 1);
-      opt.place.scale = positive("scale", arg[iarg + 1], error);
+      opt.place.scale = positive("scale", arg[iarg + 1], lmp);
       iarg += 2;
     } else if (keyword == "rotate") {
       need("rotate", 4);
-      opt.place.theta = number("rotate angle theta", arg[iarg + 1], error);
+      opt.place.theta = number("rotate angle theta", arg[iarg + 1], lmp);
       for (int d = 0; d < 3; d++)
-        opt.place.axis[d] = number("rotate axis", arg[iarg + 2 + d], error);
+        opt.place.axis[d] = number("rotate axis", arg[iarg + 2 + d], lmp);
       const double *r = opt.place.axis;
       if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0)
         error->all(FLERR, "Illegal read_mesh command: the rotate axis must not be zero, got {} {} "
@@ -204,18 +216,21 @@ void ReadMesh::command(int narg, char **arg)
 
   const Options opt = parse(narg, arg, lmp);
 
-  // the mesh fix of a restart file comes back here; new atoms would get the per-atom restart
-  // data of fixes defined later wrong (as for create_atoms)
+  // new atoms would get the per-atom restart data of fixes defined later wrong (as for
+  // create_atoms)
 
-  FixNosbMesh *fix = FixNosbMesh::find(lmp);
-  if (modify->nfix_restart_peratom)
+  if (modify->nfix_restart_peratom) {
+    // (the advice names the mesh fix the file holds)
+    const FixNosbMesh *restored = FixNosbMesh::restore(lmp);
     error->all(FLERR,
                "Read_mesh after read_restart: the restart file holds per-atom data of fixes, "
                "which they take from it when defined or at the first run; put 'run 0' before "
                "read_mesh (as for create_atoms){}",
-               fix ? ", and re-specify 'fix NOSB_MESH all nosb/mesh' right after read_restart "
-                     "so that the meshes of the restart file are kept"
-                   : "");
+               restored ? fmt::format(", and re-specify 'fix {} all nosb/mesh' right after "
+                                      "read_restart so that the meshes of the restart file are "
+                                      "kept", restored->id)
+                        : "");
+  }
 
   int igroup = 0;
   if (!opt.group.empty()) {
@@ -288,8 +303,11 @@ void ReadMesh::command(int narg, char **arg)
   if ((double) maxtag_all + nvertex >= (double) MAXTAGINT)
     error->all(FLERR, "Read_mesh: too many atom IDs ({} + {} vertices)", maxtag_all, nvertex);
 
-  if (!fix) fix = dynamic_cast<FixNosbMesh *>(
-                modify->add_fix(std::string(FixNosbMesh::DEFAULT_ID) + " all nosb/mesh"));
+  // the first read_mesh of a deck defines the mesh fix
+  FixNosbMesh *fix = FixNosbMesh::find(lmp);
+  if (!fix)
+    fix = dynamic_cast<FixNosbMesh *>(
+        modify->add_fix(std::string(FixNosbMesh::DEFAULT_ID) + " all nosb/mesh"));
   const int meshid = fix->add_mesh(ntriangle);
 
   // create the atoms (as create_atoms: ghosts and the map are cleared first, since new atoms

@@ -43,6 +43,30 @@ void add_angle_weighted_normal(const double xi[3], const double xa[3], const dou
 // n / |n|; a zero vector stays zero. Returns false for a zero vector.
 bool normalize_or_zero(double n[3]);
 
+// Angle-weighted unit normal of a vertex: add_angle_weighted_normal over its triangles
+// (i, tri[k][0], tri[k][1]) in the order k = 0..ntri-1, then normalize_or_zero. A triangle with
+// a vertex that position() does not find adds nothing.
+// Inputs: xi (the vertex's position), ntri, tri (the IDs of the other two vertices of each
+// triangle), position (ID -> const double * of that vertex's position, or nullptr).
+// Outputs: n. Returns the first ID that position() did not find, 0 if it found all.
+template <class Id, class Position>
+Id vertex_normal(const double xi[3], int ntri, Id *const *tri, Position position, double n[3])
+{
+  Id missing = 0;
+  n[0] = n[1] = n[2] = 0.0;
+  for (int k = 0; k < ntri; k++) {
+    const double *xa = position(tri[k][0]);
+    const double *xb = position(tri[k][1]);
+    if (!xa || !xb) {
+      if (!missing) missing = xa ? tri[k][1] : tri[k][0];
+      continue;
+    }
+    add_angle_weighted_normal(xi, xa, xb, n);
+  }
+  normalize_or_zero(n);
+  return missing;
+}
+
 }    // namespace PeriSISSM
 
 #endif

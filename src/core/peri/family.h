@@ -8,6 +8,10 @@
 #ifndef PERISISSM_PERI_FAMILY_H
 #define PERISISSM_PERI_FAMILY_H
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 namespace PeriSISSM {
 
 // The box the families were built in: periodic images of reference bonds. A reference bond is
@@ -118,6 +122,32 @@ inline void reference_bond(const double *x0, const ReferenceBox &box, int i, int
 //         unit normal if it is a membrane, else null. Outputs: kinv[i], kregular[i], lamref[i].
 void update_shape(const Families &fam, const double *x0, const ReferenceBox &box, int i,
                   const double *n0 = nullptr);
+
+// A family in the order in which every per-particle sum runs: its partners sorted by ID (then
+// by local index), so that the sums agree whatever the number of MPI ranks. Id is the integer
+// type of particle IDs.
+// Inputs/Outputs: partners as (ID, local index of the image found). Returns the smallest ID that
+// appears twice (two images of one particle within the horizon: a periodic box shorter than
+// two horizons), 0 if none.
+template <class Id> Id order_family(std::vector<std::pair<Id, int>> &partners)
+{
+  std::sort(partners.begin(), partners.end());
+  for (size_t k = 1; k < partners.size(); k++)
+    if (partners[k].first == partners[k - 1].first) return partners[k].first;
+  return 0;
+}
+
+// Damage of a particle: 1 - (sum of omega over its unbroken bonds) / vinit, 0 when vinit <= 0.
+// Inputs: n bond slots, partner IDs (0 = broken), omega per slot, vinit (sum of omega over the
+// initial family). Outputs: damage in [0, 1].
+template <class Id> double damage(int n, const Id *partner, const double *omega, double vinit)
+{
+  if (vinit <= 0.0) return 0.0;
+  double vnow = 0.0;
+  for (int b = 0; b < n; b++)
+    if (partner[b]) vnow += omega[b];
+  return 1.0 - vnow / vinit;
+}
 
 }  // namespace PeriSISSM
 

@@ -1,0 +1,197 @@
+/* PERI-SISSM core: the per-atom records of a triangle-mesh vertex as fix nosb/mesh keeps them:
+   mesh id, thickness, the atom's own ID when its triangles were stored, reference normal, and
+   the triangles at the vertex (each as the IDs of its other two vertices in the triangle's
+   orientation). Rows of the arrays are atoms; Id is the integer type of atom IDs (LAMMPS's
+   tagint: int or int64_t).
+
+   Buffers of doubles carry an ID as the bit pattern of its value as a 64-bit integer (as
+   LAMMPS's ubuf does), so that any ID survives exactly.
+
+   Exchange and restart record (pack_vertex): mesh id; for a mesh vertex then thickness,
+   owntag, normal (3), ntri and the 2 x ntri IDs of the triangles.
+   Border record (pack_vertex_border, ghosts): mesh id; for a mesh vertex then thickness,
+   normal (3), ntri and the 2 x ntri IDs (no owntag: ghosts do not check renumbering).
+*/
+#ifndef PERISISSM_MESH_VERTEX_RECORDS_H
+#define PERISISSM_MESH_VERTEX_RECORDS_H
+
+#include <cstdint>
+#include <cstring>
+
+namespace PeriSISSM {
+
+// doubles of a mesh vertex's exchange record before its triangles
+constexpr int kVertexScalars = 7;
+// doubles of a mesh vertex's border record before its triangles
+constexpr int kVertexBorderScalars = 6;
+
+// the rows of the per-atom arrays (owned and ghost atoms)
+template <class Id> struct VertexArrays {
+  int *mesh;           // mesh id, 0 = not a mesh vertex
+  double *thickness;   // thickness of the atom's mesh, 0 for other atoms
+  Id *owntag;          // the atom's ID when its triangles were stored
+  double **normal0;    // reference unit normal (3 per row)
+  int *ntri;           // triangles at the atom
+  Id ***tri;           // tri[i][k][0..1]: the other two vertices of triangle k of atom i
+};
+
+// an ID as a double carrying its 64-bit integer bits, and back
+template <class Id> double id_bits(Id id)
+{
+  const int64_t v = static_cast<int64_t>(id);
+  double d;
+  std::memcpy(&d, &v, sizeof(d));
+  return d;
+}
+
+template <class Id> Id bits_id(double d)
+{
+  int64_t v;
+  std::memcpy(&v, &d, sizeof(v));
+  return static_cast<Id>(v);
+}
+
+// doubles of the exchange record of a vertex with ntri triangles (1 for a non-mesh atom)
+inline int vertex_record_size(int mesh, int ntri)
+{
+  return mesh ? kVertexScalars + 2 * ntri : 1;
+}
+
+// row i is no mesh vertex: mesh id, thickness, triangles, normal and owntag zero
+template <class Id> void clear_vertex(const VertexArrays<Id> &a, int i)
+{
+  a.mesh[i] = 0;
+  a.thickness[i] = 0.0;
+  a.ntri[i] = 0;
+  a.normal0[i][0] = a.normal0[i][1] = a.normal0[i][2] = 0.0;
+  a.owntag[i] = 0;
+}
+
+// row j := row i
+template <class Id> void copy_vertex(const VertexArrays<Id> &a, int i, int j)
+{
+  a.mesh[j] = a.mesh[i];
+  a.thickness[j] = a.thickness[i];
+  a.ntri[j] = a.ntri[i];
+  for (int k = 0; k < a.ntri[i]; k++) {
+    a.tri[j][k][0] = a.tri[i][k][0];
+    a.tri[j][k][1] = a.tri[i][k][1];
+  }
+  for (int d = 0; d < 3; d++) a.normal0[j][d] = a.normal0[i][d];
+  a.owntag[j] = a.owntag[i];
+}
+
+// Inputs: row i. Outputs: its exchange record in buf. Returns the doubles written.
+template <class Id> int pack_vertex(const VertexArrays<Id> &a, int i, double *buf)
+{
+  int m = 0;
+  buf[m++] = a.mesh[i];
+  if (!a.mesh[i]) return m;
+  buf[m++] = a.thickness[i];
+  buf[m++] = id_bits(a.owntag[i]);
+  for (int d = 0; d < 3; d++) buf[m++] = a.normal0[i][d];
+  buf[m++] = a.ntri[i];
+  for (int k = 0; k < a.ntri[i]; k++) {
+    buf[m++] = id_bits(a.tri[i][k][0]);
+    buf[m++] = id_bits(a.tri[i][k][1]);
+  }
+  return m;
+}
+
+// Inputs: an exchange record in buf. Outputs: row i. Returns the doubles read.
+template <class Id> int unpack_vertex(const VertexArrays<Id> &a, int i, const double *buf)
+{
+  int m = 0;
+  const int mesh = static_cast<int>(buf[m++]);
+  if (!mesh) {
+    clear_vertex(a, i);
+    return m;
+  }
+  a.mesh[i] = mesh;
+  a.thickness[i] = buf[m++];
+  a.owntag[i] = bits_id<Id>(buf[m++]);
+  for (int d = 0; d < 3; d++) a.normal0[i][d] = buf[m++];
+  a.ntri[i] = static_cast<int>(buf[m++]);
+  for (int k = 0; k < a.ntri[i]; k++) {
+    a.tri[i][k][0] = bits_id<Id>(buf[m++]);
+    a.tri[i][k][1] = bits_id<Id>(buf[m++]);
+  }
+  return m;
+}
+
+// Inputs: row i. Outputs: its border record in buf. Returns the doubles written.
+template <class Id> int pack_vertex_border(const VertexArrays<Id> &a, int i, double *buf)
+{
+  int m = 0;
+  buf[m++] = a.mesh[i];
+  if (!a.mesh[i]) return m;
+  buf[m++] = a.thickness[i];
+  for (int d = 0; d < 3; d++) buf[m++] = a.normal0[i][d];
+  buf[m++] = a.ntri[i];
+  for (int k = 0; k < a.ntri[i]; k++) {
+    buf[m++] = id_bits(a.tri[i][k][0]);
+    buf[m++] = id_bits(a.tri[i][k][1]);
+  }
+  return m;
+}
+
+// Inputs: a border record in buf. Outputs: row i (its owntag is left as it is). Returns the
+// doubles read.
+template <class Id> int unpack_vertex_border(const VertexArrays<Id> &a, int i, const double *buf)
+{
+  int m = 0;
+  a.mesh[i] = static_cast<int>(buf[m++]);
+  if (!a.mesh[i]) {
+    a.thickness[i] = 0.0;
+    a.normal0[i][0] = a.normal0[i][1] = a.normal0[i][2] = 0.0;
+    a.ntri[i] = 0;
+    return m;
+  }
+  a.thickness[i] = buf[m++];
+  for (int d = 0; d < 3; d++) a.normal0[i][d] = buf[m++];
+  a.ntri[i] = static_cast<int>(buf[m++]);
+  for (int k = 0; k < a.ntri[i]; k++) {
+    a.tri[i][k][0] = bits_id<Id>(buf[m++]);
+    a.tri[i][k][1] = bits_id<Id>(buf[m++]);
+  }
+  return m;
+}
+
+// Row i keeps, in their order, the triangles whose other two vertices are both set (an ID 0
+// marks a vertex that no longer exists). Returns the number kept (= ntri[i]).
+template <class Id> int keep_complete_triangles(const VertexArrays<Id> &a, int i)
+{
+  int n = 0;
+  for (int k = 0; k < a.ntri[i]; k++) {
+    if (a.tri[i][k][0] == 0 || a.tri[i][k][1] == 0) continue;
+    a.tri[i][n][0] = a.tri[i][k][0];
+    a.tri[i][n][1] = a.tri[i][k][1];
+    n++;
+  }
+  a.ntri[i] = n;
+  return n;
+}
+
+// A triangle is written (and counted) once, by its vertex with the smallest ID: true for the
+// vertex me of triangle (me, a, b).
+template <class Id> bool writes_triangle(Id me, Id a, Id b)
+{
+  return me < a && me < b;
+}
+
+// Row i gets triangle v (three vertex IDs in the triangle's orientation) in which it is corner
+// c (v[c] is the atom): stored rotated to start at it, as (v[c+1], v[c+2]). Returns false (and
+// stores nothing) when row i has maxtri triangles already.
+template <class Id> bool add_corner(const VertexArrays<Id> &a, int i, const Id v[3], int c,
+                                    int maxtri)
+{
+  if (a.ntri[i] >= maxtri) return false;
+  a.tri[i][a.ntri[i]][0] = v[(c + 1) % 3];
+  a.tri[i][a.ntri[i]][1] = v[(c + 2) % 3];
+  a.ntri[i]++;
+  return true;
+}
+
+}    // namespace PeriSISSM
+
+#endif
