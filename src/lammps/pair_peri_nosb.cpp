@@ -2,7 +2,8 @@
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
    pair_style peri/nosb: the LAMMPS glue of the core's peridynamic model (src/core/peri):
-   coefficients, mixing and restart; per-atom state arrays and their halo exchange; the
+   coefficients, mixing and restart (pair_peri_nosb_coeff.cpp, material files in
+   pair_peri_nosb_material.cpp); per-atom state arrays and their halo exchange; the
    contact candidates from the neighbor list; energy and virial accounting. The model itself
    (doc/theory.rst): elastic term (peri/elastic.h), stabilization (peri/stabilization.h),
    breaking rule (peri/breaking.h), short-range contact (peri/contact.h), evaluated in the order
@@ -29,8 +30,7 @@
      the virial equals sum_i V_i tau_i (Kirchhoff stress) for affine deformations.
    - mixed types: each particle uses the material and Cs of its own type (pair_coeff I I);
      horizon, s00, alpha, break, contact of a bond come from pair_coeff I J, or, if not
-     given, horizon = max, s00 and alpha of the type with the smaller s00 among the types that
-     break, break and contact on if on for either type, contact stiffness from the mean K.
+     given, from the mixing rule of peri/coefficients.h (mix_coefficients).
 ------------------------------------------------------------------------- */
 
 #include "pair_peri_nosb.h"
@@ -38,11 +38,11 @@
 #include "fix_nosb_family.h"
 #include "fix_nosb_mesh.h"
 
-#include "materials/material.h"
-#include "materials/material_file.h"
+#include "materials/moduli.h"
 #include "linalg/fused.h"
 #include "peri/bond_stiffness.h"
 #include "peri/breaking.h"
+#include "peri/coefficients.h"
 #include "peri/contact.h"
 #include "peri/forces.h"
 #include "peri/model.h"
@@ -68,22 +68,11 @@
 
 using namespace LAMMPS_NS;
 
-static constexpr double MY_PI = 3.14159265358979323846;
-// Default of the stabilize keyword. Zero-energy modes need a stiff control, and with the
-// bond-averaged residual smooth fields hardly feel it (peri/stabilization.h). On the brittle impact
-// deck (examples/impact, s00 = 5e-4) Cs >= 1.75 keeps the damage near the indenter, while
-// Cs <= 1.5 lets a fragmentation avalanche run through the whole cylinder (converged in dt);
-// 2 leaves a margin. Price: the explicit stable time step of an intact sc lattice with horizon
-// 3a falls to ~0.6 of peri/lps's (limits measured: Cs 0.1 > 2.8e-7 s, 0.5 ~2.6e-7, 1 ~1.9e-7,
-// 2 ~1.5e-7, peri/lps ~2.6e-7 for the impact material and spacing).
-static constexpr double DEFAULT_CS = 2.0;
-
 /* ---------------------------------------------------------------------- */
 
 PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
-    Pair(lmp), family(nullptr), modelid(nullptr), bulk(nullptr), shear(nullptr), cut(nullptr),
-    s00(nullptr), alpha(nullptr), cs(nullptr), breakflag(nullptr), contactflag(nullptr), membraneflag(nullptr),
-    kcontact(nullptr), g0(nullptr), g0_s00(nullptr), model_(new PeriSISSM::Model),
+    Pair(lmp), family(nullptr), cut(nullptr), contactflag(nullptr),
+    coeffs(new PeriSISSM::CoefficientTable), model_(new PeriSISSM::Model),
     any_break(0), any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
     contact_crossings(0), hmax(0.0), contact_first(nullptr), contact_neigh(nullptr),
     contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
@@ -120,19 +109,8 @@ PairPeriNosb::~PairPeriNosb()
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
-    memory->destroy(modelid);
-    memory->destroy(bulk);
-    memory->destroy(shear);
     memory->destroy(cut);
-    memory->destroy(s00);
-    memory->destroy(alpha);
-    memory->destroy(cs);
-    memory->destroy(breakflag);
     memory->destroy(contactflag);
-    memory->destroy(membraneflag);
-    memory->destroy(kcontact);
-    memory->destroy(g0);
-    memory->destroy(g0_s00);
   }
 }
 
@@ -146,321 +124,9 @@ void PairPeriNosb::allocate()
   for (int i = 0; i < n; i++)
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
   memory->create(cutsq, n, n, "pair:cutsq");
-  memory->create(modelid, n, n, "pair:model");
-  memory->create(bulk, n, n, "pair:bulk");
-  memory->create(shear, n, n, "pair:shear");
   memory->create(cut, n, n, "pair:cut");
-  memory->create(s00, n, n, "pair:s00");
-  memory->create(alpha, n, n, "pair:alpha");
-  memory->create(cs, n, n, "pair:cs");
-  memory->create(breakflag, n, n, "pair:breakflag");
   memory->create(contactflag, n, n, "pair:contactflag");
-  memory->create(membraneflag, n, n, "pair:membraneflag");
-  memory->create(kcontact, n, n, "pair:kcontact");
-  memory->create(g0, n, n, "pair:g0");
-  memory->create(g0_s00, n, n, "pair:g0_s00");
-  for (int i = 0; i < n; i++)
-    for (int j = 0; j < n; j++) g0[i][j] = g0_s00[i][j] = 0.0;
-}
-
-/* ----------------------------------------------------------------------
-   pair_style peri/nosb (no arguments)
-------------------------------------------------------------------------- */
-
-void PairPeriNosb::settings(int narg, char **arg)
-{
-  if (narg)
-    error->all(FLERR, "Illegal pair_style peri/nosb command: no arguments expected, got '{}'",
-               arg[0]);
-}
-
-/* ----------------------------------------------------------------------
-   parse a finite number for pair_coeff, naming the parameter on error
-------------------------------------------------------------------------- */
-
-static double coeff_number(const char *what, const char *str, Error *error)
-{
-  if (!utils::is_double(str))
-    error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be a number, got '{}'",
-               what, str);
-  const double value = std::strtod(str, nullptr);
-  if (!std::isfinite(value))
-    error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be finite, got '{}'",
-               what, str);
-  return value;
-}
-
-/* ----------------------------------------------------------------------
-   parse a yes/no keyword value for pair_coeff
-------------------------------------------------------------------------- */
-
-static int coeff_flag(const char *keyword, const char *str, Error *error)
-{
-  const std::string v(str);
-  if (v == "yes" || v == "on" || v == "true" || v == "1") return 1;
-  if (v == "no" || v == "off" || v == "false" || v == "0") return 0;
-  error->all(FLERR, "Illegal pair_coeff peri/nosb command: {} must be yes or no, got '{}'",
-             keyword, str);
-  return 0;
-}
-
-/* ----------------------------------------------------------------------
-   pair_coeff I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] [contact yes/no]
-     [G0 value]   (s00 = NULL with G0)
-   pair_coeff I J MODEL material FILE NAME horizon s00 alpha [keywords]: K and G from a
-     material file (and G0 when s00 is NULL and the file gives one)
-------------------------------------------------------------------------- */
-
-void PairPeriNosb::coeff(int narg, char **argin)
-{
-  // with a material file the two words FILE NAME stand where K G would: read the entry and
-  // go on with its K and G in their place
-  std::vector<char *> args(argin, argin + narg);
-  std::string k_text, g_text, file_material;
-  double file_g0 = 0.0, file_density = 0.0;
-  if (narg > 3 && strcmp(argin[3], "material") == 0) {
-    if (narg < 9)
-      error->all(FLERR,
-                 "Incorrect number of args for pair_coeff peri/nosb command: expected "
-                 "I J MODEL material FILE NAME horizon s00 alpha [keywords], got {} arguments",
-                 narg);
-    const auto entry = read_material(argin[4], argin[5]);
-    k_text = fmt::format("{:.17g}", entry.bulk);
-    g_text = fmt::format("{:.17g}", entry.shear);
-    file_material = argin[5];
-    file_g0 = entry.g0;
-    file_density = entry.density;
-    args.erase(args.begin() + 3, args.begin() + 6);
-    args.insert(args.begin() + 3, {k_text.data(), g_text.data()});
-    narg = (int) args.size();
-  }
-  char **arg = args.data();
-
-  if (narg < 8)
-    error->all(FLERR,
-               "Incorrect number of args for pair_coeff peri/nosb command: expected "
-               "I J MODEL K G horizon s00 alpha [stabilize Cs] [break yes/no] "
-               "[contact yes/no] [G0 value] (or MODEL material FILE NAME in place of MODEL K "
-               "G), got {} arguments",
-               narg);
-  if (!allocated) allocate();
-
-  int ilo, ihi, jlo, jhi;
-  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
-  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
-
-  const auto &names = PeriSISSM::material_names();
-  const auto found = std::find(names.begin(), names.end(), std::string(arg[2]));
-  if (found == names.end())
-    error->all(FLERR, "Illegal pair_coeff peri/nosb command: unknown model '{}' (allowed: {})",
-               arg[2], PeriSISSM::material_names_joined());
-  const int model_one = (int) (found - names.begin());
-
-  const double k_one = coeff_number("bulk modulus K", arg[3], error);
-  const double g_one = coeff_number("shear modulus G", arg[4], error);
-  const double cut_one = coeff_number("horizon", arg[5], error);
-  // s00 = NULL: the critical stretch comes from the G0 keyword (at init, see init_style)
-  const bool s00_null = strcmp(arg[6], "NULL") == 0;
-  const double s00_one = s00_null ? 0.0 : coeff_number("s00", arg[6], error);
-  const double alpha_one = coeff_number("alpha", arg[7], error);
-
-  // the membrane model xu has one modulus, s0, in the place of K; its G is not used
-  const bool xu = strcmp(arg[2], "xu") == 0;
-  if (xu && k_one <= 0.0)
-    error->all(FLERR, "Illegal pair_coeff peri/nosb command: xu modulus s0 must be > 0, got {}",
-               arg[3]);
-  if (k_one <= 0.0)
-    error->all(FLERR, "Illegal pair_coeff peri/nosb command: bulk modulus K must be > 0, got {}",
-               arg[3]);
-  if (!xu && g_one <= 0.0)
-    error->all(FLERR,
-               "Illegal pair_coeff peri/nosb command: shear modulus G must be > 0, got {}",
-               arg[4]);
-  const double nu = (3.0 * k_one - 2.0 * g_one) / (2.0 * (3.0 * k_one + g_one));
-  const auto lame = PeriSISSM::lame_from_bulk_shear(k_one, g_one);
-  if (!xu &&
-      (!(nu > -1.0 && nu < 0.5) || !PeriSISSM::lame_parameters_admissible(lame.mu, lame.lambda)))
-    error->all(FLERR,
-               "Illegal pair_coeff peri/nosb command: K = {} and G = {} give Poisson's ratio {} "
-               "outside (-1, 0.5)",
-               arg[3], arg[4], nu);
-  if (cut_one <= 0.0)
-    error->all(FLERR, "Illegal pair_coeff peri/nosb command: horizon must be > 0, got {}",
-               arg[5]);
-
-  double cs_one = DEFAULT_CS;
-  double g0_one = 0.0, bend_one = 0.0;
-  int break_one = 1, contact_one = 1, membrane_one = 0;
-  int iarg = 8;
-  while (iarg < narg) {
-    if (strcmp(arg[iarg], "stabilize") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb stabilize", error);
-      cs_one = coeff_number("stabilize Cs", arg[iarg + 1], error);
-      if (cs_one < 0.0)
-        error->all(FLERR,
-                   "Illegal pair_coeff peri/nosb command: stabilize Cs must be >= 0, got {}",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "break") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb break", error);
-      break_one = coeff_flag("break", arg[iarg + 1], error);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "contact") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb contact", error);
-      contact_one = coeff_flag("contact", arg[iarg + 1], error);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "membrane") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb membrane", error);
-      membrane_one = coeff_flag("membrane", arg[iarg + 1], error);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "bend") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb bend", error);
-      if (strcmp(arg[iarg + 1], "auto") == 0) bend_one = -1.0;
-      else if (strcmp(arg[iarg + 1], "no") == 0) bend_one = 0.0;
-      else {
-        bend_one = coeff_number("bend D", arg[iarg + 1], error);
-        if (bend_one <= 0.0)
-          error->all(FLERR,
-                     "Illegal pair_coeff peri/nosb command: bend D must be > 0 (or auto, or no), "
-                     "got {}",
-                     arg[iarg + 1]);
-      }
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "G0") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_coeff peri/nosb G0", error);
-      g0_one = coeff_number("G0", arg[iarg + 1], error);
-      if (g0_one <= 0.0)
-        error->all(FLERR, "Illegal pair_coeff peri/nosb command: G0 must be > 0, got {}",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else {
-      error->all(FLERR,
-                 "Illegal pair_coeff peri/nosb command: unknown keyword '{}' (allowed: "
-                 "stabilize, break, contact, membrane, bend, G0)",
-                 arg[iarg]);
-    }
-  }
-
-  if (bend_one != 0.0 && !membrane_one)
-    error->all(FLERR,
-               "Illegal pair_coeff peri/nosb command: bend is a term of membranes (add "
-               "'membrane yes' to the line of type {})",
-               arg[0]);
-
-  // s00 = NULL without the G0 keyword: the material file's G0, if it gives one
-  if (s00_null && g0_one == 0.0 && file_g0 > 0.0 && break_one) g0_one = file_g0;
-  if (g0_one > 0.0 && !s00_null)
-    error->all(FLERR,
-               "Illegal pair_coeff peri/nosb command: s00 = {} and G0 = {} both set the critical "
-               "stretch (give s00 as NULL with G0)",
-               arg[6], g0_one);
-  if (g0_one > 0.0 && !break_one)
-    error->all(FLERR,
-               "Illegal pair_coeff peri/nosb command: G0 = {} sets the critical stretch, but "
-               "bonds cannot break with 'break no'",
-               g0_one);
-  if (s00_null && g0_one == 0.0)
-    error->all(FLERR,
-               "Illegal pair_coeff peri/nosb command: s00 = NULL needs the G0 keyword (the "
-               "critical energy release rate that sets the critical stretch){}",
-               file_material.empty() ? ""
-                                     : fmt::format("; material {} gives no G0", file_material));
-  if (break_one && !s00_null && s00_one <= 0.0)
-    error->all(FLERR,
-               "Illegal pair_coeff peri/nosb command: s00 must be > 0 when bonds can break, got "
-               "{} (use 'break no' to turn bond breaking off)",
-               arg[6]);
-  if (break_one && alpha_one < 0.0)
-    error->all(FLERR, "Illegal pair_coeff peri/nosb command: alpha must be >= 0, got {}",
-               arg[7]);
-
-  int count = 0;
-  for (int i = ilo; i <= ihi; i++) {
-    for (int j = std::max(jlo, i); j <= jhi; j++) {
-      modelid[i][j] = model_one;
-      bulk[i][j] = k_one;
-      shear[i][j] = g_one;
-      cut[i][j] = cut_one;
-      s00[i][j] = s00_one;    // with G0: set at init (s00_from_fracture_energy)
-      g0[i][j] = g0_one;
-      g0_s00[i][j] = 0.0;    // log the s00 it gives at the next init
-      alpha[i][j] = alpha_one;
-      cs[i][j] = cs_one;
-      breakflag[i][j] = break_one;
-      contactflag[i][j] = contact_one;
-      membraneflag[i][j] = membrane_one;
-      setflag[i][j] = 1;
-      count++;
-    }
-  }
-  if (count == 0)
-    error->all(FLERR, "Incorrect args for pair_coeff peri/nosb command: no type pair in {} {}",
-               arg[0], arg[1]);
-
-  // the density of the file's entry, checked against the atoms of the type at init; the
-  // bending modulus (a type property)
-  material_density.resize(atom->ntypes + 1, 0.0);
-  material_name.resize(atom->ntypes + 1);
-  bend.resize(atom->ntypes + 1, 0.0);
-  for (int i = std::max(ilo, jlo); i <= std::min(ihi, jhi); i++) {
-    material_density[i] = file_density;
-    material_name[i] = file_material;
-    bend[i] = bend_one;
-  }
-}
-
-/* ----------------------------------------------------------------------
-   G0 keyword: the critical stretch of each type pair set with G0, from its own pair_coeff line
-   (K, G, Cs, horizon) and the particle spacing h = mean V^(1/3) of the particles of its two
-   types (of all particles if there are none); logged when it is first set or changes
-------------------------------------------------------------------------- */
-
-void PairPeriNosb::s00_from_fracture_energy()
-{
-  const int n = atom->ntypes;
-  bool any = false;
-  for (int i = 1; i <= n; i++)
-    for (int j = i; j <= n; j++)
-      if (setflag[i][j] && g0[i][j] > 0.0) any = true;
-  if (!any) return;
-
-  // per type: sum of V^(1/3) and count (index 0: all types)
-  std::vector<double> local(2 * (n + 1), 0.0), total(2 * (n + 1), 0.0);
-  for (int k = 0; k < atom->nlocal; k++) {
-    const double hk = cbrt(atom->vfrac[k]);
-    local[2 * atom->type[k]] += hk;
-    local[2 * atom->type[k] + 1] += 1.0;
-    local[0] += hk;
-    local[1] += 1.0;
-  }
-  MPI_Allreduce(local.data(), total.data(), 2 * (n + 1), MPI_DOUBLE, MPI_SUM, world);
-
-  for (int i = 1; i <= n; i++) {
-    for (int j = i; j <= n; j++) {
-      if (!setflag[i][j] || g0[i][j] <= 0.0) continue;
-      double hsum = total[2 * i] + (j != i ? total[2 * j] : 0.0);
-      double count = total[2 * i + 1] + (j != i ? total[2 * j + 1] : 0.0);
-      if (count == 0.0) {
-        hsum = total[0];
-        count = total[1];
-      }
-      if (count == 0.0)
-        error->all(FLERR,
-                   "pair_coeff peri/nosb G0 {} for types {} {}: no particles to take the "
-                   "particle spacing from",
-                   g0[i][j], i, j);
-      const double h = hsum / count;
-      s00[i][j] = PeriSISSM::s00_from_fracture_energy(g0[i][j], bulk[i][j], shear[i][j], cs[i][j],
-                                                     cut[i][j], h);
-      if (s00[i][j] != g0_s00[i][j] && comm->me == 0)
-        utils::logmesg(lmp,
-                       "peri/nosb: types {} {}: G0 = {:.6g} gives s00 = {:.6g} (K = {:.6g}, "
-                       "G = {:.6g}, Cs = {:.6g}, horizon = {:.6g} = {:.5g} h)\n",
-                       i, j, g0[i][j], s00[i][j], bulk[i][j], shear[i][j], cs[i][j], cut[i][j],
-                       cut[i][j] / h);
-      g0_s00[i][j] = s00[i][j];
-    }
-  }
+  coeffs->resize(atom->ntypes);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -485,55 +151,7 @@ void PairPeriNosb::init_style()
                "interactions: fixes such as wall or indent)",
                force->pair_style);
 
-  const int n = atom->ntypes;
-
-  s00_from_fracture_energy();    // G0 keyword: s00 of those type pairs (before mixing)
-  check_material_density();      // types whose K and G came from a material file
-
-  // mixing of unset I,J (I != J): bond parameters from both types
-
-  for (int i = 1; i <= n; i++) {
-    for (int j = i + 1; j <= n; j++) {
-      if (setflag[i][j]) continue;
-      // the critical stretch comes from the weaker of the types whose bonds can break (a
-      // 'break no' type has no meaningful s00)
-      int weak = (s00[i][i] <= s00[j][j]) ? i : j;
-      if (breakflag[i][i] != breakflag[j][j]) weak = breakflag[i][i] ? i : j;
-      modelid[i][j] = modelid[i][i];
-      bulk[i][j] = 0.5 * (bulk[i][i] + bulk[j][j]);
-      shear[i][j] = 0.5 * (shear[i][i] + shear[j][j]);
-      cut[i][j] = std::max(cut[i][i], cut[j][j]);
-      s00[i][j] = s00[weak][weak];
-      alpha[i][j] = alpha[weak][weak];
-      cs[i][j] = 0.0;    // not used: stabilization is per particle
-      breakflag[i][j] = breakflag[i][i] || breakflag[j][j];
-      contactflag[i][j] = contactflag[i][i] || contactflag[j][j];
-      membraneflag[i][j] = 0;    // not used: a type property
-    }
-  }
-
-  // mirror, derived per-pair and per-type values, summary flags
-
-  any_break = any_contact = 0;
-  for (int i = 1; i <= n; i++) {
-    for (int j = i; j <= n; j++) {
-      modelid[j][i] = modelid[i][j];
-      bulk[j][i] = bulk[i][j];
-      shear[j][i] = shear[i][j];
-      cut[j][i] = cut[i][j];
-      s00[j][i] = s00[i][j];
-      alpha[j][i] = alpha[i][j];
-      cs[j][i] = cs[i][j];
-      breakflag[j][i] = breakflag[i][j];
-      contactflag[j][i] = contactflag[i][j];
-      membraneflag[j][i] = membraneflag[i][j];
-      const double d2 = cut[i][j] * cut[i][j];
-      kcontact[i][j] = kcontact[j][i] = 15.0 * 18.0 * bulk[i][j] / (MY_PI * d2 * d2);
-      if (breakflag[i][j]) any_break = 1;
-      if (contactflag[i][j]) any_contact = 1;
-    }
-  }
-  configure_model();
+  configure_model();    // coefficients of all type pairs (pair_peri_nosb_coeff.cpp)
   check_membranes();
   hinges_stale = 1;    // bending moduli, types or meshes may have changed since the last run
 
@@ -542,6 +160,7 @@ void PairPeriNosb::init_style()
   // or create a periodic direction after the families exist; the closest image of a partner
   // would then be the wrong one)
 
+  const int n = atom->ntypes;
   double cutmax = 0.0;
   for (int i = 1; i <= n; i++)
     for (int j = 1; j <= n; j++) cutmax = std::max(cutmax, cut[i][j]);
@@ -589,8 +208,13 @@ void PairPeriNosb::init_style()
                    "Pair peri/nosb: bonds do not break during a minimization; they are checked "
                    "again from the first step of the next run\n");
 
-  // which version of the bond passes runs (linalg/fused.h): results of the two differ in
-  // round-off, so a user comparing runs of two machines finds it here
+  // which version of the bond passes runs (linalg/fused.h): the same on every rank, the fused
+  // one only where every rank can run it (results of the two differ in round-off); logged, so
+  // that a user comparing runs of two machines finds it here
+
+  int fused_here = PeriSISSM::fused_passes_available() ? 1 : 0, fused_all = 0;
+  MPI_Allreduce(&fused_here, &fused_all, 1, MPI_INT, MPI_MIN, world);
+  PeriSISSM::set_fused_passes(fused_all != 0);
   if (!passes_reported && comm->me == 0)
     utils::logmesg(lmp, "Pair peri/nosb: bond passes {}\n",
                    PeriSISSM::fused_passes()
@@ -617,12 +241,7 @@ void PairPeriNosb::check_membranes()
   for (int t = 1; t <= n; t++) {
     if (bend[t] == 0.0) continue;
     any_bend = 1;
-    // E and nu of the type's material (xu: E = 2 s0, nu = 0)
-    const bool xu = PeriSISSM::material_names()[modelid[t][t]] == "xu";
-    const double K = bulk[t][t], G = shear[t][t];
-    const double E = xu ? 2.0 * K : 9.0 * K * G / (3.0 * K + G);
-    const double nu = xu ? 0.0 : (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G));
-    bend_auto_factor[t] = E / (12.0 * (1.0 - nu * nu));
+    bend_auto_factor[t] = PeriSISSM::bending_factor(coeffs->at(t, t).moduli);
   }
   if (!model_->any_membrane()) return;
   tagint bad = 0;
@@ -654,44 +273,8 @@ bool PairPeriNosb::has_unbent_membranes() const
 {
   if (!model_ || !model_->any_membrane()) return false;
   for (int t = 1; t <= atom->ntypes; t++)
-    if (membraneflag[t][t] && (t >= (int) bend.size() || bend[t] == 0.0)) return true;
+    if (coeffs->at(t, t).membrane && (t >= (int) bend.size() || bend[t] == 0.0)) return true;
   return false;
-}
-
-/* ---------------------------------------------------------------------- */
-
-double PairPeriNosb::init_one(int i, int j)
-{
-  if (setflag[i][j] == 0) did_mix = true;
-  return cut[i][j];
-}
-
-/* ----------------------------------------------------------------------
-   the core's model from the (mixed and mirrored) coefficients: per type the material, Cs and
-   K of pair_coeff I I; per type pair the horizon, contact and breaking rule
-------------------------------------------------------------------------- */
-
-void PairPeriNosb::configure_model()
-{
-  const int n = atom->ntypes;
-  model_->set_ntypes(n);
-  for (int i = 1; i <= n; i++) {
-    const std::string &name = PeriSISSM::material_names()[modelid[i][i]];
-    if (name == "xu") {
-      // one modulus s0 (in K's place): mu = s0, lambda = 0, so its bulk modulus is 2 s0 / 3
-      model_->set_type(i, PeriSISSM::make_material(name, bulk[i][i], 0.0), cs[i][i],
-                       2.0 * bulk[i][i] / 3.0);
-    } else {
-      const auto lame = PeriSISSM::lame_from_bulk_shear(bulk[i][i], shear[i][i]);
-      model_->set_type(i, PeriSISSM::make_material(name, lame.mu, lame.lambda), cs[i][i],
-                       bulk[i][i]);
-    }
-    model_->set_membrane(i, membraneflag[i][i] != 0);
-    for (int j = i; j <= n; j++) model_->set_pair(i, j, cut[i][j], contactflag[i][j], kcontact[i][j]);
-  }
-  model_->breaking().configure(
-      n, [this](int i, int j) { return breakflag[i][j] != 0; },
-      [this](int i, int j) { return s00[i][j]; }, [this](int i, int j) { return alpha[i][j]; });
 }
 
 /* ---------------------------------------------------------------------- */
@@ -925,102 +508,6 @@ void PairPeriNosb::unpack_forward_comm(int n, int first, double *buf)
     }
 }
 
-/* ----------------------------------------------------------------------
-   proc 0 writes to restart file
-------------------------------------------------------------------------- */
-
-void PairPeriNosb::write_restart(FILE *fp)
-{
-  const int version = RESTART_VERSION;
-  fwrite(&version, sizeof(int), 1, fp);
-  for (int i = 1; i <= atom->ntypes; i++) {
-    for (int j = i; j <= atom->ntypes; j++) {
-      fwrite(&setflag[i][j], sizeof(int), 1, fp);
-      if (setflag[i][j]) {
-        const std::string &name = PeriSISSM::material_names()[modelid[i][j]];
-        const int len = (int) name.size() + 1;
-        fwrite(&len, sizeof(int), 1, fp);
-        fwrite(name.c_str(), sizeof(char), len, fp);
-        fwrite(&breakflag[i][j], sizeof(int), 1, fp);
-        fwrite(&contactflag[i][j], sizeof(int), 1, fp);
-        fwrite(&membraneflag[i][j], sizeof(int), 1, fp);
-        fwrite(&bulk[i][j], sizeof(double), 1, fp);
-        fwrite(&shear[i][j], sizeof(double), 1, fp);
-        fwrite(&cut[i][j], sizeof(double), 1, fp);
-        fwrite(&s00[i][j], sizeof(double), 1, fp);
-        fwrite(&alpha[i][j], sizeof(double), 1, fp);
-        fwrite(&cs[i][j], sizeof(double), 1, fp);
-      }
-    }
-  }
-  bend.resize(atom->ntypes + 1, 0.0);
-  fwrite(bend.data() + 1, sizeof(double), atom->ntypes, fp);
-}
-
-/* ----------------------------------------------------------------------
-   proc 0 reads from restart file, bcasts; the model is stored by name, and a file of another
-   format version is refused (rather than read as garbage)
-------------------------------------------------------------------------- */
-
-void PairPeriNosb::read_restart(FILE *fp)
-{
-  allocate();
-  const int me = comm->me;
-  int version = 0;
-  if (me == 0) utils::sfread(FLERR, &version, sizeof(int), 1, fp, nullptr, error);
-  MPI_Bcast(&version, 1, MPI_INT, 0, world);
-  if (version != RESTART_VERSION)
-    error->all(FLERR,
-               "Pair peri/nosb: the restart file holds pair data of format version {}, this "
-               "build reads version {}: write the restart file again with this build (or use "
-               "the build that wrote it)",
-               version, (int) RESTART_VERSION);
-  for (int i = 1; i <= atom->ntypes; i++) {
-    for (int j = i; j <= atom->ntypes; j++) {
-      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
-      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
-      if (!setflag[i][j]) continue;
-      int len = 0;
-      if (me == 0) utils::sfread(FLERR, &len, sizeof(int), 1, fp, nullptr, error);
-      MPI_Bcast(&len, 1, MPI_INT, 0, world);
-      if (len < 1 || len > 256)
-        error->all(FLERR, "Pair peri/nosb: restart file is corrupt (model name of {} chars)", len);
-      std::vector<char> name(len);
-      int iv[3];
-      double dv[6];
-      if (me == 0) {
-        utils::sfread(FLERR, name.data(), sizeof(char), len, fp, nullptr, error);
-        utils::sfread(FLERR, iv, sizeof(int), 3, fp, nullptr, error);
-        utils::sfread(FLERR, dv, sizeof(double), 6, fp, nullptr, error);
-      }
-      MPI_Bcast(name.data(), len, MPI_CHAR, 0, world);
-      MPI_Bcast(iv, 3, MPI_INT, 0, world);
-      MPI_Bcast(dv, 6, MPI_DOUBLE, 0, world);
-      name[len - 1] = '\0';
-      const auto &names = PeriSISSM::material_names();
-      const auto found = std::find(names.begin(), names.end(), std::string(name.data()));
-      if (found == names.end())
-        error->all(FLERR,
-                   "Pair peri/nosb: restart file names model '{}', which this build does not "
-                   "have (allowed: {})",
-                   name.data(), PeriSISSM::material_names_joined());
-      modelid[i][j] = (int) (found - names.begin());
-      breakflag[i][j] = iv[0];
-      contactflag[i][j] = iv[1];
-      membraneflag[i][j] = iv[2];
-      bulk[i][j] = dv[0];
-      shear[i][j] = dv[1];
-      cut[i][j] = dv[2];
-      s00[i][j] = dv[3];
-      alpha[i][j] = dv[4];
-      cs[i][j] = dv[5];
-    }
-  }
-  bend.assign(atom->ntypes + 1, 0.0);
-  if (me == 0) utils::sfread(FLERR, bend.data() + 1, sizeof(double), atom->ntypes, fp, nullptr, error);
-  MPI_Bcast(bend.data() + 1, atom->ntypes, MPI_DOUBLE, 0, world);
-}
-
 /* ---------------------------------------------------------------------- */
 
 double PairPeriNosb::memory_usage()
@@ -1031,6 +518,6 @@ double PairPeriNosb::memory_usage()
   bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
   bytes += (double) hinges.capacity() * sizeof(Hinge);
   const double n = atom->ntypes + 1;
-  bytes += n * n * (11.0 * sizeof(double) + 5.0 * sizeof(int));
+  bytes += n * n * (sizeof(PeriSISSM::PairCoefficients) + sizeof(double) + 2.0 * sizeof(int));
   return bytes;
 }

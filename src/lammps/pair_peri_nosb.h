@@ -25,6 +25,7 @@ PairStyle(peri/nosb,PairPeriNosb);
 
 namespace PeriSISSM {
 class Model;
+class CoefficientTable;
 struct HaloField;
 struct Particles;
 struct MaterialEntry;
@@ -75,15 +76,12 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   bool has_unbent_membranes() const override;
 
  protected:
-  // per type pair (as given for i <= j; mixed and mirrored in init_style)
-  int **modelid;            // index into PeriSISSM::material_names()
-  double **bulk, **shear, **cut, **s00, **alpha, **cs;
-  int **breakflag, **contactflag;
-  int **membraneflag;       // membrane keyword (a type property: pair_coeff I I)
-  double **kcontact;        // short-range contact stiffness 15 * 18 K / (pi delta^4)
-  double **g0;              // G0 keyword (critical energy release rate), 0 = s00 given
-  double **g0_s00;          // s00 that G0 gave at the last init (to log it once)
-  std::unique_ptr<PeriSISSM::Model> model_;    // the core's view of the above (init_style)
+  // per type pair, from coeffs at init (mixed and mirrored): horizon and contact flag
+  double **cut;
+  int **contactflag;
+  // the coefficients of pair_coeff per type pair (mixed and mirrored in init_style)
+  std::unique_ptr<PeriSISSM::CoefficientTable> coeffs;
+  std::unique_ptr<PeriSISSM::Model> model_;    // the core's view of coeffs (init_style)
   // per type: density and name of the material file entry of pair_coeff I I (0: numbers given)
   std::vector<double> material_density;
   std::vector<std::string> material_name;

@@ -1,15 +1,17 @@
 """The two versions of peri/nosb's bond passes (src/core/linalg/fused.h, doc/theory.rst
 "Parallel evaluation"): plain, and on x86-64 processors with AVX2 and FMA a version whose
-products and sums are fused multiply-adds, chosen when the plugin is loaded. The environment
+products and sums are fused multiply-adds, chosen at the pair style's init. The environment
 variable PERI_SISSM_PASSES=plain selects the plain version on any processor. The log names the
-version that ran; the two agree to round-off, and the plain one is the arithmetic of the builds
-without the fused version, bit for bit."""
+version that ran, which every rank of a run shares (the fused one only where every rank can run
+it); the two agree to round-off, and the plain one is the arithmetic of the builds without the
+fused version, bit for bit."""
+import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from lammps_run import LMP, read_dump, run_deck
+from lammps_run import LMP, mpirun_prefix, parse_thermo, read_dump, run_deck
 
 DECKS = Path(__file__).parent / "decks"
 BLOCK = DECKS / "nosb_block.lmp"
@@ -77,3 +79,32 @@ def test_the_versions_agree_to_round_off(runs):
     assert dx > 0.0 or dv > 0.0
     pe_d, pe_p = default.thermo[-1]["PotEng"][-1], plain.thermo[-1]["PotEng"][-1]
     assert abs(pe_d - pe_p) < 1e-10 * abs(pe_p)
+
+
+def test_the_ranks_agree_on_the_version(tmp_path):
+    """Rank 1 alone told PERI_SISSM_PASSES=plain (two programs of one MPI job, each with its
+    own environment): every rank runs the plain version, as the log of rank 0 says, and the run
+    is the plain 2-rank run bit for bit (a rank that ran the other version would give forces
+    that differ in round-off)."""
+    short = {**ELASTIC, "nsteps": 20, "thermo_every": 5, "dump_every": 20}
+    plain = run_deck(BLOCK, tmp_path / "plain", nprocs=2, variables=short, env=PLAIN)
+    work = tmp_path / "mixed"
+    work.mkdir()
+    lmp = [str(LMP), "-in", str(BLOCK.resolve()), "-log", "log.lammps", "-echo", "log",
+           "-nocite"]
+    for name, value in short.items():
+        lmp += ["-var", name, str(value)]
+    mpirun = mpirun_prefix(2)
+    cmd = (mpirun[:1] + mpirun[3:] + ["-np", "1"] + lmp + [":", "-np", "1", "env",
+                                                             "PERI_SISSM_PASSES=plain"] + lmp)
+    proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True, timeout=600,
+                          stdin=subprocess.DEVNULL)
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    log = (work / "log.lammps").read_text()
+    assert "with 2 MPI tasks" in log or "2 by 1 by 1" in log + proc.stdout
+    assert "without fused multiply-add" in version_line(log)
+    mixed, ref = read_dump(work / "dump.atoms")[-1], read_dump(tmp_path / "plain/dump.atoms")[-1]
+    assert mixed["step"] == ref["step"] == 20
+    for col in ("id", "x", "y", "z", "vx", "vy", "vz"):
+        assert np.array_equal(mixed[col], ref[col]), col
+    assert np.array_equal(parse_thermo(log)[-1]["PotEng"], plain.thermo[-1]["PotEng"])

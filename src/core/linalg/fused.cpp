@@ -20,14 +20,30 @@ bool x86_64_v3()
 #endif
 }
 
-bool fused_passes()
+bool fused_passes_available()
 {
-  static const bool fused = [] {
+  static const bool available = [] {
     const char *choice = std::getenv("PERI_SISSM_PASSES");
     if (choice && std::strcmp(choice, "plain") == 0) return false;
     return x86_64_v3();
   }();
-  return fused;
+  return available;
+}
+
+namespace {
+// -1: not chosen (fused_passes_available() decides), 0: plain, 1: fused
+int chosen_passes = -1;
+}  // namespace
+
+void set_fused_passes(bool fused)
+{
+  chosen_passes = (fused && x86_64_v3()) ? 1 : 0;
+}
+
+bool fused_passes()
+{
+  if (chosen_passes < 0) return fused_passes_available();
+  return chosen_passes == 1;
 }
 
 }  // namespace PeriSISSM

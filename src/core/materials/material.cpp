@@ -145,6 +145,11 @@ std::unique_ptr<Material> make_material(const std::string& name, double mu, doub
   return nullptr;
 }
 
+ModuliForm moduli_form(const std::string& name)
+{
+  return name == XuMaterial::kName ? ModuliForm::ONE_MODULUS : ModuliForm::BULK_SHEAR;
+}
+
 const std::vector<std::string>& material_names()
 {
   static const std::vector<std::string> names = {

@@ -134,6 +134,14 @@ class Material {
 // Outputs: the model, or nullptr for an unknown name.
 std::unique_ptr<Material> make_material(const std::string& name, double mu, double lambda);
 
+// How a model reads the two moduli of pair_coeff: the bulk and shear moduli K and G, or one
+// modulus in K's place (xu: s0) with the second number unused.
+enum class ModuliForm { BULK_SHEAR, ONE_MODULUS };
+
+// Inputs:  name model name (one of material_names()).
+// Outputs: the model's form; BULK_SHEAR for an unknown name.
+ModuliForm moduli_form(const std::string& name);
+
 // Names accepted by make_material, in documentation order.
 const std::vector<std::string>& material_names();
 

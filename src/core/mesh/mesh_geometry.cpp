@@ -1,13 +1,13 @@
 /* PERI-SISSM core: geometry of triangle meshes (see mesh_geometry.h). */
 #include "mesh/mesh_geometry.h"
 
+#include "linalg/constants.h"
+
 #include <cmath>
 
 namespace PeriSISSM {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void cross(const double a[3], const double b[3], double c[3])
 {
