@@ -41,6 +41,7 @@
 #include "materials/material.h"
 #include "materials/material_file.h"
 #include "linalg/fused.h"
+#include "membrane/bending.h"
 #include "peri/bond_stiffness.h"
 #include "peri/breaking.h"
 #include "peri/contact.h"

@@ -28,6 +28,7 @@ class Model;
 struct HaloField;
 struct Particles;
 struct MaterialEntry;
+struct Hinge;
 }
 
 namespace LAMMPS_NS {
@@ -92,15 +93,10 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   std::vector<double> bend, bend_auto_factor;
   int any_bend;
   class FixNosbMesh *meshfix;    // the meshes (read_mesh), null if none
-  // a hinge of the bending term with at least one owned vertex here (compute_bending)
-  struct Hinge {
-    int v[4];         // local indices of its vertices, v[0] -> v[1] the edge (smaller tag
-                      //   first), images closest to the owned vertex that listed it
-    int own[4];       // owned index that takes vertex k's share, -1: none on this rank
-    double theta0;    // rest angle
-    double c;         // stiffness D |e0|^2 / (2 A0)
-  };
-  std::vector<Hinge> hinges;    // each hinge once per rank (straddling ones on every rank)
+  // the hinges of the bending term with an owned vertex here, each once per rank (straddling
+  // ones on every rank; core membrane/bending.h)
+  using Hinge = PeriSISSM::Hinge;
+  std::vector<Hinge> hinges;
   int hinges_stale;             // local indices may have changed: build the list again
   // summary flags
   int any_break, any_contact;
@@ -158,6 +154,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   bool bonded(int i, tagint jtag) const;
   friend class NosbHalo;
   friend class NosbContactPairs;
+  friend class NosbHingeMesh;
 };
 
 }    // namespace LAMMPS_NS
