@@ -108,6 +108,8 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   double hmax;              // largest particle size V^(1/3) (contact range)
   int *contact_first, *contact_neigh;    // short list of contact candidates
   int contact_maxfirst, contact_maxneigh, contact_inum;
+  bigint contact_lastcall = -1;    // neighbor->lastcall when the candidates were chosen
+  bool contact_list_current() const;
   double contact_margin;    // the candidates hold the pairs within contact_reach() + this
   int track_motion;         // keep the positions below (fix sissm)
   int follow_explicit;      // explicit runs: narrow candidates, chosen again as atoms move

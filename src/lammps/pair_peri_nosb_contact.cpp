@@ -79,7 +79,7 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
   // candidates from the short list made at the last neighbor list build
   // (built here only if that did not happen, e.g. a compute without a run)
 
-  if (contact_inum != list->inum) build_contact_list(neighbor->skin);
+  if (!contact_list_current()) build_contact_list(neighbor->skin);
   else if (follow_explicit) follow_motion_explicit();
 
   const PeriSISSM::Particles p = particles();
@@ -91,6 +91,16 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
   NosbContactPairs pairs(this);
   PeriSISSM::contact_pass(*model_, p, family->box, contact_reach(), cand, force->newton_pair != 0,
                           evflag != 0, pairs);
+}
+
+/* ----------------------------------------------------------------------
+   whether the contact candidates were chosen from the current neighbor list (the same answer on
+   every rank: all build their lists at the same step)
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_list_current() const
+{
+  return contact_first && contact_lastcall == neighbor->lastcall;
 }
 
 /* ----------------------------------------------------------------------
@@ -195,7 +205,8 @@ void PairPeriNosb::grow_motion()
 
 int PairPeriNosb::contact_follow_motion()
 {
-  if (!track_motion || !list || contact_inum != list->inum) return 0;
+  // every rank takes the same branches up to the global max of motion_since()
+  if (!track_motion || !list || !contact_list_current()) return 0;
   double moved;
   tagint worst;
   const double dc = motion_since(xcontact, &moved, &worst);
@@ -336,6 +347,7 @@ void PairPeriNosb::build_contact_list(double margin)
   }
   contact_first[inum] = n;
   contact_inum = inum;
+  contact_lastcall = neighbor->lastcall;
   if (track_motion || follow_explicit) {
     grow_motion();
     const int nall = atom->nlocal + atom->nghost;
