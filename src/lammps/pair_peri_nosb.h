@@ -46,6 +46,8 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   void read_restart(FILE *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;     // contact blocks of ghost atoms
+  void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
   // ---- for compute nosb/atom ----
@@ -110,6 +112,9 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   int contact_maxfirst, contact_maxneigh, contact_inum;
   bigint contact_lastcall = -1;    // neighbor->lastcall when the candidates were chosen
   bool contact_list_current() const;
+  std::vector<double> contact_blocks;    // SISSM blocks of the contact pairs, 6 per owned and
+                                         //   ghost atom (compute_contact with blocks)
+  void add_contact_blocks();
   double contact_margin;    // the candidates hold the pairs within contact_reach() + this
   int track_motion;         // keep the positions below (fix sissm)
   int follow_explicit;      // explicit runs: narrow candidates, chosen again as atoms move
