@@ -40,6 +40,7 @@
 
 #include "materials/moduli.h"
 #include "linalg/fused.h"
+#include "membrane/bending.h"
 #include "peri/bond_stiffness.h"
 #include "peri/breaking.h"
 #include "peri/coefficients.h"
@@ -86,6 +87,7 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
   restartinfo = 1;
   // the widest exchange of the halo: F, C, flag with the implicit stiffness
   comm_forward = PeriSISSM::ParticleFields::NG + PeriSISSM::ParticleFields::NK;
+  comm_reverse = 6;    // the contact blocks of ghost atoms (add_contact_blocks)
 }
 
 /* ---------------------------------------------------------------------- */
@@ -379,6 +381,7 @@ void PairPeriNosb::compute(int eflag, int vflag)
   PeriSISSM::evaluate_bond_terms(*model_, p, family->view(), family->box, mode, block_rows,
                                  fields, halo, vir, broke);
   family->forget_broken(broke);
+  if (any_contact && block_rows) add_contact_blocks();
   if (any_bend && meshfix) compute_bending();
 
   if (eflag_either) {

@@ -29,6 +29,7 @@ class CoefficientTable;
 struct HaloField;
 struct Particles;
 struct MaterialEntry;
+struct Hinge;
 }
 
 namespace LAMMPS_NS {
@@ -46,6 +47,8 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   void read_restart(FILE *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;     // contact blocks of ghost atoms
+  void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
   // ---- for compute nosb/atom ----
@@ -90,15 +93,10 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   std::vector<double> bend, bend_auto_factor;
   int any_bend;
   class FixNosbMesh *meshfix;    // the meshes (read_mesh), null if none
-  // a hinge of the bending term with at least one owned vertex here (compute_bending)
-  struct Hinge {
-    int v[4];         // local indices of its vertices, v[0] -> v[1] the edge (smaller tag
-                      //   first), images closest to the owned vertex that listed it
-    int own[4];       // owned index that takes vertex k's share, -1: none on this rank
-    double theta0;    // rest angle
-    double c;         // stiffness D |e0|^2 / (2 A0)
-  };
-  std::vector<Hinge> hinges;    // each hinge once per rank (straddling ones on every rank)
+  // the hinges of the bending term with an owned vertex here, each once per rank (straddling
+  // ones on every rank; core membrane/bending.h)
+  using Hinge = PeriSISSM::Hinge;
+  std::vector<Hinge> hinges;
   int hinges_stale;             // local indices may have changed: build the list again
   // summary flags
   int any_break, any_contact;
@@ -110,6 +108,11 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   double hmax;              // largest particle size V^(1/3) (contact range)
   int *contact_first, *contact_neigh;    // short list of contact candidates
   int contact_maxfirst, contact_maxneigh, contact_inum;
+  bigint contact_lastcall = -1;    // neighbor->lastcall when the candidates were chosen
+  bool contact_list_current() const;
+  std::vector<double> contact_blocks;    // SISSM blocks of the contact pairs, 6 per owned and
+                                         //   ghost atom (compute_contact with blocks)
+  void add_contact_blocks();
   double contact_margin;    // the candidates hold the pairs within contact_reach() + this
   int track_motion;         // keep the positions below (fix sissm)
   int follow_explicit;      // explicit runs: narrow candidates, chosen again as atoms move
@@ -156,6 +159,7 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   bool bonded(int i, tagint jtag) const;
   friend class NosbHalo;
   friend class NosbContactPairs;
+  friend class NosbHingeMesh;
 };
 
 }    // namespace LAMMPS_NS

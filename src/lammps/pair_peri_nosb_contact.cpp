@@ -79,9 +79,16 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
   // candidates from the short list made at the last neighbor list build
   // (built here only if that did not happen, e.g. a compute without a run)
 
-  if (contact_inum != list->inum) build_contact_list(neighbor->skin);
+  if (!contact_list_current()) build_contact_list(neighbor->skin);
   else if (follow_explicit) follow_motion_explicit();
 
+  // with SISSM blocks: each pair's block into the rows that get its forces, owned and ghost
+  // (added to the blocks by add_contact_blocks(), after the bond terms have set them)
+  double *rows = nullptr;
+  if (block_rows) {
+    contact_blocks.assign(6 * (size_t) (atom->nlocal + atom->nghost), 0.0);
+    rows = contact_blocks.data();
+  }
   const PeriSISSM::Particles p = particles();
   PeriSISSM::ContactCandidates cand;
   cand.inum = contact_inum;
@@ -90,7 +97,46 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
   cand.neigh = contact_neigh;
   NosbContactPairs pairs(this);
   PeriSISSM::contact_pass(*model_, p, family->box, contact_reach(), cand, force->newton_pair != 0,
-                          evflag != 0, pairs);
+                          evflag != 0, pairs, rows);
+}
+
+/* ----------------------------------------------------------------------
+   the contact blocks of the last compute_contact() added to the SISSM blocks of the owned atoms,
+   ghost rows first folded into their owners under newton on (as fix sissm folds the forces);
+   all ranks
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::add_contact_blocks()
+{
+  if (force->newton_pair) comm->reverse_comm(this);
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    for (int m = 0; m < 6; m++) block_rows[i][m] += contact_blocks[6 * i + m];
+}
+
+int PairPeriNosb::pack_reverse_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++)
+    for (int k = 0; k < 6; k++) buf[m++] = contact_blocks[6 * i + k];
+  return m;
+}
+
+void PairPeriNosb::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  int m = 0;
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 6; k++) contact_blocks[6 * list[i] + k] += buf[m++];
+}
+
+/* ----------------------------------------------------------------------
+   whether the contact candidates were chosen from the current neighbor list (the same answer on
+   every rank: all build their lists at the same step)
+------------------------------------------------------------------------- */
+
+bool PairPeriNosb::contact_list_current() const
+{
+  return contact_first && contact_lastcall == neighbor->lastcall;
 }
 
 /* ----------------------------------------------------------------------
@@ -195,7 +241,8 @@ void PairPeriNosb::grow_motion()
 
 int PairPeriNosb::contact_follow_motion()
 {
-  if (!track_motion || !list || contact_inum != list->inum) return 0;
+  // every rank takes the same branches up to the global max of motion_since()
+  if (!track_motion || !list || !contact_list_current()) return 0;
   double moved;
   tagint worst;
   const double dc = motion_since(xcontact, &moved, &worst);
@@ -336,6 +383,7 @@ void PairPeriNosb::build_contact_list(double margin)
   }
   contact_first[inum] = n;
   contact_inum = inum;
+  contact_lastcall = neighbor->lastcall;
   if (track_motion || follow_explicit) {
     grow_motion();
     const int nall = atom->nlocal + atom->nghost;

@@ -34,7 +34,8 @@ void contact_block(const double del[3], double d, double kc, double vj, double b
 }
 
 void contact_pass(const Model &model, const Particles &p, const ReferenceBox &box, double reach,
-                  const ContactCandidates &cand, bool newton, bool tally, ContactPairs &pairs)
+                  const ContactCandidates &cand, bool newton, bool tally, ContactPairs &pairs,
+                  double *block)
 {
   const double *x = p.x;
   const double *x0 = p.x0;
@@ -64,27 +65,37 @@ void contact_pass(const Model &model, const Particles &p, const ReferenceBox &bo
       if (periodic) box.image(dx0, dy0, dz0);
       const double q2 = dx0 * dx0 + dy0 * dy0 + dz0 * dz0;
       // most candidates are bonds near their reference length: rsq > 0.81 q2 (with a margin far
-      // above the rounding of either side) settles r >= d0 without the two square roots
+      // above the rounding of either side) settles r >= 0.9 |xi| without the two square roots
       if (rsq > 0.8100001 * q2) continue;
       const double r = sqrt(rsq);
-      const double d0 = 0.9 * sqrt(q2);
-      if (r >= d0 || r <= 0.0) continue;
-      const double d = std::min(d0, 0.675 * (cbrt(vfrac[i]) + cbrt(vfrac[j])));
+      const double xi = sqrt(q2);
+      if (r >= 0.9 * xi || r <= 0.0) continue;
+      const double d = contact_distance(xi, vfrac[i], vfrac[j]);
       if (r >= d) continue;
       if (pairs.bonded(i, j)) continue;
       pairs.acting(i, j);
 
-      const double dr = r - d;    // < 0
       const double kc = model.kcontact(itype, jtype) / model.horizon(itype, jtype);
-      const double fpi = -kc * vfrac[j] * dr / r;
-      const double fpj = -kc * vfrac[i] * dr / r;
+      const double fpi = contact_fpair(r, d, kc, vfrac[j]);
+      const double fpj = contact_fpair(r, d, kc, vfrac[i]);
       f[3 * i] += delx * fpi;
       f[3 * i + 1] += dely * fpi;
       f[3 * i + 2] += delz * fpi;
-      if (newton || j < nlocal) {
+      const bool jforce = newton || j < nlocal;
+      if (jforce) {
         f[3 * j] -= delx * fpj;
         f[3 * j + 1] -= dely * fpj;
         f[3 * j + 2] -= delz * fpj;
+      }
+      if (block) {
+        const double del[3] = {delx, dely, delz};
+        double b[6];
+        contact_block(del, d, kc, vfrac[j], b);
+        for (int m = 0; m < 6; m++) block[6 * i + m] += b[m];
+        if (jforce) {
+          contact_block(del, d, kc, vfrac[i], b);
+          for (int m = 0; m < 6; m++) block[6 * j + m] += b[m];
+        }
       }
       if (tally) {
         const double energy = 2.0 * contact_energy(r, d, kc, vfrac[i], vfrac[j]) /

@@ -53,9 +53,13 @@ class ContactPairs {
 };
 
 // The contact pass: forces of every candidate pair closer than reach (owned i; j also gets its
-// force when newton is set or j is owned), reported to pairs.tally when tally is set.
+// force when newton is set or j is owned), reported to pairs.tally when tally is set. When
+// block is not null (6 per row, owned and ghost: xx yy zz xy xz yz), each acting pair also adds
+// its contact_block() to the rows that get its forces (the caller folds ghost rows into their
+// owners as it folds the forces).
 void contact_pass(const Model &model, const Particles &p, const ReferenceBox &box, double reach,
-                  const ContactCandidates &cand, bool newton, bool tally, ContactPairs &pairs);
+                  const ContactCandidates &cand, bool newton, bool tally, ContactPairs &pairs,
+                  double *block = nullptr);
 
 }  // namespace PeriSISSM
 

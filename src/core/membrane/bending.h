@@ -1,0 +1,93 @@
+// The bending term of membranes over a distributed triangle mesh (doc/theory.rst, "Bending"):
+// the hinge energy of membrane/hinge.h summed over the interior edges of the meshes, as a list
+// of hinges in local indices and a pass over it, the same shape as the bond terms of peri/.
+//
+// A hinge is an edge (x0, x1) with the third vertices x2 of its triangle (x0, x1, x2) and x3 of
+// (x1, x0, x3). Each rank lists the hinges with at least one owned vertex that takes a share,
+// each once (build_hinges()); a pass evaluates every listed hinge once and gives each of its
+// sharing owned vertices its own share: the force density, the diagonal block, a quarter of the
+// energy (as an energy density) and its part of the virial. A hinge that straddles ranks is
+// evaluated on each of them and no force goes to a ghost copy (no reverse communication); its
+// other vertices are ghost copies, which the caller must provide (rows after the owned ones).
+// LAMMPS-free.
+
+#ifndef PERISISSM_MEMBRANE_BENDING_H
+#define PERISISSM_MEMBRANE_BENDING_H
+
+#include "peri/family.h"
+#include "peri/fields.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace PeriSISSM {
+
+struct HingeCouplings;
+
+// One hinge of this rank's list.
+struct Hinge {
+  int v[4];         // local indices of its vertices, v[0] -> v[1] the edge (smaller ID first),
+                    //   images closest to the owned vertex that listed it
+  int own[4];       // owned index that takes vertex k's share, -1: none on this rank
+  double theta0;    // rest angle
+  double c;         // stiffness D |e0|^2 / (2 A0)
+};
+
+// What the hinge list needs to know about the mesh as this rank holds it: particle IDs,
+// the triangles of the owned vertices, where a vertex is, and who takes shares.
+class HingeMesh {
+ public:
+  virtual ~HingeMesh() = default;
+  virtual int nlocal() const = 0;                   // owned rows 0 .. nlocal-1
+  virtual std::int64_t id(int i) const = 0;         // ID of the particle in row i (any row)
+  virtual int ntri(int i) const = 0;                // triangles of owned vertex i
+  // the other two vertices (a, b) of triangle k of owned vertex i, as IDs, in the triangle's
+  // orientation (i, a, b)
+  virtual void triangle(int i, int k, std::int64_t &a, std::int64_t &b) const = 0;
+  // row of vertex ID t at its image closest to row i (owned or ghost), -1 if not on this rank
+  virtual int image(int i, std::int64_t t) const = 0;
+  // owned row of vertex ID t if it is owned here and takes shares of its hinges (a mesh vertex
+  // of a type with bending), -1 otherwise
+  virtual int sharer(std::int64_t t) const = 0;
+  // bending modulus D of the particle in row i (owned or ghost), energy units; 0 without
+  virtual double modulus(int i) const = 0;
+};
+
+// The hinges of this rank, each once, in the order of their edges' IDs (a vertex then sums its
+// hinges' forces in the same order however the particles are ordered locally or split between
+// ranks). Every owned sharer finds the hinges it belongs to: as an edge's end the edges (i, a)
+// of its triangles; as a third vertex the edge (a, b) opposite it in each of its triangles,
+// whose other triangle is in a's list. The smallest owned sharer of a hinge keeps it; the
+// edge runs from the smaller ID to the larger. c = D |e0|^2 / (2 A0) with D the mean modulus
+// of the edge's two ends (a hinge with D <= 0 is left out) and theta0 from the reference
+// positions x0 (3 per row) relative to the edge's first vertex, in the reference box.
+// Outputs: hinges (replaced); returns 0, or the ID of an owned vertex one of whose hinges has a
+// vertex that is not on this rank (the hinges of the others are listed).
+std::int64_t build_hinges(const HingeMesh &mesh, const double *x0, const ReferenceBox &box,
+                          std::vector<Hinge> &hinges);
+
+// Where one bending pass puts its energy shares (either may be null): energy (+=) the sum of
+// the shares, each a quarter of a hinge's energy over the vertex's volume; per_particle[i] (+=)
+// the shares of owned particle i.
+struct BendingEnergy {
+  double *total = nullptr;
+  double *per_particle = nullptr;
+};
+
+// The bending pass over a hinge list: for each hinge and each of its sharing vertices i (in
+// list order, then vertex order), f_i += F_v / V_i with F_v = -dE/dx_v of the hinge
+// (membrane/hinge.h), block[i] += its Gauss-Newton block 2 c g_v g_v^T / V_i (when block is not
+// null), its energy share, and its part of the hinge's virial sum_v (x_v - x_0) (x) F_v (when
+// virial has a sink). Inputs: p.x (owned and ghost rows), p.volume; outputs: p.f (owned rows).
+void bending_pass(const std::vector<Hinge> &hinges, const Particles &p, double **block,
+                  const BendingEnergy &energy, const Virial &virial);
+
+// The hinges in the current positions p.x for an assembled stiffness (peri/bond_stiffness.h):
+// vertices and rows of each, and with gradients true sqrt(2 c) d theta / d x_v (grad left empty
+// otherwise).
+void hinge_couplings(const std::vector<Hinge> &hinges, const Particles &p, bool gradients,
+                     HingeCouplings &couplings);
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_MEMBRANE_BENDING_H
