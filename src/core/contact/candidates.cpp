@@ -210,6 +210,20 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
     return a.type == b.type && std::equal(a.tag, a.tag + 4, b.tag);
   };
   found.erase(std::unique(found.begin(), found.end(), same), found.end());
+
+  for (Candidate &c : found) {
+    if (c.type == StencilType::kEdgeEdge && atoms.rest_vector)
+      c.eps = edge_edge_mollifier_threshold(Vector3d::Zero(), atoms.rest_vector(c.v[0], c.v[1]),
+                                            Vector3d::Zero(), atoms.rest_vector(c.v[2], c.v[3]));
+    if (atoms.owned) {
+      int smallest = 0;
+      for (int k = 0; k < c.nv(); k++) {
+        c.own[k] = atoms.owned(c.tag[k]);
+        if (c.tag[k] < c.tag[smallest]) smallest = k;
+      }
+      c.counts = c.own[smallest] >= 0;
+    }
+  }
   candidates = std::move(found);
   return prim.missing;
 }

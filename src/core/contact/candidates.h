@@ -81,12 +81,20 @@ struct ContactAtoms {
   std::function<void(int i, std::vector<std::array<int, 2>> &others)> triangles;
   // whether two particles (local indices) are or were bond partners (none if empty)
   std::function<bool(int a, int b)> were_partners;
+  // the rest-shape vector from atom a to atom b (local indices; the minimum image in periodic
+  // boxes): the edge-edge mollifier thresholds (none if empty: eps stays 0)
+  std::function<Eigen::Vector3d(int a, int b)> rest_vector;
+  // the local index of the owned atom with an ID, -1 if it is not owned here (none if empty:
+  // own and counts stay unset)
+  std::function<int(std::int64_t tag)> owned;
 };
 
 // The candidate pairs with an owned vertex closer than reach, sorted and unique (see the top of
-// this file); eps, own and counts are left to the caller. Inputs: the atoms; a full neighbor
-// list of the owned atoms (symmetric between owned atoms); reach. Output: the candidates;
-// returns the ID of an atom with a triangle vertex missing from the atoms (0: none).
+// this file), with eps from rest_vector() and own and counts from owned() (a pair counts on
+// the rank that owns its smallest ID, so that it counts once over all ranks). Inputs: the
+// atoms; a full neighbor list of the owned atoms (symmetric between owned atoms); reach.
+// Output: the candidates; returns the ID of an atom with a triangle vertex missing from the
+// atoms (0: none).
 std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list, double reach,
                              std::vector<Candidate> &candidates);
 

@@ -38,6 +38,33 @@ class MotionTracker {
   // distance of xref from the build position.
   double reach_fraction(int i, const double *xref, const double *x, double R, double &from) const;
 
+  // The reach of a move over the atoms i < n with (mask[i] & groupbit): the smallest
+  // reach_fraction() below 1 (t = 1: no atom leaves the ball), the atom that sets it (-1: none;
+  // of equals the one with the smallest tag) and its distance from the build at xref.
+  struct Reach {
+    double t = 1.0;
+    int atom = -1;
+    double from = 0.0;
+  };
+  template <class Tag>
+  Reach reach_limit(const double *const *xref, const double *const *x, int n, const int *mask,
+                    int groupbit, const Tag *tag, double R) const
+  {
+    Reach r;
+    for (int i = 0; i < n; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      double from;
+      const double t = reach_fraction(i, xref[i], x[i], R, from);
+      if (t >= 1.0) continue;
+      if (t < r.t || (t == r.t && r.atom >= 0 && tag[i] < tag[r.atom])) {
+        r.t = t;
+        r.atom = i;
+        r.from = from;
+      }
+    }
+    return r;
+  }
+
   // the positions kept (3 per atom)
   std::size_t size() const { return xbuild.size() / 3; }
 

@@ -41,7 +41,8 @@ struct Scene {
   {
     const int base = (int) pos.size();
     for (int j = 0; j < n; j++)
-      for (int i = 0; i < n; i++) add(sx + i * h, sy + j * h, z, PeriSISSM::ContactRole::kMeshVertex);
+      for (int i = 0; i < n; i++)
+        add(sx + i * h, sy + j * h, z, PeriSISSM::ContactRole::kMeshVertex);
     for (int j = 0; j + 1 < n; j++)
       for (int i = 0; i + 1 < n; i++) {
         const int a = base + j * n + i, b = a + 1, c = a + n, d = a + n + 1;

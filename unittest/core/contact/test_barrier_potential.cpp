@@ -65,7 +65,8 @@ TEST(BarrierPotential, ForcesAreMinusTheGradientOfTheEnergy)
   for (auto &q : force) f.push_back(q.data());
   CandidateDistances dist;
   dist.evaluate(cands, s.rows.data(), s.n(), 1, prm.dmin + prm.dhat, 1.0);
-  const BarrierTally t = barrier_forces(cands, dist, s.rows.data(), volume.data(), prm, 1.0, f.data());
+  const BarrierTally t =
+      barrier_forces(cands, dist, s.rows.data(), volume.data(), prm, 1.0, f.data());
   EXPECT_EQ(t.too_close, -1);
   EXPECT_EQ(t.ncandidates, (long) cands.size());
   EXPECT_GT(t.nactive[0] + t.nactive[1], 5);

@@ -2,8 +2,8 @@
 // and particles between them (contact_scene.h): the candidates are exactly the pairs a brute
 // force over all primitives finds closer than the reach (no pair sharing a vertex, particles
 // that were partners excluded), each once, in canonical vertex order, sorted by kind and IDs;
-// local indices point at the atoms with those IDs; a triangle vertex missing from the atoms is
-// reported.
+// local indices point at the atoms with those IDs; eps, own and counts from the caller's rest
+// shape and owners; a triangle vertex missing from the atoms is reported.
 
 #include "contact/candidates.h"
 
@@ -130,6 +130,44 @@ TEST(Candidates, AreThePairsWithinReachEachOnceInOrder)
       }
     }
   }
+}
+
+// eps from the rest shape, own and counts from the owner of each ID
+TEST(Candidates, RestShapeAndOwners)
+{
+  const Scene s = two_sheets(6);
+  ContactAtoms atoms = s.atoms();
+  // the rest shape: the positions scaled by 2; atoms with odd IDs owned here
+  atoms.rest_vector = [&s](int a, int b) {
+    return Vector3d(2.0 * (s.pos[b][0] - s.pos[a][0]), 2.0 * (s.pos[b][1] - s.pos[a][1]),
+                    2.0 * (s.pos[b][2] - s.pos[a][2]));
+  };
+  atoms.owned = [&s](std::int64_t t) {
+    for (int i = 0; i < s.n(); i++)
+      if (s.tag[i] == t) return (t % 2) ? i : -1;
+    return -1;
+  };
+  std::vector<Candidate> found;
+  find_candidates(atoms, s.list(), 0.5, found);
+  int ee = 0, counted = 0;
+  for (const Candidate &c : found) {
+    for (int k = 0; k < c.nv(); k++) EXPECT_EQ(c.own[k], (c.tag[k] % 2) ? c.v[k] : -1);
+    const std::int64_t smallest = *std::min_element(c.tag, c.tag + c.nv());
+    EXPECT_EQ(c.counts, smallest % 2 == 1);
+    counted += c.counts;
+    if (c.type != StencilType::kEdgeEdge) {
+      EXPECT_EQ(c.eps, 0.0);
+      continue;
+    }
+    ee++;
+    const Vector3d ra = atoms.rest_vector(c.v[0], c.v[1]), rb = atoms.rest_vector(c.v[2], c.v[3]);
+    EXPECT_EQ(c.eps,
+              edge_edge_mollifier_threshold(Vector3d::Zero(), ra, Vector3d::Zero(), rb));
+    EXPECT_GT(c.eps, 0.0);
+  }
+  EXPECT_GT(ee, 0);
+  EXPECT_GT(counted, 0);
+  EXPECT_LT(counted, (int) found.size());
 }
 
 TEST(Candidates, PartnersAreNoPair)

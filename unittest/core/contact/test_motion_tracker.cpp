@@ -1,7 +1,7 @@
 // Tests of the motion tracker (contact/motion_tracker.h): the largest move of the group's atoms
 // since the build and which atom made it; the fraction of a straight move that stays within a
 // ball about the build position (on the sphere at that fraction, inside before it); the skin
-// thresholds.
+// thresholds; the reach of a move over a group.
 
 #include "contact/motion_tracker.h"
 
@@ -102,4 +102,31 @@ TEST(MotionTracker, SkinThresholds)
   EXPECT_EQ(MotionTracker::error_distance(0.8), 0.4);
   EXPECT_EQ(MotionTracker::request_distance(0.8), 0.2);
   EXPECT_EQ(MotionTracker::rebuild_distance(0.8), 0.1);
+}
+
+// The reach of a move over a group: the smallest fraction, of equals the smallest tag
+TEST(MotionTracker, ReachLimitOverTheGroup)
+{
+  std::vector<std::array<double, 3>> build = {{0, 0, 0}, {5, 0, 0}, {10, 0, 0}, {15, 0, 0}};
+  auto rb = rows_of(build);
+  MotionTracker m;
+  m.record(rb.data(), 4);
+  std::vector<std::array<double, 3>> ref = build, end = build;
+  end[0][0] += 0.5;      // within R = 1
+  end[1][1] += 2.0;      // leaves at t = 0.5
+  end[2][2] -= 2.0;      // leaves at t = 0.5 too
+  end[3][0] += 4.0;      // leaves at t = 0.25, outside the group
+  auto rr = rows_of(ref), re = rows_of(end);
+  const int mask[4] = {1, 1, 1, 2};
+  const long tag[4] = {4, 9, 7, 1};
+  MotionTracker::Reach r = m.reach_limit(rr.data(), re.data(), 4, mask, 1, tag, 1.0);
+  EXPECT_NEAR(r.t, 0.5, 1e-12);
+  EXPECT_LT(r.t, 0.5);
+  EXPECT_EQ(r.atom, 2);    // tag 7 before tag 9
+  EXPECT_EQ(r.from, 0.0);
+  r = m.reach_limit(rr.data(), re.data(), 4, mask, 3, tag, 1.0);
+  EXPECT_EQ(r.atom, 3);
+  r = m.reach_limit(rr.data(), re.data(), 1, mask, 1, tag, 1.0);
+  EXPECT_EQ(r.t, 1.0);
+  EXPECT_EQ(r.atom, -1);
 }
