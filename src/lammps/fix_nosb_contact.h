@@ -3,7 +3,9 @@
 
    fix nosb/contact: barrier contact (IPC log barrier with a thickness) between the
    point-triangle and edge-edge pairs of the meshes read by read_mesh and the point-point pairs
-   of volumetric particles, with lagged smooth friction (doc/fix_nosb_contact.rst).
+   of volumetric particles, with lagged smooth friction (doc/fix_nosb_contact.rst). The pairs,
+   their stencils, the stiffness rule, the path limit and the motion tracker are the core's
+   (src/core/contact); this fix keeps their storage, communication, restart and output.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -19,8 +21,11 @@ FixStyle(nosb/contact,FixNosbContact);
 
 #include "collision_limit.h"
 
-#include "contact/barrier.h"
-#include "contact/friction.h"
+#include "contact/adaptive_stiffness.h"
+#include "contact/candidate_distances.h"
+#include "contact/candidates.h"
+#include "contact/friction_potential.h"
+#include "contact/motion_tracker.h"
 
 #include <vector>
 
@@ -60,57 +65,30 @@ class FixNosbContact : public Fix, public CollisionLimit {
   bool balance_stiffness(double **res, double c, int groupbit) override;
 
  private:
-  // a candidate pair: a point and a triangle (PT: v = p, t0, t1, t2), two edges (EE:
-  // v = a0, a1, b0, b1) or two volumetric particles (PP: v = p, q; v[2], v[3] are -1 and
-  // tag[2], tag[3] 0), local indices of the images used, tags in canonical order
-  enum { PT = 0, EE = 1, PP = 2 };
-  struct Candidate {
-    int type;
-    tagint tag[4];
-    int v[4];
-    double eps;    // EE: the mollifier threshold from the rest shape
-    int own[4] = {-1, -1, -1, -1};    // local indices of its owned vertices (-1: others; build)
-    bool counts = false;   // this rank counts it (it owns the vertex with the smallest ID)
-    // the number of vertices used (v[0] .. v[nv() - 1])
-    int nv() const { return type == PP ? 2 : 4; }
-  };
-
   double dhat, dmin, kappa;    // kappa: the barrier stiffness the forces use (energy / length^2)
-  // kappa auto (IPC's adaptive barrier stiffness, the file's header): the stiffness kept in the
-  // units of the step's incremental potential, kappa_ip = c kappa (c the scheme's force factor,
-  // h^2 for backward Euler), with its bounds, and the scene's scales they come from
+  // kappa auto: IPC's adaptive stiffness, kept in the units of the step's incremental potential
+  // (kappa = its value / c, c the scheme's force factor, h^2 for backward Euler)
   int kappa_auto;
-  double kappa_ip, kappa_ip_min, kappa_ip_max;
+  PeriSISSM::AdaptiveStiffness stiffness;
   double inertia_c;            // c of the step being solved (set_force_factor() before the first)
-  double bbox_diagonal;        // of the group at the first run's setup (0: not yet measured)
-  double mean_mass;            // of the group's atoms, then
   int iterate_pending;         // the next evaluation is an iterate of fix sissm (next_iterate())
-  double prev_min_gap;         // the smallest gap at the last iterate of this step
   double mu, epsv;             // friction coefficient (0: none) and slip speed
   double edge_factor;          // assumed longest edge = edge_factor x the longest at init
   double longest_edge;         // that assumption (this run)
   double list_cutoff;          // dmin + dhat + 1.5 longest_edge (neighbor skin added by LAMMPS)
   class NeighList *list;
-  class FixNosbMesh *meshfix;    // nullptr without meshes
-  class PairPeriNosb *pair;      // its bond families exclude particle pairs; nullptr if none
-  bigint nparticles;             // volumetric (non-mesh) particles in the group
+  class FixNosbMesh *meshfix;            // nullptr without meshes
+  class BondPartners *partners;          // pair peri/nosb's bond partners; nullptr if none
+  bigint nparticles;                     // volumetric (non-mesh) particles in the group
 
-  std::vector<Candidate> candidates;
+  std::vector<PeriSISSM::Candidate> candidates;
   int stale;                   // the candidates are chosen again at the next force evaluation
   int warned_sissm;            // the not-collision-free warning under fix sissm was given
   int warned_families;         // the no-bond-families warning was given
-  double **xbuild;             // owned positions when they were chosen
-  int nxbuild;
+  PeriSISSM::MotionTracker motion;         // owned positions when the candidates were chosen
+  PeriSISSM::CandidateDistances distances;    // at the last force evaluation
   int ccd;                     // keyword ccd: fix sissm limits its moves (CollisionLimit)
   double **xref;               // the last admissible positions (owned and ghost; begin_path())
-  // the candidates' distances at the last force evaluation: exact, or (for a pair that is
-  // neither active nor the nearest) a lower bound, the last one less how far its points moved
-  std::vector<double> distance;
-  std::vector<char> distance_exact;    // 1: distance[ic] is the distance, 0: a lower bound
-  int distance_valid;          // 1: the positions are still those (cleared by begin_path())
-  double **xlast;              // the positions (owned and ghost) of the last force evaluation
-  int nxlast;
-  bigint xlast_generation;     // the candidate build they belong to (-1: none)
   int nxref;
   int reach_bound;             // the last limit_move() was cut short by the candidates' reach
   double reach_moved;          // then: how far an atom had moved from the list build
@@ -118,14 +96,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
 
   // friction: the lagged data of the active pairs (each with an owned vertex), built at x^n by
   // begin_step() under fix sissm, or at every evaluation from the current positions otherwise
-  struct Lagged {
-    int type;
-    tagint tag[4];
-    int v[4];                    // local indices of the images used at the build
-    double xn[12];               // their positions then
-    PeriSISSM::FrictionPair pair;
-  };
-  std::vector<Lagged> lagged;
+  std::vector<PeriSISSM::LaggedPair> lagged;
   int in_step;                 // begin_step() was called in this run: the implicit recipe
   double step_h;               // the step of the last begin_step()
   bigint generation;           // candidate builds so far (local indices change with them)
@@ -147,23 +118,10 @@ class FixNosbContact : public Fix, public CollisionLimit {
   void set_kappa_ip(double k);
   void adapt_at_iterate();
   void check_motion();
-  // the largest squared distance of an owned atom of the group from where it was at the last
-  // candidate build (this rank), and that atom's local index (-1: none)
-  double moved_since_build(int &farthest) const;
-  // the positions in x of candidate c's points into y[0 .. c.nv() - 1]; their squared distance
-  static void gather(const Candidate &c, double **x, Eigen::Vector3d *y);
-  static double distance2(const Candidate &c, const Eigen::Vector3d *y);
-  // how much a move of its points by len[k] (k < nv()) can shrink the pair's distance: the
-  // largest move of a point of each primitive, summed
-  static double closing(const Candidate &c, const double *len);
-  // the gradient of the pair's barrier energy (12 values; zeros past the pair's vertices)
-  static PeriSISSM::Vector12d barrier_gradient(const Candidate &c, const Eigen::Vector3d *y,
-                                               const PeriSISSM::BarrierParameters &prm);
   double measure_longest_edge(bool owned_partners_only);
   double predicted_comm_cutoff() const;
   void reduce();
   void build_lagged();
-  bool lagged_vertices(const Lagged &p, int *idx);
   void add_friction();
 };
 

@@ -17,6 +17,7 @@ PairStyle(peri/nosb,PairPeriNosb);
 
 #include "pair.h"
 
+#include "bond_partners.h"
 #include "implicit_forces.h"
 
 #include <memory>
@@ -34,7 +35,7 @@ struct Hinge;
 
 namespace LAMMPS_NS {
 
-class PairPeriNosb : public Pair, public ImplicitForces {
+class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
  public:
   PairPeriNosb(class LAMMPS *);
   ~PairPeriNosb() override;
@@ -77,6 +78,11 @@ class PairPeriNosb : public Pair, public ImplicitForces {
   bool group_coupled(int groupbit) override;
   void check_motion(int converged) override;
   bool has_unbent_membranes() const override;
+
+  // ---- BondPartners (fix nosb/contact; pair_peri_nosb_partners.cpp) ----
+
+  bool partners_known() const override;
+  bool were_partners(int a, int b) const override;
 
  protected:
   // per type pair, from coeffs at init (mixed and mirrored): horizon and contact flag

@@ -85,28 +85,11 @@ double edge_edge_ccd(const Vector3d &a0, const Vector3d &a1, const Vector3d &b0,
   return additive_ccd<4, 2>({a0, a1, b0, b1}, {da0, da1, db0, db1}, distance, opt, report);
 }
 
-double point_edge_ccd(const Vector3d &p, const Vector3d &e0, const Vector3d &e1,
-                      const Vector3d &dp, const Vector3d &de0, const Vector3d &de1,
-                      const CcdOptions &opt, CcdReport *report)
-{
-  auto distance = [](const std::array<Vector3d, 3> &y) {
-    return point_edge_distance(y[0], y[1], y[2]);
-  };
-  return additive_ccd<3, 1>({p, e0, e1}, {dp, de0, de1}, distance, opt, report);
-}
-
 double point_point_ccd(const Vector3d &p, const Vector3d &q, const Vector3d &dp,
                        const Vector3d &dq, const CcdOptions &opt, CcdReport *report)
 {
   auto distance = [](const std::array<Vector3d, 2> &y) { return (y[0] - y[1]).norm(); };
   return additive_ccd<2, 1>({p, q}, {dp, dq}, distance, opt, report);
-}
-
-double step_fraction(const double *t, std::size_t n, double t_max)
-{
-  double m = t_max;
-  for (std::size_t i = 0; i < n; i++) m = std::min(m, t[i]);
-  return m;
 }
 
 }  // namespace PeriSISSM

@@ -21,7 +21,7 @@
 // (capped; see CcdOptions).
 //
 // LAMMPS-free, MPI-free: the step fraction of an update is the minimum over all pairs
-// (step_fraction() over local pairs; the glue takes the MPI minimum).
+// (contact/path_limit.h over the local candidates; the glue takes the MPI minimum).
 
 #ifndef PERISISSM_CONTACT_CCD_H
 #define PERISISSM_CONTACT_CCD_H
@@ -48,7 +48,7 @@ struct CcdReport {
 
 // The largest fraction t in [0, t_max] of the step that ACCD certifies (see above).
 // Inputs: start positions and displacements of the pair's points (p; t0, t1, t2 for a point and a
-// triangle, a0, a1; b0, b1 for two edges, p; e0, e1 for a point and an edge, p; q for two points);
+// triangle, a0, a1; b0, b1 for two edges, p; q for two points);
 // opt. Outputs: returns t (t_max when the pair stays apart over the whole step, 0 when it starts
 // within dmin); report (when not null).
 double point_triangle_ccd(const Eigen::Vector3d &p, const Eigen::Vector3d &t0,
@@ -61,18 +61,9 @@ double edge_edge_ccd(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1,
                      const Eigen::Vector3d &da0, const Eigen::Vector3d &da1,
                      const Eigen::Vector3d &db0, const Eigen::Vector3d &db1,
                      const CcdOptions &opt = CcdOptions(), CcdReport *report = nullptr);
-double point_edge_ccd(const Eigen::Vector3d &p, const Eigen::Vector3d &e0,
-                      const Eigen::Vector3d &e1, const Eigen::Vector3d &dp,
-                      const Eigen::Vector3d &de0, const Eigen::Vector3d &de1,
-                      const CcdOptions &opt = CcdOptions(), CcdReport *report = nullptr);
 double point_point_ccd(const Eigen::Vector3d &p, const Eigen::Vector3d &q,
                        const Eigen::Vector3d &dp, const Eigen::Vector3d &dq,
                        const CcdOptions &opt = CcdOptions(), CcdReport *report = nullptr);
-
-// The step fraction of a whole update: min(t_max, t[0], ..., t[n-1]) over the local pairs.
-// (Every pair then keeps its distance above dmin over the scaled step; the glue takes the MPI
-// minimum of this over the ranks.)
-double step_fraction(const double *t, std::size_t n, double t_max = 1.0);
 
 }  // namespace PeriSISSM
 

@@ -174,14 +174,6 @@ FrictionPair edge_edge_friction_pair(const Vector3d &a0, const Vector3d &a1, con
                    type == EdgeEdgeType::kInterior, prm);
 }
 
-FrictionPair point_edge_friction_pair(const Vector3d &p, const Vector3d &e0, const Vector3d &e1,
-                                      const BarrierParameters &prm)
-{
-  const double s = segment_parameter(p, e0, e1);
-  return make_pair({p, e0, e1, Vector3d::Zero()}, 3, {1.0, -(1.0 - s), -s, 0.0},
-                   point_edge_distance2(p, e0, e1), 1.0, Vector3d::Zero(), false, prm);
-}
-
 FrictionPair point_point_friction_pair(const Vector3d &p, const Vector3d &q,
                                        const BarrierParameters &prm)
 {

@@ -78,7 +78,7 @@
 //   should do the same with a read_mesh block on an inclined held mesh.
 //
 // Coordinates are ordered as the arguments of the pair's builder, three per vertex, in a
-// 12-vector; pairs of 3 (point-edge) and 2 (point-point) vertices leave the rest zero and
+// 12-vector; pairs of 2 (point-point) vertices leave the rest zero and
 // ignore it. LAMMPS-free.
 
 #ifndef PERISISSM_CONTACT_FRICTION_H
@@ -110,7 +110,7 @@ struct FrictionParameters {
 
 // The lagged data of one pair at x^n (see the top of this file).
 struct FrictionPair {
-  int count = 0;                   // vertices: 4 (point-triangle, edge-edge), 3, 2
+  int count = 0;                   // vertices: 4 (point-triangle, edge-edge), 2 (point-point)
   std::array<double, 4> w{};       // signed weights: sum w_i x_i = c_A - c_B, sum w_i = 0
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();    // unit, from c_B to c_A
   Eigen::Matrix<double, 3, 2> T = Eigen::Matrix<double, 3, 2>::Zero();    // tangent basis
@@ -119,7 +119,7 @@ struct FrictionPair {
 
 // Builders from the pair's positions at x^n and the barrier's parameters. Inputs: the pair's
 // points as for the barrier (p; t0 t1 t2), (a0 a1; b0 b1) with the mollifier threshold eps of
-// edge_edge_mollifier_threshold(), (p; e0 e1), (p; q). Outputs: the pair's lagged data; lambda
+// edge_edge_mollifier_threshold(), (p; q). Outputs: the pair's lagged data; lambda
 // = 0 beyond dmin + dhat, +inf for a gap <= 0 (never reached where the barrier holds).
 // The first primitive (p, or edge a) is the side with weights >= 0. For a point over a face
 // and for two edges' interiors the normal is the triangle's normal or the edges' cross
@@ -132,8 +132,6 @@ FrictionPair point_triangle_friction_pair(const Eigen::Vector3d &p, const Eigen:
 FrictionPair edge_edge_friction_pair(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1,
                                      const Eigen::Vector3d &b0, const Eigen::Vector3d &b1,
                                      double eps, const BarrierParameters &prm);
-FrictionPair point_edge_friction_pair(const Eigen::Vector3d &p, const Eigen::Vector3d &e0,
-                                      const Eigen::Vector3d &e1, const BarrierParameters &prm);
 FrictionPair point_point_friction_pair(const Eigen::Vector3d &p, const Eigen::Vector3d &q,
                                        const BarrierParameters &prm);
 

@@ -1,5 +1,5 @@
 // Tests of additive CCD (contact/ccd.h): exact cases with known contact times (a point falling
-// onto a triangle, edges crossing, parallel, collinear and degenerate edges, point-edge,
+// onto a triangle, edges crossing, parallel, collinear and degenerate edges,
 // point-point), no contact, zero motion, pairs that start within the thickness, the iteration
 // cap; random pairs whose distance is sampled densely over [0, t] (never below dmin) and over
 // [0, 1] (t before any sampled crossing); the same pairs scaled by 1e-6 and 1e6.
@@ -177,16 +177,11 @@ TEST(Ccd, DegenerateEdges)
   }
 }
 
-TEST(Ccd, PointEdgeAndPointPoint)
+TEST(Ccd, PointPoint)
 {
-  const Vector3d zero = Vector3d::Zero();
   for (double dmin : {0.0, 0.2}) {
     CcdOptions opt;
     opt.dmin = dmin;
-    // point falling onto the edge's interior
-    expect_head_on(point_edge_ccd(Vector3d(0.3, 1, 0), Vector3d(0, 0, 0), Vector3d(1, 0, 0),
-                                  Vector3d(0, -2, 0), zero, zero, opt),
-                   (1.0 - dmin) / 2.0, opt.s, "point-edge");
     // two particles head-on
     expect_head_on(point_point_ccd(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 0, 0),
                                    Vector3d(-1, 0, 0), opt),
@@ -257,14 +252,6 @@ TEST(Ccd, SlowCaseAndIterationCap)
   EXPECT_GT(t, 0.0);
   EXPECT_LT(t, 1.0);
   EXPECT_GT(point_triangle_distance(p + t * dp, t0, t1, t2), 0.0);
-}
-
-TEST(Ccd, StepFractionIsTheMinimum)
-{
-  const std::vector<double> t = {1.0, 0.7, 0.35, 0.9};
-  EXPECT_EQ(step_fraction(t.data(), t.size()), 0.35);
-  EXPECT_EQ(step_fraction(nullptr, 0), 1.0);
-  EXPECT_EQ(step_fraction(t.data(), t.size(), 0.2), 0.2);
 }
 
 // ---- random pairs ----

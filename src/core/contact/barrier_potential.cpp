@@ -1,0 +1,82 @@
+#include "contact/barrier_potential.h"
+
+#include <algorithm>
+
+using Eigen::Vector3d;
+
+namespace PeriSISSM {
+
+BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
+                            const CandidateDistances &distances, const double *const *x,
+                            const double *volume, const BarrierParameters &prm, double mindist,
+                            double **f)
+{
+  const double range = prm.dmin + prm.dhat;
+  BarrierTally t;
+  t.mindist = mindist;
+  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+    const Candidate &c = candidates[ic];
+    const CollisionStencil &stencil = c.stencil();
+    const int nv = c.nv();
+    if (c.counts) t.ncandidates++;
+    const double d = distances[ic];
+    t.mindist = std::min(t.mindist, d);
+    if (!(d < range)) continue;
+    if (!(d > prm.dmin)) {
+      t.too_close = (long) ic;
+      return t;
+    }
+    Vector3d y[4];
+    c.gather(x, y);
+    const double E = stencil.barrier_energy(y, c.eps, prm);
+    const Vector12d g = stencil.barrier_gradient(y, c.eps, prm);
+    if (c.counts) {
+      t.nactive[(int) c.type]++;
+      t.energy_pairs += E;
+    }
+    // each owned vertex's share of the energy: E / nv (1 / nv exact: 0.25 or 0.5)
+    const double share = 1.0 / nv;
+    for (int k = 0; k < nv; k++) {
+      const int i = c.own[k];
+      if (i < 0) continue;
+      const double vi = volume[i];
+      for (int dim = 0; dim < 3; dim++) f[i][dim] -= g[3 * k + dim] / vi;
+      t.energy_density += share * E / vi;
+    }
+  }
+  return t;
+}
+
+void barrier_blocks(const std::vector<Candidate> &candidates, const CandidateDistances &distances,
+                    const double *const *x, const double *volume, const BarrierParameters &prm,
+                    double **block)
+{
+  const double range = prm.dmin + prm.dhat;
+  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+    const Candidate &c = candidates[ic];
+    if (!(distances.valid() && distances[ic] < range)) continue;
+    Vector3d y[4];
+    c.gather(x, y);
+    add_diagonal_blocks(c.stencil().barrier_hessian(y, c.eps, prm, true), c.nv(), c.own, volume,
+                        block);
+  }
+}
+
+void add_diagonal_blocks(const Matrix12d &H, int nv, const int *own, const double *volume,
+                         double **block)
+{
+  for (int k = 0; k < nv; k++) {
+    const int i = own[k];
+    if (i < 0) continue;
+    const double w = 1.0 / volume[i];
+    const int o = 3 * k;
+    block[i][0] += w * H(o, o);
+    block[i][1] += w * H(o + 1, o + 1);
+    block[i][2] += w * H(o + 2, o + 2);
+    block[i][3] += w * H(o, o + 1);
+    block[i][4] += w * H(o, o + 2);
+    block[i][5] += w * H(o + 1, o + 2);
+  }
+}
+
+}  // namespace PeriSISSM

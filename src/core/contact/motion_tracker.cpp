@@ -1,0 +1,52 @@
+#include "contact/motion_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace PeriSISSM {
+
+void MotionTracker::record(const double *const *x, int n)
+{
+  xbuild.resize(3 * (std::size_t) n);
+  for (int i = 0; i < n; i++)
+    for (int d = 0; d < 3; d++) xbuild[3 * i + d] = x[i][d];
+}
+
+double MotionTracker::largest_move2(const double *const *x, int n, const int *mask, int groupbit,
+                                    int &farthest) const
+{
+  double most = 0.0;
+  farthest = -1;
+  for (int i = 0; i < n; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double *b = &xbuild[3 * i];
+    double r2 = 0.0;
+    for (int d = 0; d < 3; d++) r2 += (x[i][d] - b[d]) * (x[i][d] - b[d]);
+    if (r2 > most) {
+      most = r2;
+      farthest = i;
+    }
+  }
+  return most;
+}
+
+// |a + t d|^2 = R^2 (a = xref - xbuild, d = x - xref) for the root in [0, 1] (|a| <= R)
+double MotionTracker::reach_fraction(int i, const double *xref, const double *x, double R,
+                                     double &from) const
+{
+  const double *b = &xbuild[3 * i];
+  double a2 = 0.0, ad = 0.0, d2 = 0.0, e2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double a = xref[k] - b[k], d = x[k] - xref[k];
+    a2 += a * a;
+    ad += a * d;
+    d2 += d * d;
+    e2 += (a + d) * (a + d);
+  }
+  from = std::sqrt(a2);
+  if (e2 <= R * R) return 1.0;
+  const double disc = std::max(0.0, ad * ad - d2 * (a2 - R * R));
+  return std::max(0.0, (-ad + std::sqrt(disc)) / d2) * (1.0 - 1.0e-12);
+}
+
+}  // namespace PeriSISSM

@@ -1,0 +1,77 @@
+// How far atoms have moved since candidate pairs were last chosen. A contact model that chooses
+// its pairs at a neighbor list build, keeping those closer than r + skin, finds every pair that
+// can come within r while no atom has moved more than skin/2 from where it was then (two atoms
+// close by at most twice that). The tracker keeps the positions of that build and answers:
+// the largest move since (error beyond error_distance(), a new build wanted beyond
+// request_distance() inside a step and beyond rebuild_distance() at a step's end, so that each
+// step may still move the atoms by 3/8 of the skin), and how far along a straight move an atom
+// stays within a given distance of its build position (reach_fraction()).
+//
+// Use: record() at every build; largest_move2() at every force evaluation (the caller takes the
+// maximum over its ranks). Indices are local (owned atoms); they hold until the next build.
+// LAMMPS-free.
+
+#ifndef PERISISSM_CONTACT_MOTION_TRACKER_H
+#define PERISISSM_CONTACT_MOTION_TRACKER_H
+
+#include <vector>
+
+namespace PeriSISSM {
+
+class MotionTracker {
+ public:
+  // the skin thresholds: the candidates may be incomplete beyond skin/2 (an error), a build is
+  // asked for beyond skin/4 inside a step and wanted beyond skin/8 at a step's end
+  static double error_distance(double skin) { return 0.5 * skin; }
+  static double request_distance(double skin) { return 0.25 * skin; }
+  static double rebuild_distance(double skin) { return 0.125 * skin; }
+
+  // the positions x[0 .. n - 1] at a build
+  void record(const double *const *x, int n);
+  // the largest squared distance of an atom i < n with (mask[i] & groupbit) from where it was at
+  // the build, and that atom (farthest, -1: none)
+  double largest_move2(const double *const *x, int n, const int *mask, int groupbit,
+                       int &farthest) const;
+  // For atom i on the straight move from xref to x (xref within R of its build position): the
+  // largest fraction t in [0, 1] with |xref + t (x - xref) - xbuild| <= R, times (1 - 1e-12);
+  // 1 when x is within R too (the segment is inside the ball when both ends are). from: the
+  // distance of xref from the build position.
+  double reach_fraction(int i, const double *xref, const double *x, double R, double &from) const;
+
+  // The reach of a move over the atoms i < n with (mask[i] & groupbit): the smallest
+  // reach_fraction() below 1 (t = 1: no atom leaves the ball), the atom that sets it (-1: none;
+  // of equals the one with the smallest tag) and its distance from the build at xref.
+  struct Reach {
+    double t = 1.0;
+    int atom = -1;
+    double from = 0.0;
+  };
+  template <class Tag>
+  Reach reach_limit(const double *const *xref, const double *const *x, int n, const int *mask,
+                    int groupbit, const Tag *tag, double R) const
+  {
+    Reach r;
+    for (int i = 0; i < n; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      double from;
+      const double t = reach_fraction(i, xref[i], x[i], R, from);
+      if (t >= 1.0) continue;
+      if (t < r.t || (t == r.t && r.atom >= 0 && tag[i] < tag[r.atom])) {
+        r.t = t;
+        r.atom = i;
+        r.from = from;
+      }
+    }
+    return r;
+  }
+
+  // the positions kept (3 per atom)
+  std::size_t size() const { return xbuild.size() / 3; }
+
+ private:
+  std::vector<double> xbuild;
+};
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_CONTACT_MOTION_TRACKER_H

@@ -1,0 +1,48 @@
+#include "contact/path_limit.h"
+
+#include <algorithm>
+#include <cmath>
+
+using Eigen::Vector3d;
+
+namespace PeriSISSM {
+
+double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
+                  const double *const *x, double dmin, CandidateDistances *known)
+{
+  const bool gaps = known && known->valid();
+  double t_pairs = 1.0;
+  CcdOptions opt;
+  opt.dmin = dmin;
+  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+    const Candidate &c = candidates[ic];
+    const CollisionStencil &stencil = c.stencil();
+    Vector3d y[4], dy[4];
+    bool moved = false;
+    for (int k = 0; k < c.nv(); k++) {
+      const double *a = xref[c.v[k]], *b = x[c.v[k]];
+      y[k] = Vector3d(a[0], a[1], a[2]);
+      dy[k] = Vector3d(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+      moved = moved || dy[k].squaredNorm() > 0.0;
+    }
+    if (!moved) continue;
+    if (gaps) {
+      // (a lower bound that does not suffice is replaced by the distance: the same pairs are
+      // skipped as with the distances, and the move is the same)
+      double len[4];
+      for (int k = 0; k < c.nv(); k++) len[k] = dy[k].norm();
+      const double most = stencil.closing(len) * t_pairs;
+      if (most <= (1.0 - opt.s) * ((*known)[ic] - dmin)) continue;
+      if (!known->exact(ic)) {
+        known->set_exact(ic, std::sqrt(stencil.distance2(y)));
+        if (most <= (1.0 - opt.s) * ((*known)[ic] - dmin)) continue;
+      }
+    }
+    // (a query that reaches ACCD's sub-step cap returns the last safe time: still conservative)
+    opt.t_max = t_pairs;
+    t_pairs = std::min(t_pairs, stencil.ccd(y, dy, opt));
+  }
+  return t_pairs;
+}
+
+}  // namespace PeriSISSM

@@ -1,0 +1,24 @@
+// The collision-free part of a move (the CCD path limit): the largest fraction t in [0, 1] of
+// the straight move of every candidate's points from xref to x that additive CCD (ccd.h)
+// certifies for all candidates, so that no pair's gap reaches dmin on the scaled move (each
+// keeps at least s = 0.1 of its gap at xref). The caller takes the minimum over its ranks and
+// over the reach of its candidates (motion_tracker.h). LAMMPS-free.
+
+#ifndef PERISISSM_CONTACT_PATH_LIMIT_H
+#define PERISISSM_CONTACT_PATH_LIMIT_H
+
+#include "contact/candidate_distances.h"
+
+namespace PeriSISSM {
+
+// Inputs: the candidates; the positions xref (admissible) and x (the move's end), indexed as
+// the candidates' v; dmin; known: the candidates' distances at xref when valid (nullptr or
+// not valid: unknown). A pair whose points move less than 0.9 of its gap at xref over
+// [0, t] keeps 0.1 of it, as CCD would certify: it is skipped (a lower bound that does not
+// suffice is replaced by the distance in known). Output: returns t.
+double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
+                  const double *const *x, double dmin, CandidateDistances *known);
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_CONTACT_PATH_LIMIT_H

@@ -1,0 +1,100 @@
+// Tests of the path limit (contact/path_limit.h): with one pair it is that pair's CCD fraction;
+// over many pairs the smallest; the skip by known gaps gives the same fraction as the CCD of
+// every pair; no move, no limit; the scaled move keeps every pair apart (sampled).
+
+#include "contact/path_limit.h"
+
+#include "contact_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace PeriSISSM;
+using PeriSISSMContactTest::Scene;
+using Eigen::Vector3d;
+
+namespace {
+
+std::vector<double *> rows_of(std::vector<std::array<double, 3>> &p)
+{
+  std::vector<double *> r;
+  for (auto &q : p) r.push_back(q.data());
+  return r;
+}
+
+}    // namespace
+
+TEST(PathLimit, OnePairIsItsCcd)
+{
+  std::vector<std::array<double, 3>> a = {{0, 0, 0}, {1, 0, 0}}, b = {{0.5, 0, 0}, {0.5, 0, 0}};
+  auto ra = rows_of(a), rb = rows_of(b);
+  Candidate c{StencilType::kPointPoint, {1, 2, 0, 0}, {0, 1, -1, -1}};
+  const std::vector<Candidate> cands = {c};
+  CcdOptions opt;
+  opt.dmin = 0.1;
+  const double t = path_limit(cands, ra.data(), rb.data(), 0.1, nullptr);
+  EXPECT_EQ(t, point_point_ccd(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0, 0),
+                               Vector3d(-0.5, 0, 0), opt));
+  EXPECT_LT(t, 0.9);
+  // no move: no limit
+  EXPECT_EQ(path_limit(cands, ra.data(), ra.data(), 0.1, nullptr), 1.0);
+}
+
+TEST(PathLimit, SheetsPressedTogether)
+{
+  Scene s;
+  s.sheet(4, 1.0, 0.0, 0.0, 0.0);
+  s.sheet(4, 1.0, 0.3, 0.4, 0.3);
+  s.add(1.5, 1.5, 0.15, ContactRole::kParticle);
+  s.finish(1.0 + 1.5 * std::sqrt(2.0), 9);
+  std::vector<Candidate> cands;
+  find_candidates(s.atoms(), s.list(), 1.0, cands);
+  // the move: the second sheet down by 0.5 with some noise, the particle sideways
+  std::vector<std::array<double, 3>> end = s.pos;
+  std::mt19937_64 rng(2);
+  std::normal_distribution<double> n01;
+  for (int i = 16; i < 32; i++) {
+    end[i][2] -= 0.5;
+    for (int d = 0; d < 3; d++) end[i][d] += 0.01 * n01(rng);
+  }
+  end[32][0] += 0.3;
+  auto xe = rows_of(end);
+  const double dmin = 0.02;
+  const double t = path_limit(cands, s.rows.data(), xe.data(), dmin, nullptr);
+  // the smallest of the pairs' CCD fractions
+  double smallest = 1.0;
+  CcdOptions opt;
+  opt.dmin = dmin;
+  for (const Candidate &c : cands) {
+    Vector3d y[4], dy[4];
+    for (int k = 0; k < c.nv(); k++)
+      for (int d = 0; d < 3; d++) {
+        y[k][d] = s.pos[c.v[k]][d];
+        dy[k][d] = end[c.v[k]][d] - s.pos[c.v[k]][d];
+      }
+    smallest = std::min(smallest, c.stencil().ccd(y, dy, opt));
+  }
+  EXPECT_GT(t, 0.0);
+  EXPECT_LT(t, 0.6);
+  EXPECT_LE(t, smallest);
+  EXPECT_GE(t, 0.5 * smallest);
+  // the known gaps at the start skip pairs but give the same fraction
+  CandidateDistances known;
+  known.evaluate(cands, s.rows.data(), s.n(), 1, 0.2, 1.0);
+  EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), dmin, &known), t);
+  // every pair stays beyond dmin along the scaled move
+  for (int k = 0; k <= 100; k++) {
+    const double tau = t * k / 100.0;
+    std::vector<std::array<double, 3>> mid = s.pos;
+    for (int i = 0; i < s.n(); i++)
+      for (int d = 0; d < 3; d++) mid[i][d] += tau * (end[i][d] - s.pos[i][d]);
+    auto rm = rows_of(mid);
+    for (const Candidate &c : cands) {
+      Vector3d y[4];
+      c.gather(rm.data(), y);
+      EXPECT_GT(std::sqrt(c.stencil().distance2(y)), dmin);
+    }
+  }
+}
