@@ -26,6 +26,7 @@
 #include "fix_sissm.h"
 
 #include "collision_limit.h"
+#include "fix_sissm_system.h"
 
 #include "implicit_forces.h"
 
@@ -34,6 +35,7 @@
 #include "solvers/momentum.h"
 #include "solvers/newton_krylov.h"
 #include "solvers/preconditioner.h"
+#include "solvers/step_retry.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -44,8 +46,6 @@
 #include "pair.h"
 #include "update.h"
 
-#include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
@@ -79,20 +79,27 @@ constexpr bool kDefaultAmg = true;
 constexpr bool kDefaultAmg = false;
 #endif
 
+bool is_keyword(const char *word)
+{
+  for (const char *k : {"iterations", "tolerance", "relax", "solver", "external", "lagged",
+                        "precond", "unconverged", "scheme"})
+    if (strcmp(word, k) == 0) return true;
+  return false;
+}
+
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV),
-    precond_type(kDefaultAmg ? PRECOND_AMG : PRECOND_BLOCK), maxiter(100), tolerance(1.0e-6),
-    relax(0), implicit_external(1), external_mode(EXT_NONE),
-    precond_given(0), unconverged(UNCONVERGED_CUTBACK), max_cutback(4), dtv(0.0),
-    tol_step(1.0e-6),
+    precond_type(kDefaultAmg ? PRECOND_AMG : PRECOND_BLOCK), precond_given(0), maxiter(100),
+    tolerance(1.0e-6), relax(0), implicit_external(1),
+    external_mode(PeriSISSM::ExternalMode::none), dtv(0.0), tol_step(1.0e-6),
     last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
     last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), fallback_run(0),
-    warned_fallback(0), block_first(0), warned(0), warned_roundoff(0), nmax(0), evaluations_(0),
-    contact_incomplete(0), reach_cut(0), fint(nullptr),
+    warned_fallback(0), block_first(0), warned(0), warned_roundoff(0), nmax(0),
+    fint(nullptr),
     fext(nullptr), flagged(nullptr),
     yn(nullptr), yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr),
     xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
@@ -102,6 +109,8 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
   ncols = 0;
   hist = nullptr;
   hist_from_restart = 1;
+  reductions = std::make_unique<WorldReductions>(lmp, world);
+  system = std::make_unique<SissmSystem>(this, *reductions);
   std::string scheme_name = "euler";
   double rho_inf = 0.8;
   time_integrate = 1;
@@ -150,6 +159,12 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
                    "Illegal fix sissm command: external must be implicit or lagged, got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "lagged") == 0) {
+      // the fix IDs up to the next keyword
+      if (iarg + 2 > narg || is_keyword(arg[iarg + 1]))
+        utils::missing_cmd_args(FLERR, "fix sissm lagged", error);
+      for (iarg++; iarg < narg && !is_keyword(arg[iarg]); iarg++)
+        lagged_ids.emplace_back(arg[iarg]);
     } else if (strcmp(arg[iarg], "precond") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm precond", error);
       precond_given = 1;
@@ -168,18 +183,19 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
       }
     } else if (strcmp(arg[iarg], "unconverged") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm unconverged", error);
-      if (strcmp(arg[iarg + 1], "warn") == 0) unconverged = UNCONVERGED_WARN;
-      else if (strcmp(arg[iarg + 1], "error") == 0) unconverged = UNCONVERGED_ERROR;
-      else if (strcmp(arg[iarg + 1], "cutback") == 0) unconverged = UNCONVERGED_CUTBACK;
+      using PeriSISSM::Unconverged;
+      if (strcmp(arg[iarg + 1], "warn") == 0) retry.unconverged = Unconverged::warn;
+      else if (strcmp(arg[iarg + 1], "error") == 0) retry.unconverged = Unconverged::error;
+      else if (strcmp(arg[iarg + 1], "cutback") == 0) retry.unconverged = Unconverged::cutback;
       else
         error->all(FLERR,
                    "Illegal fix sissm command: unconverged must be warn, error or cutback, "
                    "got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
-      if (unconverged == UNCONVERGED_CUTBACK && iarg < narg && isdigit(arg[iarg][0])) {
-        max_cutback = utils::inumeric(FLERR, arg[iarg], false, lmp);
-        if (max_cutback < 1 || max_cutback > 20)
+      if (retry.unconverged == Unconverged::cutback && iarg < narg && isdigit(arg[iarg][0])) {
+        retry.max_cutback = utils::inumeric(FLERR, arg[iarg], false, lmp);
+        if (retry.max_cutback < 1 || retry.max_cutback > 20)
           error->all(FLERR,
                      "Illegal fix sissm command: unconverged cutback levels must be 1 to 20, "
                      "got {}",
@@ -206,7 +222,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     } else {
       error->all(FLERR,
                  "Illegal fix sissm command: unknown keyword '{}' (allowed: iterations, "
-                 "tolerance, solver, precond, unconverged, scheme, relax, external)",
+                 "tolerance, solver, precond, unconverged, scheme, relax, external, lagged)",
                  arg[iarg]);
     }
   }
@@ -308,121 +324,6 @@ void FixSissm::init()
 }
 
 /* ----------------------------------------------------------------------
-   the forces of the other fixes (those that add forces after the pair style, in post_force).
-   Re-evaluating a fix at every iterate is right only for a fix whose force is a pure function
-   of the positions, velocities and forces at that moment: the known ones are listed below.
-   A fix with state or random numbers (langevin, smd, python/invoke, external, a dynamic
-   group, unknown styles) must run exactly once per step: its force is lagged, taken from the
-   evaluation that ended the previous step. When the pure ones all add a force that does not
-   depend on the force so far, the two kinds mix (MIXED); a pure fix that rewrites the force
-   (setforce, aveforce, lineforce, planeforce) next to a lagged one leaves only the fully
-   lagged treatment. What is decided is written to the log when it changes.
-------------------------------------------------------------------------- */
-
-namespace {
-bool is_pure_additive(const std::string &style)
-{
-  static const char *const names[] = {
-      "gravity",    "addforce",     "viscous",     "indent",     "wall/lj93",   "wall/lj126",
-      "wall/lj1043", "wall/colloid", "wall/harmonic", "wall/morse", "wall/table", "wall/region",
-      "spring",     "spring/self",  "drag",        "efield",     "nosb/contact"};
-  for (const char *n : names)
-    if (style == n) return true;
-  return false;
-}
-
-bool is_pure_rewriting(const std::string &style)
-{
-  return style == "setforce" || style == "aveforce" || style == "lineforce" ||
-      style == "planeforce";
-}
-}    // namespace
-
-void FixSissm::choose_external()
-{
-  implicit_fixes.clear();
-  std::vector<Fix *> lagged;
-  int rewriting = 0;
-  const auto &fixes = modify->get_fix_list();
-  // Modify::post_force calls the dynamic-group fixes (style GROUP) first, then the others
-  for (int pass = 0; pass < 2; pass++) {
-    for (Fix *f : fixes) {
-      if (f == this || !(modify->get_fix_mask(f) & POST_FORCE)) continue;
-      if ((strcmp(f->style, "GROUP") == 0) != (pass == 0)) continue;
-      const std::string style(f->style);
-      if (is_pure_additive(style)) implicit_fixes.push_back(f);
-      else if (is_pure_rewriting(style)) {
-        implicit_fixes.push_back(f);
-        rewriting = 1;
-      } else
-        lagged.push_back(f);
-    }
-  }
-
-  std::string note;
-  if (implicit_fixes.empty() && lagged.empty()) external_mode = EXT_NONE;
-  else if (!implicit_external) external_mode = EXT_LAGGED;
-  else if (lagged.empty()) external_mode = EXT_IMPLICIT;
-  else {
-    std::string names;
-    for (Fix *f : lagged) names += fmt::format("{}{} ({})", names.empty() ? "" : ", ", f->id,
-                                                f->style);
-    if (rewriting) {
-      external_mode = EXT_LAGGED;
-      note = fmt::format("Fix sissm {}: fix {} may hold state or random numbers and must act once "
-                         "per step, and a fix that rewrites forces (setforce, aveforce, lineforce, "
-                         "planeforce) is present: the forces of all other fixes are lagged (taken "
-                         "at the start of each step, as with 'external lagged')\n",
-                         id, names);
-    } else {
-      external_mode = EXT_MIXED;
-      note = fmt::format("Fix sissm {}: fix {} may hold state or random numbers and must act once "
-                         "per step: its force is lagged (taken at the start of each step); the "
-                         "other fixes' forces are implicit\n",
-                         id, names);
-    }
-  }
-  if (note != external_note && comm->me == 0 && !note.empty()) utils::logmesg(lmp, note);
-  external_note = note;
-
-  // contact that limits the moves (collision-free steps) must be part of every iterate
-  limiters.clear();
-  contacts.clear();
-  adapting.clear();
-  for (Fix *f : fixes) {
-    auto *limit = dynamic_cast<CollisionLimit *>(f);
-    if (!limit) continue;
-    const bool implicit = external_mode != EXT_LAGGED &&
-        std::find(implicit_fixes.begin(), implicit_fixes.end(), f) != implicit_fixes.end();
-    // its lagged friction is built at the start of each (sub-)step when it is an iterate's force
-    if (implicit) contacts.push_back(limit);
-    // a contact that needs every iterate's force, while the other fixes' forces are lagged
-    auto refuse_lagged = [&](const char *needs, const char *remedy) {
-      error->all(FLERR,
-                 "Fix sissm {}: fix {} ({}) {}, so its force must be re-evaluated at every "
-                 "iterate, but the forces of the other fixes are lagged here ({}): remove that, "
-                 "or {}",
-                 id, f->id, f->style, needs,
-                 implicit_external ? "a fix that rewrites forces is present; hold atoms by "
-                                     "leaving them out of fix sissm's group instead"
-                                   : "keyword external lagged",
-                 remedy);
-    };
-    if (limit->adapts_stiffness()) {
-      if (!implicit)
-        refuse_lagged("adapts its stiffness to the implicit step (kappa auto)",
-                      "give kappa as a number");
-      adapting.push_back(limit);
-    }
-    if (!limit->limits_moves()) continue;
-    if (!implicit)
-      refuse_lagged("makes the implicit step collision-free",
-                    "turn the collision check off (ccd no)");
-    limiters.push_back(limit);
-  }
-}
-
-/* ----------------------------------------------------------------------
    collision-free steps (collision_limit.h): the positions at the start of a (sub-)step are
    admissible; every later move of the group is limited so that no contact pair comes within
    its thickness on the straight move from the last admissible positions. The contacts'
@@ -477,38 +378,40 @@ void FixSissm::destroy_arrays()
 void FixSissm::grow()
 {
   if (atom->nmax <= nmax) return;
-  destroy_arrays();
   nmax = atom->nmax;
-  memory->create(kblock, nmax, 6, "sissm:block");
-  memory->create(psize, nmax, "sissm:size");
-  memory->create(yn, nmax, 3, "sissm:yn");
-  memory->create(yhat, nmax, 3, "sissm:yhat");
-  memory->create(res, nmax, 3, "sissm:res");
-  memory->create(fext, nmax, 3, "sissm:fext");
-  memory->create(moment, nmax, PeriSISSM::kMomentumColumns, "sissm:moment");
-  if (external_mode == EXT_LAGGED || external_mode == EXT_MIXED)
-    memory->create(fint, nmax, 3, "sissm:fint");
-  if (external_mode == EXT_MIXED || external_mode == EXT_LAGGED)
-    memory->create(flagged, nmax, 3, "sissm:flagged");
-  if (unconverged == UNCONVERGED_CUTBACK || precond_type == PRECOND_AMG ||
-      scheme->force_time() < 1.0) {
-    memory->create(xstart, nmax, 3, "sissm:xstart");
-    memory->create(vstart, nmax, 3, "sissm:vstart");
-    if (ncols > 0) memory->create(hstart, nmax, ncols, "sissm:hstart");
+  const bool lagged = external_mode == PeriSISSM::ExternalMode::lagged ||
+      external_mode == PeriSISSM::ExternalMode::mixed;
+  const bool restart_step = retry.unconverged == PeriSISSM::Unconverged::cutback ||
+      precond_type == PRECOND_AMG || scheme->force_time() < 1.0;
+  memory->grow(kblock, nmax, 6, "sissm:block");
+  memory->grow(psize, nmax, "sissm:size");
+  memory->grow(yn, nmax, 3, "sissm:yn");
+  memory->grow(yhat, nmax, 3, "sissm:yhat");
+  memory->grow(res, nmax, 3, "sissm:res");
+  memory->grow(fext, nmax, 3, "sissm:fext");
+  memory->grow(moment, nmax, PeriSISSM::kMomentumColumns, "sissm:moment");
+  if (lagged) {
+    memory->grow(fint, nmax, 3, "sissm:fint");
+    memory->grow(flagged, nmax, 3, "sissm:flagged");
+  }
+  if (restart_step) {
+    memory->grow(xstart, nmax, 3, "sissm:xstart");
+    memory->grow(vstart, nmax, 3, "sissm:vstart");
+    if (ncols > 0) memory->grow(hstart, nmax, ncols, "sissm:hstart");
   }
   if (ncols > 0) {
-    memory->create(vn, nmax, 3, "sissm:vn");
-    memory->create(fstart, nmax, 3, "sissm:fstart");
+    memory->grow(vn, nmax, 3, "sissm:vn");
+    memory->grow(fstart, nmax, 3, "sissm:fstart");
   }
-  if (precond_type == PRECOND_AMG) memory->create(gnode, nmax, "sissm:gnode");
+  if (precond_type == PRECOND_AMG) memory->grow(gnode, nmax, "sissm:gnode");
   if (relax) {
-    memory->create(rprev, nmax, 3, "sissm:rprev");
-    memory->create(dprev, nmax, 3, "sissm:dprev");
+    memory->grow(rprev, nmax, 3, "sissm:rprev");
+    memory->grow(dprev, nmax, 3, "sissm:dprev");
   }
   if (solver == KRYLOV) {
     for (double ***a : {&xbase, &rbase, &jbase, &cres, &zdir, &pdir, &sdir})
-      memory->create(*a, nmax, 3, "sissm:krylov");
-    memory->create(term, nmax, "sissm:term");
+      memory->grow(*a, nmax, 3, "sissm:krylov");
+    memory->grow(term, nmax, "sissm:term");
   }
 }
 
@@ -541,60 +444,6 @@ void FixSissm::post_run()
 }
 
 /* ----------------------------------------------------------------------
-   external lagged: pair peri/nosb has just computed its force density (and nothing else has
-   been added yet, other pair-like contributions do not exist with atom_style peri): keep it,
-   for owned and ghost atoms, so that fext = f - fint can be formed at the start of the next
-   step
-------------------------------------------------------------------------- */
-
-void FixSissm::capture_internal_force()
-{
-  if (external_mode != EXT_LAGGED && external_mode != EXT_MIXED) return;
-  grow();
-  double **f = atom->f;
-  const int nall = atom->nlocal + atom->nghost;
-  for (int i = 0; i < nall; i++) {
-    fint[i][0] = f[i][0];
-    fint[i][1] = f[i][1];
-    fint[i][2] = f[i][2];
-  }
-}
-
-void FixSissm::setup_pre_reverse(int, int)
-{
-  capture_internal_force();
-}
-
-void FixSissm::pre_reverse(int, int)
-{
-  capture_internal_force();
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixSissm::pack_reverse_comm(int n, int first, double *buf)
-{
-  int m = 0;
-  for (int i = first; i < first + n; i++) {
-    buf[m++] = fint[i][0];
-    buf[m++] = fint[i][1];
-    buf[m++] = fint[i][2];
-  }
-  return m;
-}
-
-void FixSissm::unpack_reverse_comm(int n, int *list, double *buf)
-{
-  int m = 0;
-  for (int k = 0; k < n; k++) {
-    const int j = list[k];
-    fint[j][0] += buf[m++];
-    fint[j][1] += buf[m++];
-    fint[j][2] += buf[m++];
-  }
-}
-
-/* ----------------------------------------------------------------------
    amg: the global node numbers reach the ghosts
 ------------------------------------------------------------------------- */
 
@@ -607,180 +456,6 @@ int FixSissm::pack_forward_comm(int n, int *list, double *buf, int, int *)
 void FixSissm::unpack_forward_comm(int n, int first, double *buf)
 {
   for (int k = 0; k < n; k++) gnode[first + k] = buf[k];
-}
-
-/* ----------------------------------------------------------------------
-   one force evaluation at the current positions: ghost positions, the peri/nosb force density
-   (without energy/virial; the diagonal blocks only when asked), ghost forces folded back
-   (where the pair wrote any), with external implicit the post_force of the other fixes (with
-   v the time scheme's velocity of the iterate, so velocity dependent forces such as fix
-   viscous are implicit too), then the time scheme's residual r_i = rho_i (yhat_i - y_i) + c f_i
-   of the owned atoms of the group into res
-------------------------------------------------------------------------- */
-
-void FixSissm::evaluate(bool blocks)
-{
-  evaluations_++;
-  comm->forward_comm();
-  if (!limiters.empty()) limit_path(false);
-  // an iterate of the solver (a probe of a Jacobian product has no blocks): a contact may
-  // change its stiffness here
-  if (blocks)
-    for (CollisionLimit *contact : adapting) contact->next_iterate();
-  double **x = atom->x;
-  double **v = atom->v;
-  double **f = atom->f;
-  double *rho = atom->rmass;
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-
-  // an iterate that contact candidates could not follow (the pair's short-range contact, or a
-  // move cut short by the reach of a contact fix's candidates) cannot count as converged
-  contact_incomplete = forces->contact_follow_motion() < 0 || reach_cut;
-  for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
-  forces->evaluate(blocks ? kblock : nullptr);
-  if (forces->ghost_forces()) comm->reverse_comm();
-  if (external_mode == EXT_IMPLICIT || external_mode == EXT_MIXED) {
-    // the other fixes' force at this iterate, kept in fext (f after minus f before)
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) {
-        scheme->iterate_velocity(i, arrays, v[i]);
-        for (int k = 0; k < 3; k++) fext[i][k] = f[i][k];
-      }
-    for (Fix *fix : implicit_fixes) fix->post_force(0);
-    if (blocks)
-      for (CollisionLimit *limit : limiters) limit->add_blocks(kblock);
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit)
-        for (int k = 0; k < 3; k++) {
-          if (external_mode == EXT_MIXED) f[i][k] += flagged[i][k];
-          fext[i][k] = f[i][k] - fext[i][k];
-        }
-  }
-
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    scheme->residual(rho[i], yhat[i], x[i], f[i], res[i]);
-    const double r2 = res[i][0] * res[i][0] + res[i][1] * res[i][1] + res[i][2] * res[i][2];
-    if (!std::isfinite(r2))
-      error->one(FLERR, "Fix sissm: non-finite position or force of atom {} at step {}",
-                 atom->tag[i], update->ntimestep);
-  }
-
-  // kappa auto: the barrier's stiffness balanced against the rest of the step's residual at
-  // its first evaluation, which is redone when the stiffness changed
-  if (balance_first) {
-    balance_first = 0;
-    bool changed = false;
-    for (CollisionLimit *contact : adapting)
-      changed = contact->balance_stiffness(res, scheme->force_factor(), groupbit) || changed;
-    if (changed) {
-      // (the redo's move is empty: a cut of the first move still makes the iterate incomplete)
-      const int incomplete = contact_incomplete;
-      evaluate(blocks);
-      contact_incomplete = contact_incomplete || incomplete;
-    }
-  }
-}
-
-/* ---------------------------------------------------------------------- */
-
-double **FixSissm::unknowns()
-{
-  return atom->x;
-}
-
-/* ----------------------------------------------------------------------
-   D_i = rho_i I + h^2 block_i of owned atom i (xx yy zz xy xz yz)
-------------------------------------------------------------------------- */
-
-void FixSissm::block(int i, double D[6]) const
-{
-  scheme->block(atom->rmass[i], kblock[i], D);
-}
-
-/* ----------------------------------------------------------------------
-   Reductions over the world communicator
-------------------------------------------------------------------------- */
-
-void FixSissm::max(double *values, int n)
-{
-  std::vector<double> all(n);
-  MPI_Allreduce(values, all.data(), n, MPI_DOUBLE, MPI_MAX, world);
-  for (int k = 0; k < n; k++) values[k] = all[k];
-}
-
-void FixSissm::sum(long long *values, int n)
-{
-  std::vector<long long> all(n);
-  MPI_Allreduce(values, all.data(), n, MPI_LONG_LONG, MPI_SUM, world);
-  for (int k = 0; k < n; k++) values[k] = all[k];
-}
-
-double FixSissm::total_rows() const
-{
-  return (double) atom->natoms;
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixSissm::check_finite()
-{
-  double **x = atom->x;
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    if ((mask[i] & groupbit) && !std::isfinite(x[i][0] + x[i][1] + x[i][2]))
-      error->one(FLERR, "Fix sissm: non-finite position of atom {} at step {}", atom->tag[i],
-                 update->ntimestep);
-}
-
-/* ----------------------------------------------------------------------
-   the tolerance this step can meet (asked once, after the first evaluation). Positions are
-   absolute coordinates: an atom at |x| from the origin is known to eps |x| (eps the machine
-   epsilon), and so are its bond vectors, so the force density of particle i is known to about
-   |block_i| eps |x|, and the convergence measure to
-     floor_i = eps (|x_i| / l_i) (1 + h^2 |block_i| / rho_i)      (l_i = V_i^(1/3)),
-   |x| the largest coordinate, |block| the largest diagonal entry of the SISSM block (the row
-   sum of the bond stiffnesses). Measured on a 4x3x3 block at 20 and 100 x the explicit limit
-   (neo-Hookean, random velocities), at the origin and moved 4e4 particle sizes away, the
-   measure stalls at 0.2 to 0.4 x this estimate (1e-12 at the origin, 2e-8 far away, at
-   20 x). A step whose measure is below the larger of the tolerance and half the largest
-   estimate counts as converged; the first time in a run that this exceeds the tolerance, a
-   warning says so.
-   One global max.
-------------------------------------------------------------------------- */
-
-double FixSissm::step_tolerance()
-{
-  double **x = atom->x;
-  double *rho = atom->rmass;
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  const double h2 = scheme->force_factor();
-  double local[2] = {0.0, 0.0}, all[2];
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const double xmax = fmax(fabs(x[i][0]), fmax(fabs(x[i][1]), fabs(x[i][2])));
-    const double bmax = fmax(kblock[i][0], fmax(kblock[i][1], kblock[i][2]));
-    local[0] = fmax(local[0], xmax / psize[i] * (1.0 + h2 * bmax / rho[i]));
-    local[1] = fmax(local[1], xmax);
-  }
-  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
-  // (tolerance 0 asks for every step to use all its iterations: no floor then)
-  const double floor = (tolerance > 0.0) ? 0.5 * DBL_EPSILON * all[0] : 0.0;
-  tol_step = fmax(tolerance, floor);
-  if (floor > tolerance && !warned_roundoff && comm->me == 0)
-    error->warning(FLERR,
-                   "Fix sissm: at step {} round-off in the atom coordinates (up to {:.3g} from "
-                   "the origin) limits the convergence measure to about {:.3g}, above the "
-                   "tolerance {:.3g}: steps that reach it count as converged (a body nearer the "
-                   "origin, or a smaller time step, allows a tighter tolerance; reported once "
-                   "per run)",
-                   update->ntimestep, all[1], floor, tolerance);
-  if (floor > tolerance) warned_roundoff = 1;
-  return tol_step;
 }
 
 /* ----------------------------------------------------------------------
@@ -810,11 +485,12 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   arrays.hist = hist;
   arrays.flag = flag;
   arrays.fstart = fstart;
-  scheme->begin(rows_, arrays);
+  const PeriSISSM::Rows &rows = system->rows();
+  scheme->begin(rows, arrays);
   for (int i = 0; i < nlocal; i++)
     if (mask[i] & groupbit) fext[i][0] = fext[i][1] = fext[i][2] = 0.0;
 
-  evaluations_ = 0;
+  system->begin_solve();
   PeriSISSM::SolveResult result;
   if (solver == KRYLOV) {
     PeriSISSM::KrylovWork work;
@@ -826,12 +502,12 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
     work.pdir = pdir;
     work.sdir = sdir;
     work.term = term;
-    result = PeriSISSM::solve_newton_krylov(*this, *precond, maxiter, work);
+    result = PeriSISSM::solve_newton_krylov(*system, *precond, maxiter, work);
   } else {
     PeriSISSM::SweepMemory memory_rows;
     memory_rows.rprev = rprev;
     memory_rows.dprev = dprev;
-    result = PeriSISSM::solve_jacobi(*this, maxiter, memory_rows);
+    result = PeriSISSM::solve_jacobi(*system, maxiter, memory_rows);
   }
   // (tolerance 0: every step runs to the limit by request, which says nothing of the
   // preconditioner)
@@ -842,7 +518,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   if (!forces->group_coupled(groupbit)) {
     const PeriSISSM::MomentumBalance balance{h, scheme->force_factor(),
                                              scheme->name() == "euler"};
-    PeriSISSM::balance_momentum(rows_, *this, balance, x, yn, yhat, flag ? nullptr : fext,
+    PeriSISSM::balance_momentum(rows, *reductions, balance, x, yn, yhat, flag ? nullptr : fext,
                                 moment);
   }
   // the last move (the final correction, the momentum balance) is limited like the others
@@ -850,41 +526,84 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
     comm->forward_comm();
     limit_path(true);
   }
-  scheme->finish(rows_, arrays);
+  scheme->finish(rows, arrays);
   if (move_others) place_others(t_end);
   return result;
 }
 
 /* ----------------------------------------------------------------------
-   unconverged cutback: the step is redone from y^n, v^n (kept in xstart, vstart) as 2, 4, ...
-   2^max_cutback equal sub-steps until every sub-step converges. Atoms outside the group (held,
-   or moved by fix move or another integrator, already at t^{n+1}) sit at x^{n+1} - (1 - t) h v
-   at the end t (a fraction of the step) of each sub-step, and at x^{n+1} afterwards; the other
-   fixes' forces are those of t^{n+1} throughout. Returns true when a level converged (its
-   sub-step count in substeps); false leaves the last level's unconverged result.
+   the step as the retry ladder drives it (solvers/step_retry.h). A redone step starts again
+   from y^n, v^n (kept in xstart, vstart). Cut back into n sub-steps, atoms outside the group
+   (held, or moved by fix move or another integrator, already at t^{n+1}) sit at
+   x^{n+1} - (1 - t) h v at the end t (a fraction of the step) of each sub-step, and at x^{n+1}
+   afterwards; the other fixes' forces are those of t^{n+1} throughout.
 ------------------------------------------------------------------------- */
 
-bool FixSissm::cut_back(int &substeps, PeriSISSM::SolveResult &result, int &evaluations,
-                        double **flag)
-{
-  bool done = false;
-  for (int level = 1; level <= max_cutback && !done; level++) {
-    const int n = 1 << level;
-    restore_start();
-    done = true;
-    for (int s = 0; s < n; s++) {
-      result = solve_step(dtv / n, (double) (s + 1) / n, flag);
-      evaluations += evaluations_;
-      if (!result.converged()) {
-        done = false;
-        break;
-      }
-    }
-    substeps = n;
+namespace LAMMPS_NS {
+class SissmAttempts : public PeriSISSM::StepAttempts {
+ public:
+  SissmAttempts(FixSissm *fix, double **flag) : fix_(fix), flag_(flag) {}
+  PeriSISSM::SolveResult solve(int n, int s) override
+  {
+    return fix_->solve_step(fix_->dtv / n, (double) (s + 1) / n, flag_);
   }
-  place_others(1.0);
-  scheme->set_step(dtv);
-  return done;
+  int evaluations() const override { return fix_->system->evaluations(); }
+  void restore_start() override { fix_->restore_start(); }
+  bool refresh_preconditioner() override { return fix_->precond->refresh(); }
+  void switch_preconditioner() override
+  {
+    PeriSISSM::Preconditioner *block = fix_->block_precond.get();
+    fix_->precond = (fix_->precond == block) ? fix_->amg_precond.get() : block;
+  }
+  void end_cutback() override
+  {
+    fix_->place_others(1.0);
+    fix_->scheme->set_step(fix_->dtv);
+  }
+
+ private:
+  FixSissm *fix_;
+  double **flag_;
+};
+}    // namespace LAMMPS_NS
+
+/* ----------------------------------------------------------------------
+   what the retry ladder did, in the statistics and the log; a cutback that did not converge
+   ends the run
+------------------------------------------------------------------------- */
+
+void FixSissm::report_retries(const PeriSISSM::RetryOutcome &outcome)
+{
+  const PeriSISSM::SolveResult &result = outcome.result;
+  if (outcome.switched) {
+    if (outcome.switch_converged) block_first = precond == block_precond.get();
+    fallback_run++;
+    if (!warned_fallback && comm->me == 0)
+      error->warning(FLERR,
+                     "Fix sissm {}: step {} did not converge with precond {}; redone with the {} "
+                     "preconditioner ({}; the one that converged goes first from now on; "
+                     "counted in f_{}[9]; reported once per run)",
+                     id, update->ntimestep, precond == block_precond.get() ? "amg" : "block",
+                     precond == block_precond.get() ? "block" : "amg",
+                     outcome.switch_converged ? "converged" : "not converged either", id);
+    warned_fallback = 1;
+  }
+  if (!outcome.cut_back) return;
+  const int substeps = outcome.substeps;
+  if (outcome.cutback_failed)
+    error->all(FLERR,
+               "Fix sissm {}: step {} did not converge in {} iterations per step, not even as {} "
+               "sub-steps of {:.6g} (convergence measure {:.3g} > tolerance {:.3g}): raise "
+               "iterations, lower the time step, or accept unconverged steps with 'unconverged "
+               "warn'",
+               id, update->ntimestep, maxiter, substeps, dtv / substeps, result.measure,
+               result.tolerance);
+  cutback_run++;
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "Fix sissm {}: step {} did not converge in {} iterations; redone as {} "
+                   "sub-steps of {:.6g} (counted in f_{}[6])\n",
+                   id, update->ntimestep, maxiter, substeps, dtv / substeps, id);
 }
 
 /* ----------------------------------------------------------------------
@@ -935,15 +654,17 @@ void FixSissm::post_integrate()
   double **f = atom->f;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const int lagged = external_mode == EXT_LAGGED, mixed = external_mode == EXT_MIXED;
-  rows_.n = nlocal;
-  rows_.mask = mask;
-  rows_.bit = groupbit;
-  rows_.volume = atom->vfrac;
-  rows_.density = atom->rmass;
+  const bool lagged = external_mode == PeriSISSM::ExternalMode::lagged;
+  const bool mixed = external_mode == PeriSISSM::ExternalMode::mixed;
+  PeriSISSM::Rows &rows = system->step_rows();
+  rows.n = nlocal;
+  rows.mask = mask;
+  rows.bit = groupbit;
+  rows.volume = atom->vfrac;
+  rows.density = atom->rmass;
   // the particle sizes of the convergence measure, once per step rather than per iteration
   for (int i = 0; i < nlocal; i++) psize[i] = cbrt(atom->vfrac[i]);
-  rows_.size = psize;
+  rows.size = psize;
 
   // lagged: fint of ghosts belongs to their owners (short-range contact with newton on)
   if ((lagged || mixed) && force->newton_pair) comm->reverse_comm(this);
@@ -972,63 +693,21 @@ void FixSissm::post_integrate()
     if (!state_start.empty()) scheme->get_state(state_start.data());
   }
 
-  PeriSISSM::SolveResult result;
-  int evaluations = 0, substeps = 1;
   last_newton = last_krylov = 0;
   // tolerance 0 asks for every step to use all its iterations: such a step is neither redone
   // nor refused
-  const bool fixed_count = tolerance == 0.0;
+  retry.fixed_count = tolerance == 0.0;
+  retry.two_preconditioners = amg_precond != nullptr;
+  PeriSISSM::RetryOutcome outcome;
   {
     ImplicitStep step(forces, groupbit);
     // precond amg: the preconditioner that converged the last step goes first
     precond = (amg_precond && !block_first) ? amg_precond.get() : block_precond.get();
-    result = solve_step(dtv, 1.0, lagged ? flagged : nullptr);
-    evaluations = evaluations_;
-    if (!result.converged() && !fixed_count && precond->refresh()) {
-      // the preconditioner was built in an earlier step: once more with one built now
-      restore_start();
-      result = solve_step(dtv, 1.0, lagged ? flagged : nullptr);
-      evaluations += evaluations_;
-    }
-    if (!result.converged() && amg_precond && !fixed_count) {
-      // a step that one preconditioner could not converge is redone with the other (measured:
-      // a free, rotating soft block at 100x the explicit limit, where the AMG-preconditioned
-      // Newton steps diverge after some steps and the blocks converge)
-      restore_start();
-      precond = (precond == block_precond.get()) ? amg_precond.get() : block_precond.get();
-      result = solve_step(dtv, 1.0, lagged ? flagged : nullptr);
-      evaluations += evaluations_;
-      if (result.converged()) block_first = precond == block_precond.get();
-      fallback_run++;
-      if (!warned_fallback && comm->me == 0)
-        error->warning(FLERR,
-                       "Fix sissm {}: step {} did not converge with precond {}; redone with "
-                       "the {} preconditioner ({}; the one that converged goes first from now "
-                       "on; counted in f_{}[9]; reported once per run)",
-                       id, update->ntimestep, precond == block_precond.get() ? "amg" : "block",
-                       precond == block_precond.get() ? "block" : "amg",
-                       result.converged() ? "converged" : "not converged either", id);
-      warned_fallback = 1;
-    }
-    if (!result.converged() && unconverged == UNCONVERGED_CUTBACK && !fixed_count) {
-      if (cut_back(substeps, result, evaluations, lagged ? flagged : nullptr)) {
-        cutback_run++;
-        if (comm->me == 0)
-          utils::logmesg(lmp,
-                         "Fix sissm {}: step {} did not converge in {} iterations; redone as {} "
-                         "sub-steps of {:.6g} (counted in f_{}[6])\n",
-                         id, update->ntimestep, maxiter, substeps, dtv / substeps, id);
-      } else {
-        error->all(FLERR,
-                   "Fix sissm {}: step {} did not converge in {} iterations per step, not even "
-                   "as {} sub-steps of {:.6g} (convergence measure {:.3g} > tolerance {:.3g}): "
-                   "raise iterations, lower the time step, or accept unconverged steps with "
-                   "'unconverged warn'",
-                   id, update->ntimestep, maxiter, substeps, dtv / substeps, result.measure,
-                   result.tolerance);
-      }
-    }
+    SissmAttempts attempts(this, lagged ? flagged : nullptr);
+    outcome = PeriSISSM::run_retry_ladder(attempts, retry);
+    report_retries(outcome);
   }
+  const PeriSISSM::SolveResult &result = outcome.result;
   const double measure = result.measure;
 
   // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
@@ -1047,14 +726,16 @@ void FixSissm::post_integrate()
   for (CollisionLimit *limit : limiters) rebuild = limit->rebuild_wanted() || rebuild;
   if (rebuild) next_reneighbor = update->ntimestep;
 
+  const int evaluations = outcome.evaluations;
   last_iterations = evaluations;
   last_measure = measure;
-  last_substeps = substeps;
+  last_substeps = outcome.substeps;
   nsteps_run++;
   iterations_run += evaluations;
-  if (measure > tol_step) {
+  const PeriSISSM::StepVerdict verdict = PeriSISSM::step_verdict(retry, measure, tol_step);
+  if (verdict != PeriSISSM::StepVerdict::converged) {
     unconverged_run++;
-    if (unconverged == UNCONVERGED_ERROR && !fixed_count)
+    if (verdict == PeriSISSM::StepVerdict::error)
       error->all(FLERR,
                  "Fix sissm {}: step {} stopped at {} iterations with convergence measure {:.3g} "
                  "> tolerance {:.3g} (unconverged error)",
@@ -1066,28 +747,6 @@ void FixSissm::post_integrate()
                      update->ntimestep, evaluations, measure, tolerance, id);
     warned = 1;
   }
-}
-
-/* ----------------------------------------------------------------------
-   external mixed, at the start of a step (positions y^n, velocities v^n): the force of the
-   lagged fixes is what the evaluation that ended the previous step added beyond the pair
-   force (f - fint, at y^n and v^n) minus what the re-evaluated fixes give at y^n and v^n
-   (all of them add forces independent of the force so far, choose_external())
-------------------------------------------------------------------------- */
-
-void FixSissm::lagged_external_force()
-{
-  double **f = atom->f;
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  for (int i = 0; i < nlocal; i++)
-    for (int k = 0; k < 3; k++) flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
-  for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
-  for (Fix *fix : implicit_fixes) fix->post_force(0);
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit)
-      for (int k = 0; k < 3; k++) flagged[i][k] -= f[i][k];
 }
 
 /* ---------------------------------------------------------------------- */
@@ -1112,8 +771,8 @@ double FixSissm::memory_usage()
   // the per-atom arrays grow() allocates (PETSc's matrix and hierarchy are not counted)
   // yn, yhat, res, fext, block, moment, size
   int arrays = 4 * 3 + 6 + PeriSISSM::kMomentumColumns + 1;
-  if (external_mode == EXT_LAGGED || external_mode == EXT_MIXED) arrays += 2 * 3;  // fint, flagged
-  if (xstart) arrays += 2 * 3 + (hstart ? ncols : 0);                             // cut back
+  if (fint) arrays += 2 * 3;    // fint, flagged
+  if (xstart) arrays += 2 * 3 + (hstart ? ncols : 0);    // redone steps
   arrays += ncols + (vn ? 2 * 3 : 0);    // the scheme's history, v^n and f at y^n
   if (gnode) arrays += 1;
   if (relax) arrays += 6;

@@ -5,9 +5,10 @@
    fixed-point iteration whose fixed point is the implicit step of pair peri/nosb (backward
    Euler, or the second-order BDF2 and generalized-alpha of keyword scheme), and its Krylov
    acceleration (Newton steps solved by conjugate gradients preconditioned with the same
-   per-particle blocks or with PETSc's multigrid). The LAMMPS glue of the core's solvers (src/core/solvers):
-   it is the nonlinear system they solve (PeriSISSM::NonlinearSystem) over the atoms of its
-   group, with the force model behind the ImplicitForces interface of the pair style.
+   per-particle blocks or with PETSc's multigrid). The LAMMPS glue of the core's solvers
+   (src/core/solvers): it owns the per-atom storage and runs the step's retry ladder; the
+   nonlinear system the solvers see (fix_sissm_system.cpp) is its group's atoms, with the force
+   model behind the ImplicitForces interface of the pair style.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -21,7 +22,9 @@ FixStyle(sissm,FixSissm);
 
 #include "fix.h"
 
+#include "solvers/external_forces.h"
 #include "solvers/jacobi.h"
+#include "solvers/step_retry.h"
 #include "solvers/time_scheme.h"
 
 #include <memory>
@@ -34,7 +37,7 @@ class Preconditioner;
 
 namespace LAMMPS_NS {
 
-class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM::Reductions {
+class FixSissm : public Fix {
  public:
   FixSissm(class LAMMPS *, int, char **);
   ~FixSissm() override;
@@ -66,35 +69,13 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   int size_restart(int) override;
   int maxsize_restart() override;
 
-  // ---- PeriSISSM::NonlinearSystem: the backward-Euler step of the group's atoms ----
-  const PeriSISSM::Rows &rows() const override { return rows_; }
-  PeriSISSM::Reductions &reductions() override { return *this; }
-  double **unknowns() override;
-  void evaluate(bool blocks) override;
-  double **residual() override { return res; }
-  int evaluations() const override { return evaluations_; }
-  bool evaluation_complete() const override { return !contact_incomplete; }
-  void block(int i, double D[6]) const override;
-  double step_tolerance() override;
-  void check_finite() override;
-
-  // ---- PeriSISSM::Reductions over the LAMMPS world communicator ----
-  void max(double *values, int n) override;
-  void sum(long long *values, int n) override;
-  double total_rows() const override;
-
  protected:
   enum { JACOBI, KRYLOV };
   enum { PRECOND_BLOCK, PRECOND_AMG };
-  enum { UNCONVERGED_WARN, UNCONVERGED_ERROR, UNCONVERGED_CUTBACK };
-  // how the forces of the other fixes enter the step (decided in init from the keyword
-  // external and the fixes present): NONE there are none; IMPLICIT all re-evaluated at every
-  // iterate; MIXED those known to be pure functions of positions and velocities re-evaluated,
-  // the others lagged (their force of the evaluation that ended the previous step); LAGGED all
-  // lagged
-  enum { EXT_NONE, EXT_IMPLICIT, EXT_MIXED, EXT_LAGGED };
   class ImplicitForces *forces;    // the pair style's side of the step
-  PeriSISSM::Rows rows_;           // the group's atoms (refreshed at every step)
+  // the nonlinear system the solvers see, and its reductions over world (fix_sissm_system.cpp)
+  std::unique_ptr<class SissmSystem> system;
+  std::unique_ptr<class WorldReductions> reductions;
   // of the Krylov solver: precond points at amg_precond (precond amg) or block_precond (precond
   // block, and a step that amg did not converge)
   PeriSISSM::Preconditioner *precond = nullptr;
@@ -108,13 +89,17 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   int precond_type;     // PRECOND_BLOCK (the SISSM blocks) or PRECOND_AMG (PETSc)
   std::string petsc_options;    // keyword petsc: options for PETSc's preconditioner
   int precond_given;    // the keyword precond was given
-  int unconverged;      // UNCONVERGED_*: what a step that misses the tolerance does
-  int max_cutback;      // cutback: at most 2^max_cutback sub-steps
+  PeriSISSM::RetryPolicy retry;    // keyword unconverged (solvers/step_retry.h)
   int maxiter;          // force evaluations per step at most
   double tolerance;     // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
   int relax;            // 1: per-particle step factor alpha_i, 0: alpha_i = 1 (jacobi)
   int implicit_external;    // keyword external: 1 implicit, 0 lagged
-  int external_mode;        // EXT_*, see above
+  std::vector<std::string> lagged_ids;    // keyword lagged: fixes that act once per step
+  // how the forces of the other fixes enter the step (decided in init, choose_external(), by
+  // the rule of solvers/external_forces.h): NONE there are none; IMPLICIT all re-evaluated at
+  // every iterate; MIXED those that add forces re-evaluated, the others lagged (their force of
+  // the evaluation that ended the previous step); LAGGED all lagged
+  PeriSISSM::ExternalMode external_mode;
   std::vector<class Fix *> implicit_fixes;    // re-evaluated at every iterate, in LAMMPS order
   // contact that makes the step collision-free: every move of the atoms is limited by it
   // (collision_limit.h)
@@ -124,10 +109,10 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   // contact fixes that adapt their stiffness to the step (kappa auto; among the contacts)
   std::vector<class CollisionLimit *> adapting;
   int balance_first = 0;    // the next evaluation is the first of a (sub-)step: balance them
-  int reach_cut;        // the last evaluation's move was cut short by a contact's reach
+  int reach_cut = 0;    // the last evaluation's move was cut short by a contact's reach
   std::string external_note;                  // what was last logged about them
   double dtv;
-  double tol_step;      // the tolerance of the current step (attainable_tolerance())
+  double tol_step;      // the tolerance of the current step (SissmSystem::step_tolerance())
 
   // statistics (global vector)
   int last_iterations;
@@ -143,8 +128,6 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   int warned;           // non-convergence already reported in this run
   int warned_roundoff;  // round-off limit of the tolerance already reported in this run
   int nmax;
-  int evaluations_;     // force evaluations of the current step
-  int contact_incomplete;    // the last evaluation's contact candidates were incomplete
   double **fint;        // internal force density at y^n (captured in pre_reverse; lagged, mixed)
   double **fext;        // force density of the other fixes at the last evaluation (implicit,
                         //   mixed: used by the momentum balance; lagged: zero, it is in yhat)
@@ -164,6 +147,8 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   double *gnode;        // amg: global node number of each atom (-1: not an unknown)
   double *psize;        // V^(1/3) of each atom (Rows::size), refreshed at every step
   friend class SissmAmg;
+  friend class SissmSystem;
+  friend class SissmAttempts;
 
   void grow();
   void destroy_arrays();
@@ -175,8 +160,7 @@ class FixSissm : public Fix, public PeriSISSM::NonlinearSystem, public PeriSISSM
   PeriSISSM::SolveResult solve_step(double h, double t_end, double **flag);
   void place_others(double t);
   void restore_start();
-  bool cut_back(int &substeps, PeriSISSM::SolveResult &result, int &evaluations,
-                double **flag);
+  void report_retries(const PeriSISSM::RetryOutcome &outcome);
   std::unique_ptr<PeriSISSM::Preconditioner> make_amg();
 };
 

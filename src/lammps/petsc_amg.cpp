@@ -1,9 +1,12 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: the PETSc preconditioner (see petsc_amg.h).
 
-   PETSc is started once per process, on first use, on MPI_COMM_WORLD (LAMMPS has initialized
-   MPI already, so PETSc leaves MPI alone), with its signal handler off (LAMMPS and the user's
-   debugger keep theirs). It is not finalized: PetscFinalize must run before MPI_Finalize, and
+   PETSc is started once per process, on first use, on the communicator of the LAMMPS instance
+   that first uses it (PETSC_COMM_WORLD set to LAMMPS's world before PetscInitialize: under
+   -partition, or with LAMMPS as a library on part of the processes, PETSc's collective start
+   involves only the processes of that instance; LAMMPS has initialized MPI already, so PETSc
+   leaves MPI alone), with its signal handler off (LAMMPS and the user's debugger keep theirs).
+   Every PETSc object is created on the communicator of its instance. It is not finalized: PetscFinalize must run before MPI_Finalize, and
    a plugin has no hook there; every PETSc object of an instance is destroyed with it.
 ------------------------------------------------------------------------- */
 
@@ -28,11 +31,12 @@ void check(PetscErrorCode ierr, const char *what)
                            std::to_string((int) ierr) + ")");
 }
 
-void start_petsc()
+void start_petsc(MPI_Comm world)
 {
   PetscBool started = PETSC_FALSE;
   check(PetscInitialized(&started), "PetscInitialized");
   if (started) return;
+  PETSC_COMM_WORLD = world;
   static char name[] = "lmp", nosig[] = "-no_signal_handler";
   static char *args[] = {name, nosig, nullptr};
   int argc = 2;
@@ -80,7 +84,7 @@ struct PetscAmg::Impl {
 PetscAmg::PetscAmg(MPI_Comm comm, const std::string &prefix, const std::string &options) :
     d_(std::make_unique<Impl>())
 {
-  start_petsc();
+  start_petsc(comm);
   d_->comm = comm;
   d_->prefix = prefix;
   d_->options = options;

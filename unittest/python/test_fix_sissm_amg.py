@@ -5,12 +5,13 @@ static step in at most 100 force evaluations, agrees with the block precondition
 warn|error|cutback).
 """
 import re
+import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from lammps_run import read_dump, run_deck
+from lammps_run import LMP, mpirun_prefix, parse_thermo, read_dump, run_deck
 from sissm_support import BLOCK, CANTILEVER, CONTINUE, EXPLICIT_LIMIT, FIX_DEFAULTS, positions
 
 REPO = Path(__file__).resolve().parents[2]
@@ -250,3 +251,36 @@ def test_bad_keywords_are_refused(tmp_path, opts, message):
     run = run_deck(CANTILEVER, tmp_path, check=False, variables={
         **SLENDER, **DEFAULTS, "nsissm": 1, "dt_sissm": DT_SLENDER, "opts": opts})
     assert any(message in e for e in run.errors), run.describe()
+
+
+@pytest.mark.mpi
+def test_amg_under_two_partitions(tmp_path):
+    """PETSc starts on the communicator of the LAMMPS instance that uses it: under
+    `-partition 2x1` partition 0 runs precond amg and partition 1 precond block, each a serial
+    run, and both finish with the thermo of the same runs on one process. (Started on
+    MPI_COMM_WORLD, PETSc's collective start waits for the rank of partition 1, which never
+    calls it.) The timeout only guards against a hang."""
+    args = {"nx": 4, "ny": 3, "nz": 3, "vib": 5.0, "vrand": 1.0, "nsteps": 5,
+            "dt": 20.0 * EXPLICIT_LIMIT["block 4x3x3"], **DEFAULTS}
+    serial = {}
+    for p, opts in enumerate(("precond amg", "precond block")):
+        serial[p] = run_deck(BLOCK, tmp_path / f"serial{p}", variables={**args, "opts": opts})
+    work = tmp_path / "partitions"
+    work.mkdir()
+    deck = work / "in.partitions"
+    deck.write_text('variable opts world "precond amg" "precond block"\n'
+                    f"include {BLOCK.resolve()}\n")
+    cmd = mpirun_prefix(2) + [str(LMP), "-partition", "2x1", "-in", str(deck), "-log",
+                              "log.lammps", "-nocite"]
+    for name, value in args.items():
+        if name != "opts":
+            cmd += ["-var", name, str(value)]
+    proc = subprocess.run(cmd, cwd=work, capture_output=True, text=True, timeout=600,
+                          stdin=subprocess.DEVNULL)
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    for p in (0, 1):
+        log = (work / f"log.lammps.{p}").read_text()
+        assert ("precond amg: PETSc PC gamg" in log) == (p == 0)
+        table, ref = parse_thermo(log)[-1], serial[p].thermo[-1]
+        assert table.keys() == ref.keys()
+        assert all(np.array_equal(table[k], ref[k]) for k in ref)

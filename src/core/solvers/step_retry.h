@@ -1,0 +1,73 @@
+// What a step that misses its tolerance does (doc/fix_sissm.rst, keyword unconverged): the
+// retry ladder of an implicit step. In order, each rung only while the step has not converged
+// and the tolerance is not 0 (tolerance 0 asks for every step to use all its iterations: such a
+// step is neither redone nor refused):
+//   1. the step, with the preconditioner that converged the last step;
+//   2. once more from the start of the step when the preconditioner was built in an earlier
+//      step and can be rebuilt now (Preconditioner::refresh());
+//   3. with two preconditioners (precond amg and its fallback, the blocks), once more from the
+//      start with the other one (measured: a free, rotating soft block at 100 x the explicit
+//      limit, where the AMG-preconditioned Newton steps diverge after some steps and the
+//      blocks converge);
+//   4. unconverged cutback [N]: from the start as 2, 4, ... 2^N equal sub-steps, the first
+//      level whose sub-steps all converge ends the step; when none does, the step fails.
+// Then the verdict of the step (step_verdict): converged, or with unconverged warn a warning
+// (once per run) and the step kept, with unconverged error an error.
+
+#ifndef PERISISSM_SOLVERS_STEP_RETRY_H
+#define PERISISSM_SOLVERS_STEP_RETRY_H
+
+#include "solvers/jacobi.h"
+
+namespace PeriSISSM {
+
+enum class Unconverged { warn, error, cutback };
+
+struct RetryPolicy {
+  Unconverged unconverged = Unconverged::cutback;
+  int max_cutback = 4;            // cutback: at most 2^max_cutback sub-steps
+  bool fixed_count = false;       // tolerance 0: no retries, no verdict against the step
+  bool two_preconditioners = false;
+};
+
+// The step as the ladder drives it (implemented by the integrator).
+class StepAttempts {
+ public:
+  // sub-step s (0 .. n-1) of n equal sub-steps of the step, from where the last one ended
+  // (n = 1: the whole step); evaluations() counts the force evaluations it took
+  virtual SolveResult solve(int n, int s) = 0;
+  virtual int evaluations() const = 0;
+  // back to the start of the step (positions, velocities, the time scheme's history)
+  virtual void restore_start() = 0;
+  // rebuild the preconditioner now; false when it has nothing to rebuild
+  virtual bool refresh_preconditioner() = 0;
+  // use the other preconditioner from now on
+  virtual void switch_preconditioner() = 0;
+  // after the sub-steps: the atoms outside the group and the step length as at the step's end
+  virtual void end_cutback() = 0;
+
+ protected:
+  ~StepAttempts() = default;
+};
+
+struct RetryOutcome {
+  SolveResult result;        // of the last solve
+  int evaluations = 0;       // over all attempts
+  int substeps = 1;          // sub-steps of the last level tried (1: not cut back)
+  bool refreshed = false;    // rung 2 was taken
+  bool switched = false;     // rung 3 was taken
+  bool switch_converged = false;    // ... and converged the step
+  bool cut_back = false;            // rung 4 was taken
+  bool cutback_failed = false;      // ... and no level converged: the step fails
+};
+
+RetryOutcome run_retry_ladder(StepAttempts &step, const RetryPolicy &policy);
+
+enum class StepVerdict { converged, warn, error };
+
+// measure against the tolerance the step was held to
+StepVerdict step_verdict(const RetryPolicy &policy, double measure, double tolerance);
+
+}  // namespace PeriSISSM
+
+#endif  // PERISISSM_SOLVERS_STEP_RETRY_H

@@ -1,0 +1,185 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: the nonlinear system of fix sissm's step (see fix_sissm_system.h).
+------------------------------------------------------------------------- */
+
+#include "fix_sissm_system.h"
+
+#include "collision_limit.h"
+#include "fix_sissm.h"
+#include "implicit_forces.h"
+
+#include "solvers/step_tolerance.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "update.h"
+
+#include <cmath>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+/* ----------------------------------------------------------------------
+   Reductions over the world communicator
+------------------------------------------------------------------------- */
+
+void WorldReductions::max(double *values, int n)
+{
+  std::vector<double> all(n);
+  MPI_Allreduce(values, all.data(), n, MPI_DOUBLE, MPI_MAX, world_);
+  for (int k = 0; k < n; k++) values[k] = all[k];
+}
+
+void WorldReductions::sum(long long *values, int n)
+{
+  std::vector<long long> all(n);
+  MPI_Allreduce(values, all.data(), n, MPI_LONG_LONG, MPI_SUM, world_);
+  for (int k = 0; k < n; k++) values[k] = all[k];
+}
+
+double WorldReductions::total_rows() const
+{
+  return (double) lmp_->atom->natoms;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double **SissmSystem::unknowns()
+{
+  return fix_->atom->x;
+}
+
+double **SissmSystem::residual()
+{
+  return fix_->res;
+}
+
+/* ----------------------------------------------------------------------
+   one force evaluation at the current positions: ghost positions, the peri/nosb force density
+   (without energy/virial; the diagonal blocks only when asked), ghost forces folded back
+   (where the pair wrote any), with external implicit the post_force of the other fixes (with
+   v the time scheme's velocity of the iterate, so velocity dependent forces such as fix
+   viscous are implicit too), then the time scheme's residual r_i = rho_i (yhat_i - y_i) + c f_i
+   of the owned atoms of the group into res
+------------------------------------------------------------------------- */
+
+void SissmSystem::evaluate(bool blocks)
+{
+  FixSissm &s = *fix_;
+  Atom *atom = s.atom;
+  evaluations_++;
+  s.comm->forward_comm();
+  if (!s.limiters.empty()) s.limit_path(false);
+  // an iterate of the solver (a probe of a Jacobian product has no blocks): a contact may
+  // change its stiffness here
+  if (blocks)
+    for (CollisionLimit *contact : s.adapting) contact->next_iterate();
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double *rho = atom->rmass;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int groupbit = s.groupbit;
+
+  // an iterate that contact candidates could not follow (the pair's short-range contact, or a
+  // move cut short by the reach of a contact fix's candidates) cannot count as converged
+  contact_incomplete_ = s.forces->contact_follow_motion() < 0 || s.reach_cut;
+  for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
+  s.forces->evaluate(blocks ? s.kblock : nullptr);
+  if (s.forces->ghost_forces()) s.comm->reverse_comm();
+  const bool mixed = s.external_mode == PeriSISSM::ExternalMode::mixed;
+  if (s.external_mode == PeriSISSM::ExternalMode::implicit || mixed) {
+    // the other fixes' force at this iterate, kept in fext (f after minus f before)
+    double **fext = s.fext;
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit) {
+        s.scheme->iterate_velocity(i, s.arrays, v[i]);
+        for (int k = 0; k < 3; k++) fext[i][k] = f[i][k];
+      }
+    for (Fix *fix : s.implicit_fixes) fix->post_force(0);
+    if (blocks)
+      for (CollisionLimit *limit : s.limiters) limit->add_blocks(s.kblock);
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) {
+          if (mixed) f[i][k] += s.flagged[i][k];
+          fext[i][k] = f[i][k] - fext[i][k];
+        }
+  }
+
+  double **res = s.res;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    s.scheme->residual(rho[i], s.yhat[i], x[i], f[i], res[i]);
+    const double r2 = res[i][0] * res[i][0] + res[i][1] * res[i][1] + res[i][2] * res[i][2];
+    if (!std::isfinite(r2))
+      s.error->one(FLERR, "Fix sissm: non-finite position or force of atom {} at step {}",
+                   atom->tag[i], s.update->ntimestep);
+  }
+
+  // kappa auto: the barrier's stiffness balanced against the rest of the step's residual at
+  // its first evaluation, which is redone when the stiffness changed
+  if (s.balance_first) {
+    s.balance_first = 0;
+    bool changed = false;
+    for (CollisionLimit *contact : s.adapting)
+      changed = contact->balance_stiffness(res, s.scheme->force_factor(), groupbit) || changed;
+    if (changed) {
+      // (the redo's move is empty: a cut of the first move still makes the iterate incomplete)
+      const int incomplete = contact_incomplete_;
+      evaluate(blocks);
+      contact_incomplete_ = contact_incomplete_ || incomplete;
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   D_i = rho_i I + h^2 block_i of owned atom i (xx yy zz xy xz yz)
+------------------------------------------------------------------------- */
+
+void SissmSystem::block(int i, double D[6]) const
+{
+  fix_->scheme->block(fix_->atom->rmass[i], fix_->kblock[i], D);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void SissmSystem::check_finite()
+{
+  Atom *atom = fix_->atom;
+  double **x = atom->x;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if ((mask[i] & fix_->groupbit) && !std::isfinite(x[i][0] + x[i][1] + x[i][2]))
+      fix_->error->one(FLERR, "Fix sissm: non-finite position of atom {} at step {}",
+                       atom->tag[i], fix_->update->ntimestep);
+}
+
+/* ----------------------------------------------------------------------
+   the tolerance this step can meet (asked once, after the first evaluation; the round-off
+   floor of solvers/step_tolerance.h, one global max); the first time in a run that the floor
+   exceeds the tolerance, a warning says so
+------------------------------------------------------------------------- */
+
+double SissmSystem::step_tolerance()
+{
+  FixSissm &s = *fix_;
+  const double asked = s.tolerance;
+  const PeriSISSM::StepTolerance t = PeriSISSM::step_tolerance(
+      asked, rows_, s.atom->x, s.kblock, s.scheme->force_factor(), reductions_);
+  s.tol_step = t.tolerance;
+  if (t.roundoff_limited(asked) && !s.warned_roundoff && s.comm->me == 0)
+    s.error->warning(FLERR,
+                     "Fix sissm: at step {} round-off in the atom coordinates (up to {:.3g} from "
+                     "the origin) limits the convergence measure to about {:.3g}, above the "
+                     "tolerance {:.3g}: steps that reach it count as converged (a body nearer "
+                     "the origin, or a smaller time step, allows a tighter tolerance; reported "
+                     "once per run)",
+                     s.update->ntimestep, t.reach, t.floor, asked);
+  if (t.roundoff_limited(asked)) s.warned_roundoff = 1;
+  return s.tol_step;
+}
