@@ -1,0 +1,204 @@
+/* ----------------------------------------------------------------------
+   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
+
+   fix nosb/contact inside fix sissm's implicit steps (collision_limit.h): the start of a
+   (sub-)step (lagged friction at x^n, the force factor), kappa auto's balance and doubling at
+   the solver's iterates, the path of admissible positions (CCD over the candidates and the
+   candidates' reach) and the diagonal stiffness blocks. The rest of the fix (pairs, forces,
+   communication, restart, output) is in fix_nosb_contact.cpp; its header says how the pieces
+   fit together.
+------------------------------------------------------------------------- */
+
+#include "fix_nosb_contact.h"
+
+#include "contact/barrier_potential.h"
+#include "contact/path_limit.h"
+
+#include "atom.h"
+#include "error.h"
+#include "memory.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <algorithm>
+
+using namespace LAMMPS_NS;
+using PeriSISSM::MotionTracker;
+
+/* ----------------------------------------------------------------------
+   kappa auto: a new stiffness (incremental-potential units); the lagged friction's normal
+   forces, proportional to it, follow
+------------------------------------------------------------------------- */
+
+void FixNosbContact::set_kappa_ip(double k)
+{
+  const double ratio = k / stiffness.value();
+  stiffness.set(k);
+  kappa = k / inertia_c;
+  for (PeriSISSM::LaggedPair &p : lagged) p.pair.lambda *= ratio;
+}
+
+/* ----------------------------------------------------------------------
+   kappa auto, at an iterate of fix sissm (the distances of the candidates are current): the
+   doubling of the stiffness from the smallest gap over all ranks
+------------------------------------------------------------------------- */
+
+void FixNosbContact::adapt_at_iterate()
+{
+  iterate_pending = 0;
+  const double gap = distances.smallest_gap(dmin);
+  double all;
+  MPI_Allreduce(&gap, &all, 1, MPI_DOUBLE, MPI_MIN, world);
+  const double k = stiffness.at_iterate(all);
+  if (k != stiffness.value()) set_kappa_ip(k);
+}
+
+/* ----------------------------------------------------------------------
+   kappa auto, after the first evaluation of a fix sissm (sub-)step: the balance against the
+   rest of the residual over the atoms the step moves (the core's balance_sums(), summed over
+   the ranks). When no pair is active the stiffness is the lower bound (no force depends on it)
+------------------------------------------------------------------------- */
+
+bool FixNosbContact::balance_stiffness(double **res, double force_factor, int igroupbit)
+{
+  inertia_c = force_factor;
+  const PeriSISSM::BalanceSums b =
+      PeriSISSM::balance_sums(candidates, distances, atom->x, res, atom->vfrac, atom->mask,
+                              igroupbit, atom->nlocal, dhat, dmin);
+  // sums over the atoms: res V . grad B, |grad B|^2; lagged friction pairs
+  double local[3] = {b.res_dot_grad, b.grad2, (double) lagged.size()}, sums[3];
+  MPI_Allreduce(local, sums, 3, MPI_DOUBLE, MPI_SUM, world);
+  const double k = stiffness.balanced(sums[0], sums[1]);
+  if (k == stiffness.value()) return false;
+  set_kappa_ip(k);
+  // (no active pair and no friction: no force depends on the stiffness, the evaluation stands)
+  return sums[1] > 0.0 || sums[2] > 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   fix sissm starts a (sub-)step of length h at the current positions x^n (ghosts current): the
+   friction of its iterates is lagged here
+------------------------------------------------------------------------- */
+
+void FixNosbContact::begin_step(double h, double c)
+{
+  in_step = 1;
+  step_h = h;
+  if (kappa_auto) {
+    inertia_c = c;
+    kappa = stiffness.value() / inertia_c;
+    stiffness.begin_step();
+  }
+  if (mu == 0.0) return;
+  if (stale) build_candidates();
+  build_lagged();
+}
+
+/* ----------------------------------------------------------------------
+   CollisionLimit (collision_limit.h): fix sissm's path of admissible positions.
+
+   The reference is the positions of the last admissible state, owned and ghost (the indices
+   of the ghosts do not change inside a step: no neighbor list build). A move from it to the
+   current positions is checked pair by pair with additive CCD (core contact/ccd.h: the
+   fraction returned keeps the pair's gap above 0.1 of its gap at the reference, so it never
+   reaches dmin on the straight move), over the candidates: a pair that is not a candidate was
+   farther than dmin + dhat + skin apart at the list build and cannot come within dmin + dhat
+   while no atom has moved skin/2 from there (the file's header), so the move is also limited
+   to that reach. The fraction is the minimum over all pairs and ranks; the owned atoms of the
+   integrator's group go back to it.
+------------------------------------------------------------------------- */
+
+void FixNosbContact::begin_path()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  if (nall > nxref) {
+    nxref = atom->nmax;
+    memory->grow(xref, nxref, 3, "nosb/contact:xref");
+  }
+  double **x = atom->x;
+  for (int i = 0; i < nall; i++)
+    for (int d = 0; d < 3; d++) xref[i][d] = x[i][d];
+  distances.invalidate();
+}
+
+double FixNosbContact::limit_move(int groupbit)
+{
+  if (stale) build_candidates();
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+
+  // pairs: the largest fraction that no candidate pair contradicts
+  const double t_pairs = PeriSISSM::path_limit(candidates, xref, x, dmin, &distances);
+
+  // reach: no atom of the group farther than skin/2 from the list build
+  const double R = MotionTracker::error_distance(neighbor->skin) * (1.0 - 1.0e-9);
+  const MotionTracker::Reach r =
+      motion.reach_limit(xref, x, nlocal, atom->mask, this->groupbit, atom->tag, R);
+  const double t_reach = r.t;
+
+  double mine[2] = {t_pairs, t_reach}, all[2];
+  MPI_Allreduce(mine, all, 2, MPI_DOUBLE, MPI_MIN, world);
+  const double t = std::min(all[0], all[1]);
+  reach_bound = all[1] < 1.0 && all[1] <= all[0];
+  if (reach_bound) {
+    // the atom that set the reach limit (smallest ID among the ranks that found it)
+    const tagint mine_who = (r.atom >= 0 && t_reach == all[1]) ? atom->tag[r.atom] : MAXTAGINT;
+    MPI_Allreduce(&mine_who, &reach_atom, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+    const double mine_far = (mine_who == reach_atom) ? r.from : 0.0;
+    MPI_Allreduce(&mine_far, &reach_moved, 1, MPI_DOUBLE, MPI_MAX, world);
+  }
+  if (t < 1.0)
+    for (int i = 0; i < nlocal; i++)
+      if (atom->mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) x[i][k] = xref[i][k] + t * (x[i][k] - xref[i][k]);
+  return t;
+}
+
+/* ----------------------------------------------------------------------
+   an implicit step that ended where the contact candidates' reach cut it short
+------------------------------------------------------------------------- */
+
+void FixNosbContact::reach_error(const char *integrator)
+{
+  error->all(FLERR,
+             "Fix nosb/contact {}: {} step {} needs atom {} to move farther than half the "
+             "neighbor skin ({:.6g}) from where it was at the last neighbor list build (it was "
+             "{:.6g} from there at the start of the move): the contact candidates cannot follow "
+             "a step that far; use a larger neighbor skin (a step may move the atoms by 3/8 of "
+             "it at least: the lists are built again after a step that moved an atom skin/8) or "
+             "a smaller time step",
+             id, integrator, update->ntimestep, reach_atom, 0.5 * neighbor->skin, reach_moved);
+}
+
+/* ----------------------------------------------------------------------
+   at the end of an implicit step: a new neighbor list before the next step once an atom has
+   moved skin/8 from the last build, so that every step may move the atoms by 3/8 of the skin
+   at least (fix sissm builds it right after its step, before the forces of that step)
+------------------------------------------------------------------------- */
+
+bool FixNosbContact::rebuild_wanted()
+{
+  int farthest;
+  const double most = motion.largest_move2(atom->x, atom->nlocal, atom->mask, groupbit, farthest);
+  double all;
+  MPI_Allreduce(&most, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double trigger = MotionTracker::rebuild_distance(neighbor->skin);
+  return all > trigger * trigger;
+}
+
+/* ----------------------------------------------------------------------
+   the barrier's diagonal stiffness blocks of the owned vertices at the current positions:
+   the 3x3 diagonal blocks of each active pair's Hessian projected to positive semi-definite,
+   divided by the vertex's volume (the force is a density), added to block (xx yy zz xy xz yz)
+------------------------------------------------------------------------- */
+
+void FixNosbContact::add_blocks(double **block)
+{
+  // (the distances of the last force evaluation: these positions, as fix sissm calls this right
+  // after post_force)
+  PeriSISSM::barrier_blocks(candidates, distances, atom->x, atom->vfrac, {kappa, dhat, dmin},
+                            block);
+  // the friction's (positive semi-definite) blocks at the current slip of the step
+  if (!(mu > 0.0) || !in_step || lagged_generation != generation) return;
+  PeriSISSM::friction_blocks(lagged, atom->x, {mu, epsv * step_h}, atom->vfrac, block);
+}
