@@ -35,7 +35,10 @@ template <class T> struct Aligned64 {
   using value_type = T;
   Aligned64() = default;
   template <class U> Aligned64(const Aligned64<U> &) {}
-  T *allocate(size_t n) { return static_cast<T *>(::operator new(n * sizeof(T), std::align_val_t(64))); }
+  T *allocate(size_t n)
+  {
+    return static_cast<T *>(::operator new(n * sizeof(T), std::align_val_t(64)));
+  }
   void deallocate(T *p, size_t) { ::operator delete(p, std::align_val_t(64)); }
   template <class U> bool operator==(const Aligned64<U> &) const { return true; }
   template <class U> bool operator!=(const Aligned64<U> &) const { return false; }
@@ -44,8 +47,7 @@ typedef std::vector<double, Aligned64<double>> Doubles;
 
 double now()
 {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 }    // namespace
 
@@ -63,8 +65,16 @@ int main(int argc, char **argv)
   m.set_type(1, make_material("linear", lame.mu, lame.lambda), 1.0, 1.0);
   m.set_pair(1, 1, 3.0002, false, 0.0);
   m.breaking().configure(
-      1, [](int, int) { return true; }, [](int, int) { return 0.5; },
-      [](int, int) { return 0.25; });
+      1,
+      [](int, int) {
+        return true;
+      },
+      [](int, int) {
+        return 0.5;
+      },
+      [](int, int) {
+        return 0.25;
+      });
   PeriSISSMTest::Cluster c(n, n, n, 3.0002, false, 5u, 0.0, 0.0);
   c.build(m);
   // a small stretch and a ripple, far from breaking
@@ -91,15 +101,31 @@ int main(int argc, char **argv)
   const Families fam = c.families();
 
   enum {
-    STATE_BREAK, STATE_BREAK_SCALAR, STATE, STATE_K, STAB, STAB_SCALAR, FORCE, FORCE_SCALAR,
-    FORCE_BLOCKS, SVD1, SVD2, SVD4, NPASS
+    STATE_BREAK,
+    STATE_BREAK_SCALAR,
+    STATE,
+    STATE_K,
+    STAB,
+    STAB_SCALAR,
+    FORCE,
+    FORCE_SCALAR,
+    FORCE_BLOCKS,
+    SVD1,
+    SVD2,
+    SVD4,
+    NPASS
   };
-  const char *names[NPASS] = {"state, breaking check",   "state, check, scalar",
-                              "state, no check",         "state, no check, k rows",
-                              "stabilization",           "stabilization, scalar",
-                              "force",                   "force, scalar",
+  const char *names[NPASS] = {"state, breaking check",
+                              "state, check, scalar",
+                              "state, no check",
+                              "state, no check, k rows",
+                              "stabilization",
+                              "stabilization, scalar",
+                              "force",
+                              "force, scalar",
                               "force and blocks",
-                              "svd, one at a time",      "svd, two side by side",
+                              "svd, one at a time",
+                              "svd, two side by side",
                               "svd, four (lanes)"};
   // the scalar code of the fused version: without the columns scratch
   ParticleFields scalar = fields;
@@ -139,12 +165,21 @@ int main(int argc, char **argv)
     timed(STATE_K, [&] {
       elastic_state_pass(m, p, fam, c.box, BreakingRule::NOBREAK, true, fields, broke);
     });
-    timed(STAB, [&] { stabilization_pass(m, p, fam, c.box, fields, virial, false); });
-    timed(STAB_SCALAR, [&] { stabilization_pass(m, p, fam, c.box, scalar, virial, false); });
-    timed(FORCE, [&] { elastic_force_pass(p, fam, c.box, fields, virial, nullptr); });
-    timed(FORCE_SCALAR, [&] { elastic_force_pass(p, fam, c.box, scalar, virial, nullptr); });
-    timed(FORCE_BLOCKS,
-          [&] { elastic_force_pass(p, fam, c.box, fields, virial, rows.data()); });
+    timed(STAB, [&] {
+      stabilization_pass(m, p, fam, c.box, fields, virial, false);
+    });
+    timed(STAB_SCALAR, [&] {
+      stabilization_pass(m, p, fam, c.box, scalar, virial, false);
+    });
+    timed(FORCE, [&] {
+      elastic_force_pass(p, fam, c.box, fields, virial, nullptr);
+    });
+    timed(FORCE_SCALAR, [&] {
+      elastic_force_pass(p, fam, c.box, scalar, virial, nullptr);
+    });
+    timed(FORCE_BLOCKS, [&] {
+      elastic_force_pass(p, fam, c.box, fields, virial, rows.data());
+    });
     timed(SVD1, [&] {
       for (size_t i = 0; i < nsvd; i++) svd[i] = fast_signed_svd(turned[i]);
     });
@@ -159,8 +194,8 @@ int main(int argc, char **argv)
   if (!broke.empty()) std::fprintf(stderr, "warning: %zu families lost bonds\n", broke.size());
 
   double lo[NPASS], mid[NPASS];
-  std::printf("%d particles, %d rounds, %s passes; ms per pass: min, median\n", c.nlocal,
-              rounds, fused_passes() ? "fused" : "plain");
+  std::printf("%d particles, %d rounds, %s passes; ms per pass: min, median\n", c.nlocal, rounds,
+              fused_passes() ? "fused" : "plain");
   for (int q = 0; q < NPASS; q++) {
     std::sort(t[q].begin(), t[q].end());
     lo[q] = 1e3 * t[q].front();
@@ -171,12 +206,14 @@ int main(int argc, char **argv)
   const double iter = lo[STATE_K] + lo[STAB] + lo[FORCE_BLOCKS];
   std::printf("explicit step (state with check + stabilization + force): %.2f ms\n", step);
   std::printf("sissm iteration (state with k rows + stabilization + force and blocks): %.2f ms"
-              " = %.3f x the step\n", iter, iter / step);
+              " = %.3f x the step\n",
+              iter, iter / step);
   std::printf("breaking check: %.3f x the state pass without it; blocks: %.3f x the force pass\n",
               lo[STATE_BREAK] / lo[STATE], lo[FORCE_BLOCKS] / lo[FORCE]);
   std::printf("signed SVD of %zu turned F (rotated small strains): ns per matrix alone %.0f,"
-              " two side by side %.0f, four %.0f (%.3f x two)\n", nsvd, 1e6 * lo[SVD1] / nsvd,
-              1e6 * lo[SVD2] / nsvd, 1e6 * lo[SVD4] / nsvd, lo[SVD4] / lo[SVD2]);
+              " two side by side %.0f, four %.0f (%.3f x two)\n",
+              nsvd, 1e6 * lo[SVD1] / nsvd, 1e6 * lo[SVD2] / nsvd, 1e6 * lo[SVD4] / nsvd,
+              lo[SVD4] / lo[SVD2]);
   const double step_scalar = lo[STATE_BREAK_SCALAR] + lo[STAB_SCALAR] + lo[FORCE_SCALAR];
   std::printf("4-wide against scalar (fields.cols given or not): state with check %.3f x,"
               " stabilization %.3f x, force %.3f x; explicit step %.3f x (%.2f ms scalar)\n",

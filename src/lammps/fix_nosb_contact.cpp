@@ -109,12 +109,11 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), kappa_auto(0), inertia_c(0.0),
     iterate_pending(0), mu(0.0), epsv(-1.0), edge_factor(EDGE_FACTOR), longest_edge(0.0),
-    list_cutoff(0.0), list(nullptr), meshfix(nullptr), partners(nullptr), nparticles(0),
-    stale(1), warned_sissm(0), warned_families(0), ccd(1), xref(nullptr), nxref(0),
-    reach_bound(0), reach_moved(0.0), reach_atom(0), in_step(0), step_h(0.0), generation(0),
-    lagged_generation(-1), energy_density(0.0), energy_pairs(0.0), mindist(0.0),
-    nactive{0, 0, 0}, ncandidates(0), nfriction(0), friction_work(0.0), reduced(0),
-    all_energy_density(0.0), all_vector{}
+    list_cutoff(0.0), list(nullptr), meshfix(nullptr), partners(nullptr), nparticles(0), stale(1),
+    warned_sissm(0), warned_families(0), ccd(1), xref(nullptr), nxref(0), reach_bound(0),
+    reach_moved(0.0), reach_atom(0), in_step(0), step_h(0.0), generation(0), lagged_generation(-1),
+    energy_density(0.0), energy_pairs(0.0), mindist(0.0), nactive{0, 0, 0}, ncandidates(0),
+    nfriction(0), friction_work(0.0), reduced(0), all_energy_density(0.0), all_vector{}
 {
   const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k|auto] [friction mu] "
                       "[epsv v] [ccd yes|no]";
@@ -123,8 +122,7 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     const std::string key(arg[iarg]);
     if (key != "dhat" && key != "dmin" && key != "kappa" && key != "ccd" && key != "friction" &&
         key != "epsv")
-      error->all(FLERR, "Illegal fix nosb/contact command: unknown keyword '{}' ({})", key,
-                 usage);
+      error->all(FLERR, "Illegal fix nosb/contact command: unknown keyword '{}' ({})", key, usage);
     if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix nosb/contact " + key, error);
     const char *val = arg[iarg + 1];
     if (key == "dhat")
@@ -228,9 +226,8 @@ void FixNosbContact::init()
 
   const double L = all[0] ? measure_longest_edge(true) : 0.0;
   if (all[0] && !nparticles && !(L > 0.0))
-    error->all(FLERR,
-               "Fix nosb/contact {}: group {} holds no mesh edge and no volumetric particle", id,
-               group->names[igroup]);
+    error->all(FLERR, "Fix nosb/contact {}: group {} holds no mesh edge and no volumetric particle",
+               id, group->names[igroup]);
   longest_edge = L > 0.0 ? std::max(edge_factor * L, L + 2.0 * neighbor->skin) : 0.0;
   list_cutoff = dmin + dhat + 1.5 * longest_edge;
 
@@ -466,7 +463,9 @@ void FixNosbContact::build_candidates()
     }
   };
   if (partners)
-    atoms.were_partners = [this](int a, int b) { return partners->were_partners(a, b); };
+    atoms.were_partners = [this](int a, int b) {
+      return partners->were_partners(a, b);
+    };
   // (minimum image: x0 of a periodic ghost is not shifted)
   atoms.rest_vector = [this](int a, int b) {
     double dx = atom->x0[b][0] - atom->x0[a][0], dy = atom->x0[b][1] - atom->x0[a][1],
@@ -535,8 +534,10 @@ void FixNosbContact::check_motion()
 
 void FixNosbContact::post_force(int /*vflag*/)
 {
-  if (stale) build_candidates();
-  else check_motion();
+  if (stale)
+    build_candidates();
+  else
+    check_motion();
   if (stale)
     error->all(FLERR,
                "Fix nosb/contact {}: the bond families of pair peri/nosb were not built at the "
@@ -557,8 +558,8 @@ void FixNosbContact::post_force(int /*vflag*/)
   if (iterate_pending) adapt_at_iterate();
   const PeriSISSM::BarrierParameters prm{kappa, dhat, dmin};
 
-  const PeriSISSM::BarrierTally t = PeriSISSM::barrier_forces(candidates, distances, x, vfrac,
-                                                              prm, mindist, atom->f);
+  const PeriSISSM::BarrierTally t =
+      PeriSISSM::barrier_forces(candidates, distances, x, vfrac, prm, mindist, atom->f);
   if (t.too_close >= 0) {
     const Candidate &c = candidates[t.too_close];
     std::string atoms = std::to_string(c.tag[0]);
@@ -645,8 +646,7 @@ void FixNosbContact::unpack_forward_comm(int n, int first, double *buf)
 void FixNosbContact::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
-  const double list[4] = {3.0, stiffness.value(), stiffness.bbox_diagonal(),
-                          stiffness.mean_mass()};
+  const double list[4] = {3.0, stiffness.value(), stiffness.bbox_diagonal(), stiffness.mean_mass()};
   const int size = 4 * sizeof(double);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(list, sizeof(double), 4, fp);

@@ -70,29 +70,29 @@ class FixNosbContact : public Fix, public CollisionLimit {
   // (kappa = its value / c, c the scheme's force factor, h^2 for backward Euler)
   int kappa_auto;
   PeriSISSM::AdaptiveStiffness stiffness;
-  double inertia_c;            // c of the step being solved (set_force_factor() before the first)
-  int iterate_pending;         // the next evaluation is an iterate of fix sissm (next_iterate())
-  double mu, epsv;             // friction coefficient (0: none) and slip speed
-  double edge_factor;          // assumed longest edge = edge_factor x the longest at init
-  double longest_edge;         // that assumption (this run)
-  double list_cutoff;          // dmin + dhat + 1.5 longest_edge (neighbor skin added by LAMMPS)
+  double inertia_c;       // c of the step being solved (set_force_factor() before the first)
+  int iterate_pending;    // the next evaluation is an iterate of fix sissm (next_iterate())
+  double mu, epsv;        // friction coefficient (0: none) and slip speed
+  double edge_factor;     // assumed longest edge = edge_factor x the longest at init
+  double longest_edge;    // that assumption (this run)
+  double list_cutoff;     // dmin + dhat + 1.5 longest_edge (neighbor skin added by LAMMPS)
   class NeighList *list;
-  class FixNosbMesh *meshfix;            // nullptr without meshes
-  class BondPartners *partners;          // pair peri/nosb's bond partners; nullptr if none
-  bigint nparticles;                     // volumetric (non-mesh) particles in the group
+  class FixNosbMesh *meshfix;      // nullptr without meshes
+  class BondPartners *partners;    // pair peri/nosb's bond partners; nullptr if none
+  bigint nparticles;               // volumetric (non-mesh) particles in the group
 
   std::vector<PeriSISSM::Candidate> candidates;
-  int stale;                   // the candidates are chosen again at the next force evaluation
-  int warned_sissm;            // the not-collision-free warning under fix sissm was given
-  int warned_families;         // the no-bond-families warning was given
-  PeriSISSM::MotionTracker motion;         // owned positions when the candidates were chosen
+  int stale;              // the candidates are chosen again at the next force evaluation
+  int warned_sissm;       // the not-collision-free warning under fix sissm was given
+  int warned_families;    // the no-bond-families warning was given
+  PeriSISSM::MotionTracker motion;            // owned positions when the candidates were chosen
   PeriSISSM::CandidateDistances distances;    // at the last force evaluation
-  int ccd;                     // keyword ccd: fix sissm limits its moves (CollisionLimit)
-  double **xref;               // the last admissible positions (owned and ghost; begin_path())
+  int ccd;          // keyword ccd: fix sissm limits its moves (CollisionLimit)
+  double **xref;    // the last admissible positions (owned and ghost; begin_path())
   int nxref;
-  int reach_bound;             // the last limit_move() was cut short by the candidates' reach
-  double reach_moved;          // then: how far an atom had moved from the list build
-  tagint reach_atom;           //   which one
+  int reach_bound;       // the last limit_move() was cut short by the candidates' reach
+  double reach_moved;    // then: how far an atom had moved from the list build
+  tagint reach_atom;     //   which one
 
   // friction: the lagged data of the active pairs (each with an owned vertex), built at x^n by
   // begin_step() under fix sissm, or at every evaluation from the current positions otherwise
@@ -103,14 +103,14 @@ class FixNosbContact : public Fix, public CollisionLimit {
   bigint lagged_generation;    // the generation the lagged data's local indices belong to
 
   // results of the last force evaluation (this rank)
-  double energy_density;       // sum of the owned vertices' shares / their volumes
-  double energy_pairs;         // sum of the pair energies (each pair once over all ranks)
-  double mindist;              // smallest distance among the candidates
-  bigint nactive[3];           // pairs within dmin + dhat by type (each once over all ranks)
-  bigint ncandidates;          // candidates (each once over all ranks)
-  bigint nfriction;            // lagged friction pairs (each once over all ranks)
-  double friction_work;        // sum mu lambda f1(y) y over them (each once)
-  int reduced;                 // the global sums below are current
+  double energy_density;    // sum of the owned vertices' shares / their volumes
+  double energy_pairs;      // sum of the pair energies (each pair once over all ranks)
+  double mindist;           // smallest distance among the candidates
+  bigint nactive[3];        // pairs within dmin + dhat by type (each once over all ranks)
+  bigint ncandidates;       // candidates (each once over all ranks)
+  bigint nfriction;         // lagged friction pairs (each once over all ranks)
+  double friction_work;     // sum mu lambda f1(y) y over them (each once)
+  int reduced;              // the global sums below are current
   double all_energy_density, all_vector[9];
 
   void build_candidates();

@@ -114,7 +114,8 @@ int FixNosbFamily::setmask()
 void FixNosbFamily::init()
 {
   if (!model || !force->pair_match("peri/nosb", 1))
-    error->all(FLERR, "Fix nosb/family requires pair_style peri/nosb (it is created by that "
+    error->all(FLERR,
+               "Fix nosb/family requires pair_style peri/nosb (it is created by that "
                "pair style and is not meant to be defined in an input script)");
 
   // a full neighbor list once, to build the families. LAMMPS (4Feb2025) makes a list a
@@ -271,9 +272,9 @@ void FixNosbFamily::build_families()
       if (r == 0.0)
         error->one(FLERR, "Pair peri/nosb: atoms {} and {} are at the same position", tag[i],
                    tag[j]);
-      omega[i][b] = thick ? model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j],
-                                               thick[i], thick[j])
-                          : model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j]);
+      omega[i][b] = thick
+          ? model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j], thick[i], thick[j])
+          : model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j]);
       partner[i][b] = fam[i][b].first;
       jlocal[i][b] = j;
       vinit[i] += omega[i][b];
@@ -520,8 +521,7 @@ void FixNosbFamily::missing_partner(int i, tagint jtag)
              "increase it with comm_modify cutoff (or the neighbor skin), unless the body is "
              "flying apart: time step dt = {:.4g}, estimated stable time step of peri/nosb {:.4g} "
              "at the start of the run (compute nosb/atom column 11)",
-             jtag, atom->tag[i], update->ntimestep, comm->get_comm_cutoff(), update->dt,
-             dtstable0);
+             jtag, atom->tag[i], update->ntimestep, comm->get_comm_cutoff(), update->dt, dtstable0);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -628,10 +628,19 @@ int FixNosbFamily::unpack_exchange(int nlocal, double *buf)
 
 void FixNosbFamily::write_restart(FILE *fp)
 {
-  double list[NGLOBAL] = {(double) RESTART_VERSION, (double) built, (double) maxpartner,
-                          (double) box.periodic[0], (double) box.periodic[1],
-                          (double) box.periodic[2], box.box[0], box.box[1], box.box[2],
-                          box.box[3], box.box[4], box.box[5], ubuf(tagmax0).d};
+  double list[NGLOBAL] = {(double) RESTART_VERSION,
+                          (double) built,
+                          (double) maxpartner,
+                          (double) box.periodic[0],
+                          (double) box.periodic[1],
+                          (double) box.periodic[2],
+                          box.box[0],
+                          box.box[1],
+                          box.box[2],
+                          box.box[3],
+                          box.box[4],
+                          box.box[5],
+                          ubuf(tagmax0).d};
   if (comm->me == 0) {
     int size = NGLOBAL * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
@@ -707,8 +716,7 @@ int FixNosbFamily::size_restart(int i)
 
 /* ---------------------------------------------------------------------- */
 
-int FixNosbFamily::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
-                                     int * /*pbc*/)
+int FixNosbFamily::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
   for (int k = 0; k < n; k++) buf[k] = sdiag[list[k]];
   return n;

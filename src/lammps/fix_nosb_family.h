@@ -87,20 +87,20 @@ class FixNosbFamily : public Fix {
   // The reference bond is not stored: xi = x0_j - x0_i (x0 = positions when the families
   // were built), with the minimum image convention in periodic boxes (the x0 of a periodic
   // ghost image is not shifted).
-  int built;          // 1 once families exist (built at the first run, kept in restarts)
-  int maxpartner;     // largest family (bond slots per atom)
-  int *npartner;      // bond slots of each atom (broken ones included until migration)
-  tagint **partner;   // partner tags, 0 = broken bond
-  double **omega;     // per slot: bond weight omega = w beta V_j (pair peri/nosb)
-  double **kinv;      // K^-1 (row-major 3x3) of each atom; zeros when K is singular
-  int *kregular;      // 1 if K is regular (F defined), 0 otherwise
-  double *vinit;      // sum of omega over the initial family (damage reference)
-  double *lamref;     // largest eigenvalue of the initial K (reference of the singularity test)
-  tagint *owntag;     // the atom's own ID when its family was stored (detects renumbering)
-  int **jlocal;       // local index (closest image) of each partner of each owned atom,
-                      //   -1 for broken bonds; refreshed after every neighbor list build
+  int built;           // 1 once families exist (built at the first run, kept in restarts)
+  int maxpartner;      // largest family (bond slots per atom)
+  int *npartner;       // bond slots of each atom (broken ones included until migration)
+  tagint **partner;    // partner tags, 0 = broken bond
+  double **omega;      // per slot: bond weight omega = w beta V_j (pair peri/nosb)
+  double **kinv;       // K^-1 (row-major 3x3) of each atom; zeros when K is singular
+  int *kregular;       // 1 if K is regular (F defined), 0 otherwise
+  double *vinit;       // sum of omega over the initial family (damage reference)
+  double *lamref;      // largest eigenvalue of the initial K (reference of the singularity test)
+  tagint *owntag;      // the atom's own ID when its family was stored (detects renumbering)
+  int **jlocal;        // local index (closest image) of each partner of each owned atom,
+                       //   -1 for broken bonds; refreshed after every neighbor list build
   PeriSISSM::ReferenceBox box;    // the box the families were built in (reference bonds)
-  tagint tagmax0;     // largest atom ID when the families were built
+  tagint tagmax0;                 // largest atom ID when the families were built
 
  protected:
   const PeriSISSM::Model *model;

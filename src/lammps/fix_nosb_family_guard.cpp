@@ -121,8 +121,8 @@ void FixNosbFamily::check_motion(int converged)
   double one[8] = {NONE, NONE, NONE, NONE, NONE, NONE, NONE, NONE}, all[8];
   for (int i = 0; i < nlocal; i++) {
     const double *xi = x[i];
-    const double sum = xi[0] + xi[1] + xi[2] + v[i][0] + v[i][1] + v[i][2] + f[i][0] +
-        f[i][1] + f[i][2];
+    const double sum =
+        xi[0] + xi[1] + xi[2] + v[i][0] + v[i][1] + v[i][2] + f[i][0] + f[i][1] + f[i][2];
     if (!std::isfinite(sum)) {
       one[0] = std::max(one[0], -(double) tag[i]);
       continue;
@@ -130,8 +130,8 @@ void FixNosbFamily::check_motion(int converged)
     if (anypbc) {
       // fractional coordinates: Domain::pbc() can bring back atoms within [-1, 2)
       const double d0 = xi[0] - lo[0], d1 = xi[1] - lo[1], d2 = xi[2] - lo[2];
-      const double l[3] = {hinv[0] * d0 + hinv[5] * d1 + hinv[4] * d2,
-                           hinv[1] * d1 + hinv[3] * d2, hinv[2] * d2};
+      const double l[3] = {hinv[0] * d0 + hinv[5] * d1 + hinv[4] * d2, hinv[1] * d1 + hinv[3] * d2,
+                           hinv[2] * d2};
       for (int d = 0; d < 3; d++)
         if (pbc[d] && (l[d] < -1.0 || l[d] >= 2.0)) one[1] = std::max(one[1], -(double) tag[i]);
     }
@@ -148,8 +148,8 @@ void FixNosbFamily::check_motion(int converged)
   // cutoff, over the box plus the ghost cutoff at both ends
 
   double span[3], bins = 1.0;
-  const double binsize =
-      neighbor->binsizeflag ? neighbor->binsize_user : 0.5 * neighbor->cutneighmax;
+  const double binsize = neighbor->binsizeflag ? neighbor->binsize_user
+                                               : 0.5 * neighbor->cutneighmax;
   for (int d = 0; d < 3; d++) {
     double blo = domain->boxlo[d], bhi = domain->boxhi[d];
     if (!pbc[d] && all[5 + d] > NONE) {
@@ -208,8 +208,7 @@ void FixNosbFamily::check_motion(int converged)
     }
   }
   MPI_Allreduce(det, detall, 7, MPI_DOUBLE, MPI_MAX, world);
-  const double speed =
-      sqrt(detall[3] * detall[3] + detall[4] * detall[4] + detall[5] * detall[5]);
+  const double speed = sqrt(detall[3] * detall[3] + detall[4] * detall[4] + detall[5] * detall[5]);
 
   const std::string cause = likely_cause(converged);
   const bigint step = update->ntimestep;

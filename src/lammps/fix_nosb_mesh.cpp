@@ -47,23 +47,27 @@ static constexpr int NOUTPUT = 6;
 /* ---------------------------------------------------------------------- */
 
 FixNosbMesh::FixNosbMesh(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), nmesh(0), ntriangles(0), mesh(nullptr), thickness(nullptr),
-    ntri(nullptr), tri(nullptr), normal0(nullptr), owntag(nullptr), output(nullptr),
-    normals_at_setup(0), data_header(0), data_ntriangles(0), data_nread(0), data_mesh_offset(0),
-    data_first_row(0)
+    Fix(lmp, narg, arg), nmesh(0), ntriangles(0), mesh(nullptr), thickness(nullptr), ntri(nullptr),
+    tri(nullptr), normal0(nullptr), owntag(nullptr), output(nullptr), normals_at_setup(0),
+    data_header(0), data_ntriangles(0), data_nread(0), data_mesh_offset(0), data_first_row(0)
 {
   if (narg != 3)
     error->all(FLERR, "Illegal fix nosb/mesh command: no arguments expected, got '{}'", arg[3]);
   if (igroup != 0)
-    error->all(FLERR, "Fix nosb/mesh must be defined for group all (it holds every mesh of the "
-               "deck), got group {}", arg[1]);
+    error->all(FLERR,
+               "Fix nosb/mesh must be defined for group all (it holds every mesh of the "
+               "deck), got group {}",
+               arg[1]);
   if (!atom->tag_enable || atom->map_style == Atom::MAP_NONE)
-    error->all(FLERR, "Fix nosb/mesh requires atom IDs and an atom map: use atom_modify map "
+    error->all(FLERR,
+               "Fix nosb/mesh requires atom IDs and an atom map: use atom_modify map "
                "array (or hash) before the box is created");
   for (const auto &other : modify->get_fix_by_style("^nosb/mesh$"))
     if (other != this)
-      error->all(FLERR, "Fix nosb/mesh {}: fix {} of that style exists already; a deck has one "
-                 "(it holds every mesh)", id, other->id);
+      error->all(FLERR,
+                 "Fix nosb/mesh {}: fix {} of that style exists already; a deck has one "
+                 "(it holds every mesh)",
+                 id, other->id);
 
   restart_global = 1;
   restart_peratom = 1;
@@ -441,8 +445,9 @@ PeriSISSM::VertexArrays<tagint> FixNosbMesh::rows() const
 double FixNosbMesh::memory_usage()
 {
   const double nmax = atom->nmax;
-  return nmax * (2.0 * sizeof(int) + sizeof(tagint) + (4.0 + NOUTPUT) * sizeof(double) +
-                 2.0 * MAXTRI * sizeof(tagint));
+  return nmax *
+      (2.0 * sizeof(int) + sizeof(tagint) + (4.0 + NOUTPUT) * sizeof(double) +
+       2.0 * MAXTRI * sizeof(tagint));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -586,8 +591,7 @@ int FixNosbMesh::size_restart(int i)
    forward communication of the reference normals (set_reference_normals)
 ------------------------------------------------------------------------- */
 
-int FixNosbMesh::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
-                                   int * /*pbc*/)
+int FixNosbMesh::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
   int m = 0;
   for (int l = 0; l < n; l++) {

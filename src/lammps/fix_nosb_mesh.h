@@ -94,25 +94,25 @@ class FixNosbMesh : public Fix {
   void set_vertex(int i, int id, double t, int n, const tagint (*others)[2]);
 
   // state (per atom: owned and ghost rows unless said otherwise)
-  int nmesh;           // number of meshes read (mesh ids are 1..nmesh)
-  bigint ntriangles;   // number of triangles of all meshes (all ranks)
-  int *mesh;           // mesh id of the atom, 0 = not a mesh vertex
-  double *thickness;   // thickness of its mesh, 0 for non-mesh atoms
-  int *ntri;           // number of triangles at the atom (0..MAXTRI)
-  tagint ***tri;       // tri[i][k][0], tri[i][k][1]: IDs of the other two vertices of triangle
-                       //   k of atom i, in the triangle's orientation: (i, tri[i][k][0],
-                       //   tri[i][k][1]) is the file's vertex order rotated to start at i
-  double **normal0;    // reference unit normal (owned and ghost rows); 0 until set
+  int nmesh;            // number of meshes read (mesh ids are 1..nmesh)
+  bigint ntriangles;    // number of triangles of all meshes (all ranks)
+  int *mesh;            // mesh id of the atom, 0 = not a mesh vertex
+  double *thickness;    // thickness of its mesh, 0 for non-mesh atoms
+  int *ntri;            // number of triangles at the atom (0..MAXTRI)
+  tagint ***tri;        // tri[i][k][0], tri[i][k][1]: IDs of the other two vertices of triangle
+                        //   k of atom i, in the triangle's orientation: (i, tri[i][k][0],
+                        //   tri[i][k][1]) is the file's vertex order rotated to start at i
+  double **normal0;     // reference unit normal (owned and ghost rows); 0 until set
 
  protected:
-  tagint *owntag;      // the atom's ID when its triangles were stored (detects renumbering)
-  double **output;     // per-atom array: mesh, thickness, ntri, normal0 x y z (owned rows)
-  int normals_at_setup;    // fix_modify normals yes: set missing normal0 at each run's setup
-  int data_header;         // read_data: 1 once the header line of this read was seen
-  bigint data_ntriangles;  // read_data: triangles announced by the header
-  bigint data_nread;       // read_data: section lines read so far
-  int data_mesh_offset;    // read_data: added to the mesh ids of the data file
-  int data_first_row;      // read_data: atoms from this row on are new (no data yet)
+  tagint *owntag;            // the atom's ID when its triangles were stored (detects renumbering)
+  double **output;           // per-atom array: mesh, thickness, ntri, normal0 x y z (owned rows)
+  int normals_at_setup;      // fix_modify normals yes: set missing normal0 at each run's setup
+  int data_header;           // read_data: 1 once the header line of this read was seen
+  bigint data_ntriangles;    // read_data: triangles announced by the header
+  bigint data_nread;         // read_data: section lines read so far
+  int data_mesh_offset;      // read_data: added to the mesh ids of the data file
+  int data_first_row;        // read_data: atoms from this row on are new (no data yet)
   std::unordered_set<int> data_rows;    // read_data: rows set by the section (set_arrays)
 
   PeriSISSM::VertexArrays<tagint> rows() const;    // the per-atom arrays (core mesh/)

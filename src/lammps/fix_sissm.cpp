@@ -94,17 +94,15 @@ bool is_keyword(const char *word)
 FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV),
     precond_type(kDefaultAmg ? PRECOND_AMG : PRECOND_BLOCK), precond_given(0), maxiter(100),
-    tolerance(1.0e-6), relax(0), implicit_external(1),
-    external_mode(PeriSISSM::ExternalMode::none), dtv(0.0), tol_step(1.0e-6),
-    last_iterations(0), last_measure(0.0), nsteps_run(0), iterations_run(0), unconverged_run(0),
-    last_substeps(1), last_newton(0), last_krylov(0), cutback_run(0), fallback_run(0),
-    warned_fallback(0), block_first(0), warned(0), warned_roundoff(0), nmax(0),
-    fint(nullptr),
-    fext(nullptr), flagged(nullptr),
-    yn(nullptr), yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr),
-    xbase(nullptr), rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr),
-    sdir(nullptr), term(nullptr), moment(nullptr), xstart(nullptr), vstart(nullptr),
-    hstart(nullptr), vn(nullptr), fstart(nullptr), gnode(nullptr), psize(nullptr)
+    tolerance(1.0e-6), relax(0), implicit_external(1), external_mode(PeriSISSM::ExternalMode::none),
+    dtv(0.0), tol_step(1.0e-6), last_iterations(0), last_measure(0.0), nsteps_run(0),
+    iterations_run(0), unconverged_run(0), last_substeps(1), last_newton(0), last_krylov(0),
+    cutback_run(0), fallback_run(0), warned_fallback(0), block_first(0), warned(0),
+    warned_roundoff(0), nmax(0), fint(nullptr), fext(nullptr), flagged(nullptr), yn(nullptr),
+    yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr), xbase(nullptr),
+    rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr), sdir(nullptr),
+    term(nullptr), moment(nullptr), xstart(nullptr), vstart(nullptr), hstart(nullptr), vn(nullptr),
+    fstart(nullptr), gnode(nullptr), psize(nullptr)
 {
   ncols = 0;
   hist = nullptr;
@@ -144,16 +142,20 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
       iarg += 2;
     } else if (strcmp(arg[iarg], "solver") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm solver", error);
-      if (strcmp(arg[iarg + 1], "jacobi") == 0) solver = JACOBI;
-      else if (strcmp(arg[iarg + 1], "krylov") == 0) solver = KRYLOV;
+      if (strcmp(arg[iarg + 1], "jacobi") == 0)
+        solver = JACOBI;
+      else if (strcmp(arg[iarg + 1], "krylov") == 0)
+        solver = KRYLOV;
       else
         error->all(FLERR, "Illegal fix sissm command: solver must be jacobi or krylov, got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
     } else if (strcmp(arg[iarg], "external") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm external", error);
-      if (strcmp(arg[iarg + 1], "implicit") == 0) implicit_external = 1;
-      else if (strcmp(arg[iarg + 1], "lagged") == 0) implicit_external = 0;
+      if (strcmp(arg[iarg + 1], "implicit") == 0)
+        implicit_external = 1;
+      else if (strcmp(arg[iarg + 1], "lagged") == 0)
+        implicit_external = 0;
       else
         error->all(FLERR,
                    "Illegal fix sissm command: external must be implicit or lagged, got '{}'",
@@ -168,8 +170,10 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     } else if (strcmp(arg[iarg], "precond") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm precond", error);
       precond_given = 1;
-      if (strcmp(arg[iarg + 1], "block") == 0) precond_type = PRECOND_BLOCK;
-      else if (strcmp(arg[iarg + 1], "amg") == 0) precond_type = PRECOND_AMG;
+      if (strcmp(arg[iarg + 1], "block") == 0)
+        precond_type = PRECOND_BLOCK;
+      else if (strcmp(arg[iarg + 1], "amg") == 0)
+        precond_type = PRECOND_AMG;
       else
         error->all(FLERR, "Illegal fix sissm command: precond must be block or amg, got '{}'",
                    arg[iarg + 1]);
@@ -184,9 +188,12 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     } else if (strcmp(arg[iarg], "unconverged") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm unconverged", error);
       using PeriSISSM::Unconverged;
-      if (strcmp(arg[iarg + 1], "warn") == 0) retry.unconverged = Unconverged::warn;
-      else if (strcmp(arg[iarg + 1], "error") == 0) retry.unconverged = Unconverged::error;
-      else if (strcmp(arg[iarg + 1], "cutback") == 0) retry.unconverged = Unconverged::cutback;
+      if (strcmp(arg[iarg + 1], "warn") == 0)
+        retry.unconverged = Unconverged::warn;
+      else if (strcmp(arg[iarg + 1], "error") == 0)
+        retry.unconverged = Unconverged::error;
+      else if (strcmp(arg[iarg + 1], "cutback") == 0)
+        retry.unconverged = Unconverged::cutback;
       else
         error->all(FLERR,
                    "Illegal fix sissm command: unconverged must be warn, error or cutback, "
@@ -229,8 +236,9 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
   if (relax && solver != JACOBI)
     error->all(FLERR, "Illegal fix sissm command: relax yes requires solver jacobi");
   if (solver == JACOBI && precond_given && precond_type == PRECOND_AMG)
-    error->all(FLERR, "Illegal fix sissm command: precond amg needs solver krylov (the jacobi "
-                      "sweeps use the blocks themselves)");
+    error->all(FLERR,
+               "Illegal fix sissm command: precond amg needs solver krylov (the jacobi "
+               "sweeps use the blocks themselves)");
   if (solver == JACOBI) precond_type = PRECOND_BLOCK;
 
   scheme = PeriSISSM::make_time_scheme(scheme_name, rho_inf);
@@ -366,9 +374,9 @@ void FixSissm::reset_dt()
 
 void FixSissm::destroy_arrays()
 {
-  for (double ***a : {&fint, &fext, &flagged, &yn, &yhat, &res, &kblock, &rprev, &dprev, &xbase,
-                      &rbase, &jbase, &cres, &zdir, &pdir, &sdir, &moment, &xstart, &vstart,
-                      &hstart, &vn, &fstart})
+  for (double ***a :
+       {&fint,  &fext, &flagged, &yn,   &yhat, &res,    &kblock, &rprev,  &dprev,  &xbase, &rbase,
+        &jbase, &cres, &zdir,    &pdir, &sdir, &moment, &xstart, &vstart, &hstart, &vn,    &fstart})
     memory->destroy(*a);
   memory->destroy(term);
   memory->destroy(gnode);
@@ -516,8 +524,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   last_newton += result.newton;
   last_krylov += result.krylov;
   if (!forces->group_coupled(groupbit)) {
-    const PeriSISSM::MomentumBalance balance{h, scheme->force_factor(),
-                                             scheme->name() == "euler"};
+    const PeriSISSM::MomentumBalance balance{h, scheme->force_factor(), scheme->name() == "euler"};
     PeriSISSM::balance_momentum(rows, *reductions, balance, x, yn, yhat, flag ? nullptr : fext,
                                 moment);
   }
@@ -671,8 +678,7 @@ void FixSissm::post_integrate()
   if (mixed) lagged_external_force();
   if (lagged)
     for (int i = 0; i < nlocal; i++)
-      for (int k = 0; k < 3; k++)
-        flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
+      for (int k = 0; k < 3; k++) flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
   if (xstart)
     for (int i = 0; i < nlocal; i++) {
       for (int k = 0; k < 3; k++) {
@@ -771,9 +777,9 @@ double FixSissm::memory_usage()
   // the per-atom arrays grow() allocates (PETSc's matrix and hierarchy are not counted)
   // yn, yhat, res, fext, block, moment, size
   int arrays = 4 * 3 + 6 + PeriSISSM::kMomentumColumns + 1;
-  if (fint) arrays += 2 * 3;    // fint, flagged
+  if (fint) arrays += 2 * 3;                             // fint, flagged
   if (xstart) arrays += 2 * 3 + (hstart ? ncols : 0);    // redone steps
-  arrays += ncols + (vn ? 2 * 3 : 0);    // the scheme's history, v^n and f at y^n
+  arrays += ncols + (vn ? 2 * 3 : 0);                    // the scheme's history, v^n and f at y^n
   if (gnode) arrays += 1;
   if (relax) arrays += 6;
   if (solver == KRYLOV) arrays += 7 * 3 + 1;

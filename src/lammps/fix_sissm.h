@@ -80,20 +80,20 @@ class FixSissm : public Fix {
   // block, and a step that amg did not converge)
   PeriSISSM::Preconditioner *precond = nullptr;
   std::unique_ptr<PeriSISSM::Preconditioner> amg_precond, block_precond;
-  std::unique_ptr<PeriSISSM::TimeScheme> scheme;         // which implicit step
-  PeriSISSM::StepArrays arrays;    // the per-atom arrays of the step being solved
-  int ncols;            // the scheme's per-atom history columns (0: none)
-  double **hist;        // the scheme's history per atom (grown with atom->nmax)
-  int hist_from_restart;    // 0: a restart file's history is of another scheme: not taken
-  int solver;           // JACOBI sweeps or KRYLOV (Newton-CG)
-  int precond_type;     // PRECOND_BLOCK (the SISSM blocks) or PRECOND_AMG (PETSc)
-  std::string petsc_options;    // keyword petsc: options for PETSc's preconditioner
-  int precond_given;    // the keyword precond was given
+  std::unique_ptr<PeriSISSM::TimeScheme> scheme;    // which implicit step
+  PeriSISSM::StepArrays arrays;                     // the per-atom arrays of the step being solved
+  int ncols;                       // the scheme's per-atom history columns (0: none)
+  double **hist;                   // the scheme's history per atom (grown with atom->nmax)
+  int hist_from_restart;           // 0: a restart file's history is of another scheme: not taken
+  int solver;                      // JACOBI sweeps or KRYLOV (Newton-CG)
+  int precond_type;                // PRECOND_BLOCK (the SISSM blocks) or PRECOND_AMG (PETSc)
+  std::string petsc_options;       // keyword petsc: options for PETSc's preconditioner
+  int precond_given;               // the keyword precond was given
   PeriSISSM::RetryPolicy retry;    // keyword unconverged (solvers/step_retry.h)
-  int maxiter;          // force evaluations per step at most
-  double tolerance;     // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
-  int relax;            // 1: per-particle step factor alpha_i, 0: alpha_i = 1 (jacobi)
-  int implicit_external;    // keyword external: 1 implicit, 0 lagged
+  int maxiter;                     // force evaluations per step at most
+  double tolerance;                // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
+  int relax;                       // 1: per-particle step factor alpha_i, 0: alpha_i = 1 (jacobi)
+  int implicit_external;           // keyword external: 1 implicit, 0 lagged
   std::vector<std::string> lagged_ids;    // keyword lagged: fixes that act once per step
   // how the forces of the other fixes enter the step (decided in init, choose_external(), by
   // the rule of solvers/external_forces.h): NONE there are none; IMPLICIT all re-evaluated at
@@ -108,44 +108,44 @@ class FixSissm : public Fix {
   std::vector<class CollisionLimit *> contacts;
   // contact fixes that adapt their stiffness to the step (kappa auto; among the contacts)
   std::vector<class CollisionLimit *> adapting;
-  int balance_first = 0;    // the next evaluation is the first of a (sub-)step: balance them
-  int reach_cut = 0;    // the last evaluation's move was cut short by a contact's reach
-  std::string external_note;                  // what was last logged about them
+  int balance_first = 0;        // the next evaluation is the first of a (sub-)step: balance them
+  int reach_cut = 0;            // the last evaluation's move was cut short by a contact's reach
+  std::string external_note;    // what was last logged about them
   double dtv;
-  double tol_step;      // the tolerance of the current step (SissmSystem::step_tolerance())
+  double tol_step;    // the tolerance of the current step (SissmSystem::step_tolerance())
 
   // statistics (global vector)
   int last_iterations;
   double last_measure;
   bigint nsteps_run, iterations_run, unconverged_run;
-  int last_substeps;    // sub-steps of the last step (1: not cut back)
+  int last_substeps;               // sub-steps of the last step (1: not cut back)
   int last_newton, last_krylov;    // Newton steps and Krylov iterations of the last step
-  bigint cutback_run;   // steps cut back since the run started
-  bigint fallback_run;  // precond amg: steps redone with the other preconditioner
+  bigint cutback_run;              // steps cut back since the run started
+  bigint fallback_run;             // precond amg: steps redone with the other preconditioner
   int warned_fallback;
-  int block_first;      // precond amg: the blocks converged the last step that amg did not
+  int block_first;    // precond amg: the blocks converged the last step that amg did not
 
-  int warned;           // non-convergence already reported in this run
-  int warned_roundoff;  // round-off limit of the tolerance already reported in this run
+  int warned;             // non-convergence already reported in this run
+  int warned_roundoff;    // round-off limit of the tolerance already reported in this run
   int nmax;
-  double **fint;        // internal force density at y^n (captured in pre_reverse; lagged, mixed)
-  double **fext;        // force density of the other fixes at the last evaluation (implicit,
-                        //   mixed: used by the momentum balance; lagged: zero, it is in yhat)
-  double **flagged;     // mixed: force density of the lagged fixes for this step
-  double **yn;          // y^n of owned atoms
-  double **yhat;        // predictor y^n + h v^n (+ h^2 f_ext / rho when lagged)
-  double **res;         // backward-Euler residual of the last evaluation
-  double **kblock;      // implicit block sum_j omega_ij (H_i + H_j + S_ij) per owned atom
-  double **rprev, **dprev;   // relax: residual and correction of the previous sweep
-  double **xbase, **rbase, **jbase, **cres, **zdir, **pdir, **sdir;   // krylov vectors
-  double *term;         // krylov: per-atom terms of a global sum
-  double **moment;      // per-atom terms of the momentum balance
-  double **xstart, **vstart;   // cutback: y^n, v^n of the group; end positions of the others
-  double **hstart;      // the history at the start of the step (redone steps)
+  double **fint;       // internal force density at y^n (captured in pre_reverse; lagged, mixed)
+  double **fext;       // force density of the other fixes at the last evaluation (implicit,
+                       //   mixed: used by the momentum balance; lagged: zero, it is in yhat)
+  double **flagged;    // mixed: force density of the lagged fixes for this step
+  double **yn;         // y^n of owned atoms
+  double **yhat;       // predictor y^n + h v^n (+ h^2 f_ext / rho when lagged)
+  double **res;        // backward-Euler residual of the last evaluation
+  double **kblock;     // implicit block sum_j omega_ij (H_i + H_j + S_ij) per owned atom
+  double **rprev, **dprev;    // relax: residual and correction of the previous sweep
+  double **xbase, **rbase, **jbase, **cres, **zdir, **pdir, **sdir;    // krylov vectors
+  double *term;                       // krylov: per-atom terms of a global sum
+  double **moment;                    // per-atom terms of the momentum balance
+  double **xstart, **vstart;          // cutback: y^n, v^n of the group; end positions of the others
+  double **hstart;                    // the history at the start of the step (redone steps)
   std::vector<double> state_start;    // the scheme's global state at the start of the step
-  double **vn, **fstart;    // schemes with history: v^n, and the force density at y^n
-  double *gnode;        // amg: global node number of each atom (-1: not an unknown)
-  double *psize;        // V^(1/3) of each atom (Rows::size), refreshed at every step
+  double **vn, **fstart;              // schemes with history: v^n, and the force density at y^n
+  double *gnode;                      // amg: global node number of each atom (-1: not an unknown)
+  double *psize;                      // V^(1/3) of each atom (Rows::size), refreshed at every step
   friend class SissmAmg;
   friend class SissmSystem;
   friend class SissmAttempts;

@@ -71,22 +71,22 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   // the pattern's blocks row by row (owned unknowns in order): row r holds blocks
   // row_first_[r] .. row_first_[r+1]-1, the diagonal first, with global columns col_
   std::vector<int> row_first_, col_, rows_;
-  bigint interp_at_ = -1;      // neighbor->lastcall when the hierarchy's interpolation was made
-  bool reinterp_ = false;      // the next set-up makes a new interpolation (a step failed)
-  bigint built_at_ = -1;                // neighbor->lastcall of that build
+  bigint interp_at_ = -1;    // neighbor->lastcall when the hierarchy's interpolation was made
+  bool reinterp_ = false;    // the next set-up makes a new interpolation (a step failed)
+  bigint built_at_ = -1;     // neighbor->lastcall of that build
   int nlocal_ = -1;
   int nodes_ = 0;
   bool logged_ = false;
-  bool stale_ = true;          // set up again at the next prepare()
-  int solves_ = 0;             // solves that used the current set-up
-  bool used_ = false;          // the solve under way applied the hierarchy
-  bool fresh_ = false;         // and set it up
-  bool fresh_interp_ = false;  // and made its aggregates and interpolation
-  bool lagged_ = false;        // the last solve used a hierarchy (or its interpolation) made
-                               //   in an earlier one
+  bool stale_ = true;            // set up again at the next prepare()
+  int solves_ = 0;               // solves that used the current set-up
+  bool used_ = false;            // the solve under way applied the hierarchy
+  bool fresh_ = false;           // and set it up
+  bool fresh_interp_ = false;    // and made its aggregates and interpolation
+  bool lagged_ = false;          // the last solve used a hierarchy (or its interpolation) made
+                                 //   in an earlier one
   bigint setups_ = 0, patterns_ = 0;    // set-ups so far, and those that made a new PETSc PC
-  double set_factor_ = 0.0;    // the time scheme's force factor at the last set-up
-  double baseline_ = 0.0;      // Krylov iterations per Newton step of its first solve
+  double set_factor_ = 0.0;             // the time scheme's force factor at the last set-up
+  double baseline_ = 0.0;               // Krylov iterations per Newton step of its first solve
   std::vector<double> values_, coords_, b_, z_;
   bool pattern_current();
   // numbers the unknowns and builds the pattern; false (all ranks) when it is the one the
@@ -120,8 +120,7 @@ bool SissmAmg::pattern_current()
 {
   Atom *atom = fix_->atom;
   int same = amg_ && built_at_ == fix_->neighbor->lastcall && nlocal_ == atom->nlocal &&
-      first_ == springs_.first && partner_ == springs_.partner &&
-      hinge_vertex_ == hinges_.vertex;
+      first_ == springs_.first && partner_ == springs_.partner && hinge_vertex_ == hinges_.vertex;
   int all = 0;
   MPI_Allreduce(&same, &all, 1, MPI_INT, MPI_MIN, fix_->world);
   return all == 1;
@@ -328,8 +327,10 @@ void SissmAmg::finished(int newton, int krylov, bool converged)
     const double rate = (double) krylov / (newton > 0 ? newton : 1);
     // (a hierarchy that has grown this much worse was made for another configuration: its
     // interpolation too)
-    if (solves_++ == 0) baseline_ = rate;
-    else if (rate > 1.5 * baseline_ + 2.0) stale_ = reinterp_ = true;
+    if (solves_++ == 0)
+      baseline_ = rate;
+    else if (rate > 1.5 * baseline_ + 2.0)
+      stale_ = reinterp_ = true;
     if (!converged) stale_ = true;
   }
   used_ = fresh_ = fresh_interp_ = false;

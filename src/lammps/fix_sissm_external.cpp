@@ -9,9 +9,9 @@
 
 #include "collision_limit.h"
 
+#include "atom.h"
 #include "comm.h"
 #include "error.h"
-#include "atom.h"
 #include "force.h"
 #include "modify.h"
 
@@ -32,11 +32,10 @@ void FixSissm::choose_external()
 {
   for (const std::string &name : lagged_ids) {
     Fix *f = modify->get_fix_by_id(name);
-    if (!f)
-      error->all(FLERR, "Fix sissm {} lagged: no fix with ID {}", id, name);
+    if (!f) error->all(FLERR, "Fix sissm {} lagged: no fix with ID {}", id, name);
     if (!(modify->get_fix_mask(f) & POST_FORCE))
-      error->all(FLERR, "Fix sissm {} lagged: fix {} ({}) adds no force after the pair style",
-                 id, name, f->style);
+      error->all(FLERR, "Fix sissm {} lagged: fix {} ({}) adds no force after the pair style", id,
+                 name, f->style);
   }
   implicit_fixes.clear();
   std::vector<PeriSISSM::ExternalRole> roles;
@@ -135,7 +134,8 @@ void FixSissm::choose_external()
 void FixSissm::capture_internal_force()
 {
   if (external_mode != PeriSISSM::ExternalMode::lagged &&
-      external_mode != PeriSISSM::ExternalMode::mixed) return;
+      external_mode != PeriSISSM::ExternalMode::mixed)
+    return;
   grow();
   double **f = atom->f;
   const int nall = atom->nlocal + atom->nghost;
@@ -201,4 +201,3 @@ void FixSissm::lagged_external_force()
     if (mask[i] & groupbit)
       for (int k = 0; k < 3; k++) flagged[i][k] -= f[i][k];
 }
-

@@ -155,8 +155,8 @@ void SissmSystem::check_finite()
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
     if ((mask[i] & fix_->groupbit) && !std::isfinite(x[i][0] + x[i][1] + x[i][2]))
-      fix_->error->one(FLERR, "Fix sissm: non-finite position of atom {} at step {}",
-                       atom->tag[i], fix_->update->ntimestep);
+      fix_->error->one(FLERR, "Fix sissm: non-finite position of atom {} at step {}", atom->tag[i],
+                       fix_->update->ntimestep);
 }
 
 /* ----------------------------------------------------------------------

@@ -35,8 +35,7 @@ class WorldReductions : public PeriSISSM::Reductions {
 
 class SissmSystem : public PeriSISSM::NonlinearSystem {
  public:
-  SissmSystem(FixSissm *fix, PeriSISSM::Reductions &reductions) :
-      fix_(fix), reductions_(reductions)
+  SissmSystem(FixSissm *fix, PeriSISSM::Reductions &reductions) : fix_(fix), reductions_(reductions)
   {
   }
   // the rows of this step (the group's owned atoms), set before each step

@@ -16,13 +16,12 @@
 namespace PeriSISSM {
 struct BondSprings;
 struct HingeCouplings;
-}
+}    // namespace PeriSISSM
 
 namespace LAMMPS_NS {
 
 class ImplicitForces {
  public:
-
   // an implicit step begins: until end_implicit_step() bonds do not break, and contact pairs
   // that couple an atom of groupbit with one outside it are noted (group_coupled())
   virtual void begin_implicit_step(int groupbit) = 0;

@@ -38,8 +38,8 @@
 #include "fix_nosb_family.h"
 #include "fix_nosb_mesh.h"
 
-#include "materials/moduli.h"
 #include "linalg/fused.h"
+#include "materials/moduli.h"
 #include "membrane/bending.h"
 #include "peri/bond_stiffness.h"
 #include "peri/breaking.h"
@@ -73,13 +73,13 @@ using namespace LAMMPS_NS;
 
 PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     Pair(lmp), family(nullptr), cut(nullptr), contactflag(nullptr),
-    coeffs(new PeriSISSM::CoefficientTable), model_(new PeriSISSM::Model),
-    any_break(0), any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
+    coeffs(new PeriSISSM::CoefficientTable), model_(new PeriSISSM::Model), any_break(0),
+    any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
     contact_crossings(0), hmax(0.0), contact_first(nullptr), contact_neigh(nullptr),
     contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
     track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
-    state_nlocal(-1), nmax(0),
-    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), cols(nullptr), any_bend(0), meshfix(nullptr),
+    state_nlocal(-1), nmax(0), gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr),
+    s0_new(nullptr), cnormal(nullptr), cols(nullptr), any_bend(0), meshfix(nullptr),
     hinges_stale(1), comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
@@ -194,7 +194,9 @@ void PairPeriNosb::init_style()
   family = dynamic_cast<FixNosbFamily *>(modify->get_fix_by_id("NOSB_FAMILY"));
   if (!family)
     family = dynamic_cast<FixNosbFamily *>(modify->add_fix("NOSB_FAMILY all nosb/family"));
-  family->attach(model_.get(), [this]() { neighbor_rebuilt(); });
+  family->attach(model_.get(), [this]() {
+    neighbor_rebuilt();
+  });
 
   // a half neighbor list only for short-range contact (an implicit integrator asks again
   // for the motion tracking in its own init, which follows this one)
@@ -360,7 +362,8 @@ void PairPeriNosb::compute(int eflag, int vflag)
   using PeriSISSM::BreakingRule;
   const int nobreak = !any_break || external_breaking || update->whichflag == 2;
   const int mode = nobreak ? BreakingRule::NOBREAK
-                           : update->setupflag ? BreakingRule::S0ONLY : BreakingRule::BREAK;
+      : update->setupflag  ? BreakingRule::S0ONLY
+                           : BreakingRule::BREAK;
   const PeriSISSM::Particles p = particles();
   PeriSISSM::ParticleFields fields;
   fields.g = gstate;
@@ -378,8 +381,8 @@ void PairPeriNosb::compute(int eflag, int vflag)
   }
   NosbHalo halo(this);
   broke.clear();
-  PeriSISSM::evaluate_bond_terms(*model_, p, family->view(), family->box, mode, block_rows,
-                                 fields, halo, vir, broke);
+  PeriSISSM::evaluate_bond_terms(*model_, p, family->view(), family->box, mode, block_rows, fields,
+                                 halo, vir, broke);
   family->forget_broken(broke);
   if (any_contact && block_rows) add_contact_blocks();
   if (any_bend && meshfix) compute_bending();
@@ -484,8 +487,7 @@ void PairPeriNosb::check_motion(int converged)
 
 /* ---------------------------------------------------------------------- */
 
-int PairPeriNosb::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
-                                    int * /*pbc*/)
+int PairPeriNosb::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
   int m = 0;
   for (int ii = 0; ii < n; ii++)
@@ -516,8 +518,8 @@ void PairPeriNosb::unpack_forward_comm(int n, int first, double *buf)
 double PairPeriNosb::memory_usage()
 {
   using PeriSISSM::ParticleFields;
-  double bytes = (double) nmax * (ParticleFields::NG + ParticleFields::NK + 9 + 2 + ParticleFields::NCOLS) *
-      sizeof(double);
+  double bytes = (double) nmax *
+      (ParticleFields::NG + ParticleFields::NK + 9 + 2 + ParticleFields::NCOLS) * sizeof(double);
   bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
   bytes += (double) hinges.capacity() * sizeof(Hinge);
   const double n = atom->ntypes + 1;

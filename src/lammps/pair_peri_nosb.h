@@ -31,7 +31,7 @@ struct HaloField;
 struct Particles;
 struct MaterialEntry;
 struct Hinge;
-}
+}    // namespace PeriSISSM
 
 namespace LAMMPS_NS {
 
@@ -48,7 +48,7 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   void read_restart(FILE *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
-  int pack_reverse_comm(int, int, double *) override;     // contact blocks of ghost atoms
+  int pack_reverse_comm(int, int, double *) override;    // contact blocks of ghost atoms
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
@@ -103,15 +103,15 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   // ones on every rank; core membrane/bending.h)
   using Hinge = PeriSISSM::Hinge;
   std::vector<Hinge> hinges;
-  int hinges_stale;             // local indices may have changed: build the list again
+  int hinges_stale;    // local indices may have changed: build the list again
   // summary flags
   int any_break, any_contact;
   int passes_reported = 0;    // the bond passes' version was written to the log
-  int external_breaking;    // 1: compute() does not break bonds (inside an implicit step)
-  double **block_rows;      // not null: compute() also sums the SISSM blocks into these rows
-  int contact_groupbit;     // contact pairs crossing this group's boundary are counted
+  int external_breaking;      // 1: compute() does not break bonds (inside an implicit step)
+  double **block_rows;        // not null: compute() also sums the SISSM blocks into these rows
+  int contact_groupbit;       // contact pairs crossing this group's boundary are counted
   bigint contact_crossings;
-  double hmax;              // largest particle size V^(1/3) (contact range)
+  double hmax;                           // largest particle size V^(1/3) (contact range)
   int *contact_first, *contact_neigh;    // short list of contact candidates
   int contact_maxfirst, contact_maxneigh, contact_inum;
   bigint contact_lastcall = -1;    // neighbor->lastcall when the candidates were chosen
@@ -131,20 +131,20 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   double motion_since(double **ref, double *moved, tagint *worst);
   bool contact_reachable(double moved) const;
   double contact_horizon() const;
-  int state_nlocal;         // nlocal when compute() last filled the per-atom state
+  int state_nlocal;    // nlocal when compute() last filled the per-atom state
   enum { RESTART_VERSION = 3 };
 
   // per-atom results of the last compute() (owned atoms; ghosts as communicated), rows of
   // PeriSISSM::ParticleFields
   int nmax;
-  double *gstate;           // F, C, regular flag
-  double *hstate;           // H = (P + Q) K^-1
-  double *kstate;           // implicit stiffness and C (fix sissm)
-  double *wdens;            // energy density
+  double *gstate;    // F, C, regular flag
+  double *hstate;    // H = (P + Q) K^-1
+  double *kstate;    // implicit stiffness and C (fix sissm)
+  double *wdens;     // energy density
   double *s0_new;
-  double *cnormal;          // current normals of membrane particles (decks with membranes only)
-  double *cols;             // scratch of the fused passes: F, then H, by columns
-  std::vector<int> broke;   // atoms that lost bonds in the last compute()
+  double *cnormal;           // current normals of membrane particles (decks with membranes only)
+  double *cols;              // scratch of the fused passes: F, then H, by columns
+  std::vector<int> broke;    // atoms that lost bonds in the last compute()
   const PeriSISSM::HaloField *comm_fields;    // the fields forward_comm sends
   int comm_nfields;
 

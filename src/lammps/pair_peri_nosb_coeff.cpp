@@ -122,8 +122,7 @@ void PairPeriNosb::coeff(int narg, char **arg)
                  k_text);
       break;
     case PeriSISSM::ModuliProblem::SHEAR_NOT_POSITIVE:
-      error->all(FLERR,
-                 "Illegal pair_coeff peri/nosb command: shear modulus G must be > 0, got {}",
+      error->all(FLERR, "Illegal pair_coeff peri/nosb command: shear modulus G must be > 0, got {}",
                  g_text);
       break;
     case PeriSISSM::ModuliProblem::POISSON_OUT_OF_RANGE:
@@ -134,8 +133,7 @@ void PairPeriNosb::coeff(int narg, char **arg)
       break;
   }
   if (c.horizon <= 0.0)
-    error->all(FLERR, "Illegal pair_coeff peri/nosb command: horizon must be > 0, got {}",
-               arg[ih]);
+    error->all(FLERR, "Illegal pair_coeff peri/nosb command: horizon must be > 0, got {}", arg[ih]);
 
   double bend_one = 0.0;
   for (int iarg = ih + 3; iarg < narg; iarg += 2) {
@@ -151,8 +149,7 @@ void PairPeriNosb::coeff(int narg, char **arg)
     if (key == "stabilize") {
       c.cs = coeff_number("stabilize Cs", value, lmp);
       if (c.cs < 0.0)
-        error->all(FLERR,
-                   "Illegal pair_coeff peri/nosb command: stabilize Cs must be >= 0, got {}",
+        error->all(FLERR, "Illegal pair_coeff peri/nosb command: stabilize Cs must be >= 0, got {}",
                    value);
     } else if (key == "break") {
       c.breaks = utils::logical(FLERR, value, false, lmp) != 0;
@@ -161,8 +158,10 @@ void PairPeriNosb::coeff(int narg, char **arg)
     } else if (key == "membrane") {
       c.membrane = utils::logical(FLERR, value, false, lmp) != 0;
     } else if (key == "bend") {
-      if (strcmp(value, "auto") == 0) bend_one = -1.0;
-      else if (strcmp(value, "no") == 0) bend_one = 0.0;
+      if (strcmp(value, "auto") == 0)
+        bend_one = -1.0;
+      else if (strcmp(value, "no") == 0)
+        bend_one = 0.0;
       else {
         bend_one = coeff_number("bend D", value, lmp);
         if (bend_one <= 0.0)
@@ -271,8 +270,8 @@ void PairPeriNosb::s00_from_fracture_energy()
                    "pair_coeff peri/nosb G0 {} for types {} {}: no particles to take the "
                    "particle spacing from",
                    c.g0, i, j);
-      const double s00 = PeriSISSM::s00_from_fracture_energy(c.g0, c.moduli.k, c.moduli.g, c.cs,
-                                                            c.horizon, h);
+      const double s00 =
+          PeriSISSM::s00_from_fracture_energy(c.g0, c.moduli.k, c.moduli.g, c.cs, c.horizon, h);
       if (s00 != c.s00 && comm->me == 0)
         utils::logmesg(lmp,
                        "peri/nosb: types {} {}: G0 = {:.6g} gives s00 = {:.6g} (K = {:.6g}, "

@@ -79,8 +79,10 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
   // candidates from the short list made at the last neighbor list build
   // (built here only if that did not happen, e.g. a compute without a run)
 
-  if (!contact_list_current()) build_contact_list(neighbor->skin);
-  else if (follow_explicit) follow_motion_explicit();
+  if (!contact_list_current())
+    build_contact_list(neighbor->skin);
+  else if (follow_explicit)
+    follow_motion_explicit();
 
   // with SISSM blocks: each pair's block into the rows that get its forces, owned and ghost
   // (added to the blocks by add_contact_blocks(), after the bond terms have set them)

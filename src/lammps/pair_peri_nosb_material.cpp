@@ -64,8 +64,7 @@ PeriSISSM::MaterialEntry PairPeriNosb::read_material(const std::string &file,
       utils::logmesg(lmp, "Reading material file {} with DATE: {}\n", path, parsed.date);
     const auto *hit = parsed.find(name);
     if (!hit)
-      error->all(FLERR,
-                 "pair_coeff peri/nosb material: no material '{}' in {} (it has: {})", name,
+      error->all(FLERR, "pair_coeff peri/nosb material: no material '{}' in {} (it has: {})", name,
                  file, parsed.names());
     entry = PeriSISSM::convert_material(*hit, parsed.units, update->unit_style);
     if (comm->me == 0 && parsed.units != update->unit_style)
@@ -75,8 +74,7 @@ PeriSISSM::MaterialEntry PairPeriNosb::read_material(const std::string &file,
     error->all(FLERR, "pair_coeff peri/nosb material {} {}: {}", file, name, e.what());
   }
   if (comm->me == 0)
-    utils::logmesg(lmp,
-                   "Material {} from {}: K = {:.6g}, G = {:.6g}, density = {:.6g}{}{}\n", name,
+    utils::logmesg(lmp, "Material {} from {}: K = {:.6g}, G = {:.6g}, density = {:.6g}{}{}\n", name,
                    file, entry.bulk, entry.shear, entry.density,
                    entry.g0 > 0.0 ? fmt::format(", G0 = {:.6g}", entry.g0) : std::string(),
                    entry.source.empty() ? std::string() : "\n  source: " + entry.source);
@@ -92,8 +90,9 @@ void PairPeriNosb::check_material_density()
 {
   const int n = atom->ntypes;
   if ((int) material_density.size() <= n) return;
-  if (std::none_of(material_density.begin(), material_density.end(),
-                   [](double d) { return d > 0.0; }))
+  if (std::none_of(material_density.begin(), material_density.end(), [](double d) {
+        return d > 0.0;
+      }))
     return;
   std::vector<double> lo(n + 1, INFINITY), hi(n + 1, -INFINITY);
   for (int i = 0; i < atom->nlocal; i++) {

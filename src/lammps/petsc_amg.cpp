@@ -26,8 +26,8 @@ void check(PetscErrorCode ierr, const char *what)
   if (ierr == 0) return;
   const char *text = nullptr;
   PetscErrorMessage(ierr, &text, nullptr);
-  throw std::runtime_error(std::string("PETSc ") + what + " failed: " +
-                           (text ? text : "unknown error") + " (PETSc error " +
+  throw std::runtime_error(std::string("PETSc ") + what +
+                           " failed: " + (text ? text : "unknown error") + " (PETSc error " +
                            std::to_string((int) ierr) + ")");
 }
 

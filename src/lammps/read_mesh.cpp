@@ -56,12 +56,12 @@ struct Options {
 double number(const char *what, const char *str, LAMMPS *lmp)
 {
   if (!utils::is_double(str))
-    lmp->error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'",
-                    what, str);
+    lmp->error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'", what,
+                    str);
   const double value = utils::numeric(FLERR, str, false, lmp);
   if (!std::isfinite(value))
-    lmp->error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'",
-                    what, str);
+    lmp->error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'", what,
+                    str);
   return value;
 }
 
@@ -82,8 +82,10 @@ int atom_type(const char *str, LAMMPS *lmp)
   const int ntypes = lmp->atom->ntypes;
   const int value = utils::is_integer(type) ? utils::inumeric(FLERR, type, false, lmp) : 0;
   if (value < 1 || value > ntypes)
-    lmp->error->all(FLERR, "Illegal read_mesh command: type must be an atom type from 1 to {} "
-                    "or a type label, got '{}'", ntypes, str);
+    lmp->error->all(FLERR,
+                    "Illegal read_mesh command: type must be an atom type from 1 to {} "
+                    "or a type label, got '{}'",
+                    ntypes, str);
   return value;
 }
 
@@ -130,12 +132,13 @@ Options parse(int narg, char **arg, LAMMPS *lmp)
     } else if (keyword == "rotate") {
       need("rotate", 4);
       opt.place.theta = number("rotate angle theta", arg[iarg + 1], lmp);
-      for (int d = 0; d < 3; d++)
-        opt.place.axis[d] = number("rotate axis", arg[iarg + 2 + d], lmp);
+      for (int d = 0; d < 3; d++) opt.place.axis[d] = number("rotate axis", arg[iarg + 2 + d], lmp);
       const double *r = opt.place.axis;
       if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0)
-        error->all(FLERR, "Illegal read_mesh command: the rotate axis must not be zero, got {} {} "
-                   "{}", arg[iarg + 2], arg[iarg + 3], arg[iarg + 4]);
+        error->all(FLERR,
+                   "Illegal read_mesh command: the rotate axis must not be zero, got {} {} "
+                   "{}",
+                   arg[iarg + 2], arg[iarg + 3], arg[iarg + 4]);
       iarg += 5;
     } else if (keyword == "group") {
       need("group", 1);
@@ -145,8 +148,10 @@ Options parse(int narg, char **arg, LAMMPS *lmp)
       error->all(FLERR, "Illegal read_mesh command: unknown keyword '{}' ({})", keyword, usage);
     }
   }
-  const char *missing = !have_type ? "type" : !have_thickness ? "thickness" :
-                        !have_density ? "density" : nullptr;
+  const char *missing = !have_type ? "type"
+      : !have_thickness            ? "thickness"
+      : !have_density              ? "density"
+                                   : nullptr;
   if (missing)
     error->all(FLERR, "Illegal read_mesh command: keyword {} is required ({})", missing, usage);
   return opt;
@@ -204,13 +209,16 @@ PeriSISSM::TriangleMesh read_mesh_file(const std::string &file, LAMMPS *lmp)
 void ReadMesh::command(int narg, char **arg)
 {
   if (!domain->box_exist)
-    error->all(FLERR, "Read_mesh command before the simulation box is defined: create the box "
+    error->all(FLERR,
+               "Read_mesh command before the simulation box is defined: create the box "
                "first (region and create_box)");
   if (!atom->peri_flag || !atom->vfrac_flag || !atom->rmass_flag || !atom->x0)
-    error->all(FLERR, "Read_mesh requires atom_style peri (per-atom volume, density and "
+    error->all(FLERR,
+               "Read_mesh requires atom_style peri (per-atom volume, density and "
                "reference position): write atom_style peri before the box is created");
   if (atom->map_style == Atom::MAP_NONE)
-    error->all(FLERR, "Read_mesh requires an atom map (triangles are stored by atom ID): write "
+    error->all(FLERR,
+               "Read_mesh requires an atom map (triangles are stored by atom ID): write "
                "atom_modify map array (or hash) before the box is created");
   if (domain->dimension != 3) error->all(FLERR, "Read_mesh requires a 3d simulation");
 
@@ -228,7 +236,8 @@ void ReadMesh::command(int narg, char **arg)
                "read_mesh (as for create_atoms){}",
                restored ? fmt::format(", and re-specify 'fix {} all nosb/mesh' right after "
                                       "read_restart so that the meshes of the restart file are "
-                                      "kept", restored->id)
+                                      "kept",
+                                      restored->id)
                         : "");
   }
 
@@ -285,8 +294,8 @@ void ReadMesh::command(int narg, char **arg)
                    "outside the box in {}{} (boundary f: the box is {} to {}{}): enlarge the "
                    "box, or move the mesh with offset, scale or rotate",
                    k + 1, opt.file, mesh.vertex_line[k], x[k][0], x[k][1], x[k][2], "xyz"[d],
-                   triclinic ? " (fractional coordinate of the triclinic box)" : "",
-                   lo, hi, side ? ", its upper face excluded" : "");
+                   triclinic ? " (fractional coordinate of the triclinic box)" : "", lo, hi,
+                   side ? ", its upper face excluded" : "");
       c[d] = side ? std::nextafter(hi, lo) : lo;
       grows = 1;
     }
@@ -349,8 +358,10 @@ void ReadMesh::command(int narg, char **arg)
   bigint nblocal = atom->nlocal;
   MPI_Allreduce(&nblocal, &atom->natoms, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   if (atom->natoms != natoms_previous + nvertex)
-    error->all(FLERR, "Read_mesh: {} of the {} vertices were created (a vertex on no or on two "
-               "sub-domains)", atom->natoms - natoms_previous, nvertex);
+    error->all(FLERR,
+               "Read_mesh: {} of the {} vertices were created (a vertex on no or on two "
+               "sub-domains)",
+               atom->natoms - natoms_previous, nvertex);
   atom->tag_check();
   if (atom->map_style != Atom::MAP_NONE) {
     atom->map_init();
@@ -376,7 +387,6 @@ void ReadMesh::command(int narg, char **arg)
     utils::logmesg(lmp,
                    "Read mesh {}: {} vertices, {} triangles, area {:.8g}, thickness {:.8g}, mesh "
                    "id {}\n  atom IDs {} to {}, type {}{}\n",
-                   opt.file, nvertex, ntriangle, total_area, opt.thickness, meshid,
-                   maxtag_all + 1, maxtag_all + nvertex, opt.type,
-                   opt.group.empty() ? "" : ", group " + opt.group);
+                   opt.file, nvertex, ntriangle, total_area, opt.thickness, meshid, maxtag_all + 1,
+                   maxtag_all + nvertex, opt.type, opt.group.empty() ? "" : ", group " + opt.group);
 }

@@ -68,4 +68,4 @@ BalanceSums balance_sums(const std::vector<Candidate> &candidates,
   return s;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

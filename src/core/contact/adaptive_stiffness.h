@@ -69,6 +69,6 @@ BalanceSums balance_sums(const std::vector<Candidate> &candidates,
                          const double *const *res, const double *volume, const int *mask,
                          int groupbit, int nlocal, double dhat, double dmin);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_ADAPTIVE_STIFFNESS_H
+#endif    // PERISISSM_CONTACT_ADAPTIVE_STIFFNESS_H

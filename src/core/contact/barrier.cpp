@@ -71,36 +71,42 @@ double distance_barrier_second_derivative(double D, double dmin, double dhat)
 
 namespace {
 
-// True when a squared distance D is within the barrier's reach, dmin + dhat.
-bool acts(double D, const BarrierParameters &prm)
+  // True when a squared distance D is within the barrier's reach, dmin + dhat.
+  bool acts(double D, const BarrierParameters &prm)
+  {
+    const double reach = prm.dmin + prm.dhat;
+    return D < reach * reach;
+  }
+
+  // kappa B(D(x)) from the distance's gradient and Hessian: gradient kappa B' dD, Hessian
+  // kappa (B'' dD dD^T + B' d2D).
+  template <int N>
+  Eigen::Matrix<double, N, N> composed_hessian(double D, const Eigen::Matrix<double, N, 1> &dD,
+                                               const Eigen::Matrix<double, N, N> &d2D,
+                                               const BarrierParameters &prm)
+  {
+    const double b1 = distance_barrier_first_derivative(D, prm.dmin, prm.dhat);
+    const double b2 = distance_barrier_second_derivative(D, prm.dmin, prm.dhat);
+    return prm.kappa * (b2 * dD * dD.transpose() + b1 * d2D);
+  }
+
+  template <int N> Eigen::Matrix<double, N, N> psd(const Eigen::Matrix<double, N, N> &H)
+  {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(H);
+    const Eigen::Matrix<double, N, 1> lambda = eig.eigenvalues().cwiseMax(0.0);
+    return eig.eigenvectors() * lambda.asDiagonal() * eig.eigenvectors().transpose();
+  }
+
+}    // namespace
+
+Matrix12d project_to_psd(const Matrix12d &H)
 {
-  const double reach = prm.dmin + prm.dhat;
-  return D < reach * reach;
+  return psd<12>(H);
 }
-
-// kappa B(D(x)) from the distance's gradient and Hessian: gradient kappa B' dD, Hessian
-// kappa (B'' dD dD^T + B' d2D).
-template <int N>
-Eigen::Matrix<double, N, N> composed_hessian(double D, const Eigen::Matrix<double, N, 1> &dD,
-                                             const Eigen::Matrix<double, N, N> &d2D,
-                                             const BarrierParameters &prm)
+Matrix6d project_to_psd(const Matrix6d &H)
 {
-  const double b1 = distance_barrier_first_derivative(D, prm.dmin, prm.dhat);
-  const double b2 = distance_barrier_second_derivative(D, prm.dmin, prm.dhat);
-  return prm.kappa * (b2 * dD * dD.transpose() + b1 * d2D);
+  return psd<6>(H);
 }
-
-template <int N> Eigen::Matrix<double, N, N> psd(const Eigen::Matrix<double, N, N> &H)
-{
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(H);
-  const Eigen::Matrix<double, N, 1> lambda = eig.eigenvalues().cwiseMax(0.0);
-  return eig.eigenvectors() * lambda.asDiagonal() * eig.eigenvectors().transpose();
-}
-
-}  // namespace
-
-Matrix12d project_to_psd(const Matrix12d &H) { return psd<12>(H); }
-Matrix6d project_to_psd(const Matrix6d &H) { return psd<6>(H); }
 
 double point_triangle_barrier_energy(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
                                      const Vector3d &t2, const BarrierParameters &prm)
@@ -109,9 +115,8 @@ double point_triangle_barrier_energy(const Vector3d &p, const Vector3d &t0, cons
   return acts(D, prm) ? prm.kappa * distance_barrier(D, prm.dmin, prm.dhat) : 0.0;
 }
 
-Vector12d point_triangle_barrier_gradient(const Vector3d &p, const Vector3d &t0,
-                                          const Vector3d &t1, const Vector3d &t2,
-                                          const BarrierParameters &prm)
+Vector12d point_triangle_barrier_gradient(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
+                                          const Vector3d &t2, const BarrierParameters &prm)
 {
   const double D = point_triangle_distance2(p, t0, t1, t2);
   if (!acts(D, prm)) return Vector12d::Zero();
@@ -119,9 +124,9 @@ Vector12d point_triangle_barrier_gradient(const Vector3d &p, const Vector3d &t0,
       point_triangle_distance2_gradient(p, t0, t1, t2);
 }
 
-Matrix12d point_triangle_barrier_hessian(const Vector3d &p, const Vector3d &t0,
-                                         const Vector3d &t1, const Vector3d &t2,
-                                         const BarrierParameters &prm, bool project_psd)
+Matrix12d point_triangle_barrier_hessian(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
+                                         const Vector3d &t2, const BarrierParameters &prm,
+                                         bool project_psd)
 {
   const double D = point_triangle_distance2(p, t0, t1, t2);
   if (!acts(D, prm)) return Matrix12d::Zero();
@@ -170,8 +175,9 @@ Matrix12d edge_edge_barrier_hessian(const Vector3d &a0, const Vector3d &a1, cons
     const double B = distance_barrier(D, prm.dmin, prm.dhat);
     const Vector12d dB = distance_barrier_first_derivative(D, prm.dmin, prm.dhat) * dD;
     const Vector12d de = edge_edge_mollifier_gradient(a0, a1, b0, b1, eps);
-    H += prm.kappa * (B * edge_edge_mollifier_hessian(a0, a1, b0, b1, eps) +
-                      de * dB.transpose() + dB * de.transpose());
+    H += prm.kappa *
+        (B * edge_edge_mollifier_hessian(a0, a1, b0, b1, eps) + de * dB.transpose() +
+         dB * de.transpose());
   }
   return project_psd ? psd<12>(H) : H;
 }
@@ -225,4 +231,4 @@ double update_barrier_stiffness(double previous_min_gap, double min_gap, double 
   return kappa;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

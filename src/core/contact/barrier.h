@@ -67,8 +67,8 @@ Matrix12d point_triangle_barrier_hessian(const Eigen::Vector3d &p, const Eigen::
 // kappa e(x) B(D(x)) of an edge-edge pair (a0, a1, b0, b1), e the mollifier with threshold eps
 // (edge_edge_mollifier_threshold() of the rest shape), its gradient and Hessian.
 double edge_edge_barrier_energy(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1,
-                                const Eigen::Vector3d &b0, const Eigen::Vector3d &b1,
-                                double eps, const BarrierParameters &prm);
+                                const Eigen::Vector3d &b0, const Eigen::Vector3d &b1, double eps,
+                                const BarrierParameters &prm);
 Vector12d edge_edge_barrier_gradient(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1,
                                      const Eigen::Vector3d &b0, const Eigen::Vector3d &b1,
                                      double eps, const BarrierParameters &prm);
@@ -114,6 +114,6 @@ double initial_barrier_stiffness(double bbox_diagonal, double dhat, double avera
 double update_barrier_stiffness(double previous_min_gap, double min_gap, double kappa_max,
                                 double kappa, double bbox_diagonal);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_BARRIER_H
+#endif    // PERISISSM_CONTACT_BARRIER_H

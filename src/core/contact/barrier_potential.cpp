@@ -79,4 +79,4 @@ void add_diagonal_blocks(const Matrix12d &H, int nv, const int *own, const doubl
   }
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -47,6 +47,6 @@ void barrier_blocks(const std::vector<Candidate> &candidates, const CandidateDis
 void add_diagonal_blocks(const Matrix12d &H, int nv, const int *own, const double *volume,
                          double **block);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_BARRIER_POTENTIAL_H
+#endif    // PERISISSM_CONTACT_BARRIER_POTENTIAL_H

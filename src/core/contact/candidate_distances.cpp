@@ -7,9 +7,8 @@ using Eigen::Vector3d;
 
 namespace PeriSISSM {
 
-void CandidateDistances::evaluate(const std::vector<Candidate> &candidates,
-                                  const double *const *x, int nall, std::int64_t generation,
-                                  double range, double nearest)
+void CandidateDistances::evaluate(const std::vector<Candidate> &candidates, const double *const *x,
+                                  int nall, std::int64_t generation, double range, double nearest)
 {
   const bool bounded = xlast_generation == generation && distance.size() == candidates.size() &&
       xlast.size() >= 3 * (std::size_t) nall;
@@ -55,4 +54,4 @@ double CandidateDistances::smallest_gap(double dmin) const
   return gap;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

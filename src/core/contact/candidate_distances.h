@@ -45,10 +45,10 @@ class CandidateDistances {
   std::vector<double> distance;
   std::vector<char> exact_;
   bool valid_ = false;
-  std::vector<double> xlast;          // the positions of the last evaluation (3 per atom)
+  std::vector<double> xlast;    // the positions of the last evaluation (3 per atom)
   std::int64_t xlast_generation = -1;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_CANDIDATE_DISTANCES_H
+#endif    // PERISISSM_CONTACT_CANDIDATE_DISTANCES_H

@@ -9,109 +9,109 @@ namespace PeriSISSM {
 
 namespace {
 
-// a bounding sphere (centre, radius) and box (lo, hi)
-struct Bounds {
-  Vector3d centre, lo, hi;
-  double radius;
-};
+  // a bounding sphere (centre, radius) and box (lo, hi)
+  struct Bounds {
+    Vector3d centre, lo, hi;
+    double radius;
+  };
 
-struct Tri {
-  int v[3];
-  Bounds b;
-};
+  struct Tri {
+    int v[3];
+    Bounds b;
+  };
 
-struct Edge {
-  int v[2];
-  Bounds b;
-};
+  struct Edge {
+    int v[2];
+    Bounds b;
+  };
 
-Bounds bounds_of(const Vector3d *y, int n)
-{
-  Bounds b;
-  b.centre = b.lo = b.hi = y[0];
-  for (int k = 1; k < n; k++) {
-    b.centre += y[k];
-    b.lo = b.lo.cwiseMin(y[k]);
-    b.hi = b.hi.cwiseMax(y[k]);
-  }
-  b.centre /= n;
-  double r2 = 0.0;
-  for (int k = 0; k < n; k++) r2 = std::max(r2, (y[k] - b.centre).squaredNorm());
-  b.radius = std::sqrt(r2);
-  return b;
-}
-
-// whether two sets are at least r apart by their bounds: their distance is at least the
-// distance of the centres less the radii, and at least the gap between the boxes
-bool apart(const Bounds &a, const Bounds &b, double r)
-{
-  if ((a.centre - b.centre).norm() - a.radius - b.radius >= r) return true;
-  for (int d = 0; d < 3; d++)
-    if (a.lo[d] - b.hi[d] >= r || b.lo[d] - a.hi[d] >= r) return true;
-  return false;
-}
-
-// The triangles and edges at each atom (owned or ghost, vertices at their images closest to
-// it), with their bounds, found once per atom when first needed
-class Primitives {
- public:
-  explicit Primitives(const ContactAtoms &atoms) :
-      a(atoms), tri_at(atoms.nall, -1), edge_at(atoms.nall, -1), tri_end(atoms.nall, 0),
-      edge_end(atoms.nall, 0), around(atoms.nall)
+  Bounds bounds_of(const Vector3d *y, int n)
   {
+    Bounds b;
+    b.centre = b.lo = b.hi = y[0];
+    for (int k = 1; k < n; k++) {
+      b.centre += y[k];
+      b.lo = b.lo.cwiseMin(y[k]);
+      b.hi = b.hi.cwiseMax(y[k]);
+    }
+    b.centre /= n;
+    double r2 = 0.0;
+    for (int k = 0; k < n; k++) r2 = std::max(r2, (y[k] - b.centre).squaredNorm());
+    b.radius = std::sqrt(r2);
+    return b;
   }
 
-  bool member(int k) const { return k >= 0 && a.role[k] == ContactRole::kMeshVertex; }
-  Vector3d point(int k) const { return Vector3d(a.x[k][0], a.x[k][1], a.x[k][2]); }
-
-  void find(int i)
+  // whether two sets are at least r apart by their bounds: their distance is at least the
+  // distance of the centres less the radii, and at least the gap between the boxes
+  bool apart(const Bounds &a, const Bounds &b, double r)
   {
-    if (tri_at[i] >= 0) return;
-    tri_at[i] = (int) tris.size();
-    edge_at[i] = (int) edges.size();
-    others.clear();
-    a.triangles(i, others);
-    const std::int64_t *tag = a.tag;
-    for (const std::array<int, 2> &w : others) {
-      if (w[0] < 0 || w[1] < 0) {
-        missing = tag[i];
-        continue;
-      }
-      if (!member(w[0]) || !member(w[1])) continue;
-      const Vector3d y[3] = {point(i), point(w[0]), point(w[1])};
-      tris.push_back({{i, w[0], w[1]}, bounds_of(y, 3)});
-      for (int e = 0; e < 2; e++) {
-        bool seen = false;
-        for (int g = edge_at[i]; g < (int) edges.size(); g++)
-          seen = seen || tag[edges[g].v[1]] == tag[w[e]];
-        if (seen) continue;
-        const Vector3d ye[2] = {point(i), point(w[e])};
-        edges.push_back({{i, w[e]}, bounds_of(ye, 2)});
-      }
-    }
-    tri_end[i] = (int) tris.size();
-    edge_end[i] = (int) edges.size();
-    // (a sphere about the atom through its farthest edge end, and the box of the triangles)
-    Bounds &u = around[i];
-    u.centre = u.lo = u.hi = point(i);
-    u.radius = 0.0;
-    for (int t = tri_at[i]; t < tri_end[i]; t++) {
-      u.lo = u.lo.cwiseMin(tris[t].b.lo);
-      u.hi = u.hi.cwiseMax(tris[t].b.hi);
-    }
-    for (int e = edge_at[i]; e < edge_end[i]; e++)
-      u.radius = std::max(u.radius, 2.0 * edges[e].b.radius);
+    if ((a.centre - b.centre).norm() - a.radius - b.radius >= r) return true;
+    for (int d = 0; d < 3; d++)
+      if (a.lo[d] - b.hi[d] >= r || b.lo[d] - a.hi[d] >= r) return true;
+    return false;
   }
 
-  const ContactAtoms &a;
-  std::vector<int> tri_at, edge_at;    // first index, -1: not yet
-  std::vector<int> tri_end, edge_end;
-  std::vector<Bounds> around;          // the bounds of all the primitives at an atom
-  std::vector<Tri> tris;
-  std::vector<Edge> edges;
-  std::vector<std::array<int, 2>> others;
-  std::int64_t missing = 0;
-};
+  // The triangles and edges at each atom (owned or ghost, vertices at their images closest to
+  // it), with their bounds, found once per atom when first needed
+  class Primitives {
+   public:
+    explicit Primitives(const ContactAtoms &atoms) :
+        a(atoms), tri_at(atoms.nall, -1), edge_at(atoms.nall, -1), tri_end(atoms.nall, 0),
+        edge_end(atoms.nall, 0), around(atoms.nall)
+    {
+    }
+
+    bool member(int k) const { return k >= 0 && a.role[k] == ContactRole::kMeshVertex; }
+    Vector3d point(int k) const { return Vector3d(a.x[k][0], a.x[k][1], a.x[k][2]); }
+
+    void find(int i)
+    {
+      if (tri_at[i] >= 0) return;
+      tri_at[i] = (int) tris.size();
+      edge_at[i] = (int) edges.size();
+      others.clear();
+      a.triangles(i, others);
+      const std::int64_t *tag = a.tag;
+      for (const std::array<int, 2> &w : others) {
+        if (w[0] < 0 || w[1] < 0) {
+          missing = tag[i];
+          continue;
+        }
+        if (!member(w[0]) || !member(w[1])) continue;
+        const Vector3d y[3] = {point(i), point(w[0]), point(w[1])};
+        tris.push_back({{i, w[0], w[1]}, bounds_of(y, 3)});
+        for (int e = 0; e < 2; e++) {
+          bool seen = false;
+          for (int g = edge_at[i]; g < (int) edges.size(); g++)
+            seen = seen || tag[edges[g].v[1]] == tag[w[e]];
+          if (seen) continue;
+          const Vector3d ye[2] = {point(i), point(w[e])};
+          edges.push_back({{i, w[e]}, bounds_of(ye, 2)});
+        }
+      }
+      tri_end[i] = (int) tris.size();
+      edge_end[i] = (int) edges.size();
+      // (a sphere about the atom through its farthest edge end, and the box of the triangles)
+      Bounds &u = around[i];
+      u.centre = u.lo = u.hi = point(i);
+      u.radius = 0.0;
+      for (int t = tri_at[i]; t < tri_end[i]; t++) {
+        u.lo = u.lo.cwiseMin(tris[t].b.lo);
+        u.hi = u.hi.cwiseMax(tris[t].b.hi);
+      }
+      for (int e = edge_at[i]; e < edge_end[i]; e++)
+        u.radius = std::max(u.radius, 2.0 * edges[e].b.radius);
+    }
+
+    const ContactAtoms &a;
+    std::vector<int> tri_at, edge_at;    // first index, -1: not yet
+    std::vector<int> tri_end, edge_end;
+    std::vector<Bounds> around;    // the bounds of all the primitives at an atom
+    std::vector<Tri> tris;
+    std::vector<Edge> edges;
+    std::vector<std::array<int, 2>> others;
+    std::int64_t missing = 0;
+  };
 
 }    // namespace
 
@@ -121,9 +121,15 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
   const std::int64_t *tag = atoms.tag;
   const int nlocal = atoms.nlocal;
   Primitives prim(atoms);
-  auto member = [&](int k) { return prim.member(k); };
-  auto particle = [&](int k) { return atoms.role[k] == ContactRole::kParticle; };
-  auto point = [&](int k) { return prim.point(k); };
+  auto member = [&](int k) {
+    return prim.member(k);
+  };
+  auto particle = [&](int k) {
+    return atoms.role[k] == ContactRole::kParticle;
+  };
+  auto point = [&](int k) {
+    return prim.point(k);
+  };
 
   std::vector<Candidate> found;
   // the pairs closer than reach (tested as they are found: a neighbor list with a wide skin
@@ -142,7 +148,9 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
     const Vector3d y = point(p);
     if (apart(Bounds{y, y, y, 0.0}, t.b, reach)) return;
     int s[3] = {t.v[0], t.v[1], t.v[2]};
-    std::sort(s, s + 3, [tag](int a, int b) { return tag[a] < tag[b]; });
+    std::sort(s, s + 3, [tag](int a, int b) {
+      return tag[a] < tag[b];
+    });
     Candidate c{StencilType::kPointTriangle,
                 {tag[p], tag[s[0]], tag[s[1]], tag[s[2]]},
                 {p, s[0], s[1], s[2]}};
@@ -228,4 +236,4 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
   return prim.missing;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

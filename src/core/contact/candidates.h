@@ -43,9 +43,9 @@ struct Candidate {
   StencilType type;
   std::int64_t tag[4];
   int v[4];
-  double eps = 0.0;                      // edge-edge: the mollifier threshold of the rest shape
-  int own[4] = {-1, -1, -1, -1};         // local indices of its owned vertices (-1: others)
-  bool counts = false;                   // this rank counts it (owns its smallest ID)
+  double eps = 0.0;                 // edge-edge: the mollifier threshold of the rest shape
+  int own[4] = {-1, -1, -1, -1};    // local indices of its owned vertices (-1: others)
+  bool counts = false;              // this rank counts it (owns its smallest ID)
 
   const CollisionStencil &stencil() const { return CollisionStencil::of(type); }
   int nv() const { return type == StencilType::kPointPoint ? 2 : 4; }
@@ -98,6 +98,6 @@ struct ContactAtoms {
 std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list, double reach,
                              std::vector<Candidate> &candidates);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_CANDIDATES_H
+#endif    // PERISISSM_CONTACT_CANDIDATES_H

@@ -33,17 +33,17 @@
 namespace PeriSISSM {
 
 struct CcdOptions {
-  double dmin = 0.0;                 // thickness: the distance the pair must keep (>= 0)
-  double s = 0.1;                    // fraction of the initial gap left at the returned time
-  double t_max = 1.0;                // the step's end
-  long max_iterations = 1000000;     // sub-step cap
+  double dmin = 0.0;                // thickness: the distance the pair must keep (>= 0)
+  double s = 0.1;                   // fraction of the initial gap left at the returned time
+  double t_max = 1.0;               // the step's end
+  long max_iterations = 1000000;    // sub-step cap
 };
 
 // What happened in one query (optional output).
 struct CcdReport {
-  long iterations = 0;               // distance evaluations after the first
-  bool capped = false;               // max_iterations reached: t is the last safe time reached
-  bool initially_close = false;      // the pair started at d <= dmin: t = 0
+  long iterations = 0;             // distance evaluations after the first
+  bool capped = false;             // max_iterations reached: t is the last safe time reached
+  bool initially_close = false;    // the pair started at d <= dmin: t = 0
 };
 
 // The largest fraction t in [0, t_max] of the step that ACCD certifies (see above).
@@ -65,6 +65,6 @@ double point_point_ccd(const Eigen::Vector3d &p, const Eigen::Vector3d &q,
                        const Eigen::Vector3d &dp, const Eigen::Vector3d &dq,
                        const CcdOptions &opt = CcdOptions(), CcdReport *report = nullptr);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_CCD_H
+#endif    // PERISISSM_CONTACT_CCD_H

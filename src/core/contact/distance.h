@@ -106,21 +106,24 @@ PointTriangleType point_triangle_type(const Eigen::Vector3d &p, const Eigen::Vec
 double point_triangle_distance2(const Eigen::Vector3d &p, const Eigen::Vector3d &t0,
                                 const Eigen::Vector3d &t1, const Eigen::Vector3d &t2);
 Vector12d point_triangle_distance2_gradient(const Eigen::Vector3d &p, const Eigen::Vector3d &t0,
-                                            const Eigen::Vector3d &t1,
-                                            const Eigen::Vector3d &t2);
+                                            const Eigen::Vector3d &t1, const Eigen::Vector3d &t2);
 Matrix12d point_triangle_distance2_hessian(const Eigen::Vector3d &p, const Eigen::Vector3d &t0,
-                                           const Eigen::Vector3d &t1,
-                                           const Eigen::Vector3d &t2);
+                                           const Eigen::Vector3d &t1, const Eigen::Vector3d &t2);
 
 // Closest features of the segments a0 a1 and b0 b1: kInterior when the closest points of the two
 // lines lie inside both segments (and the edges are not parallel: |u x v|^2 > 1e-16 |u|^2 |v|^2,
 // u = a1 - a0, v = b1 - b0, see distance.cpp); otherwise the nearest of the four cases "an end
 // point and the other segment", each classified as a point-edge pair.
 enum class EdgeEdgeType {
-  kA0B0, kA0B1, kA1B0, kA1B1,    // two end points
-  kA0B, kA1B,                    // an end point of a and the interior of b
-  kAB0, kAB1,                    // the interior of a and an end point of b
-  kInterior                      // both interiors (line-line)
+  kA0B0,
+  kA0B1,
+  kA1B0,
+  kA1B1,    // two end points
+  kA0B,
+  kA1B,    // an end point of a and the interior of b
+  kAB0,
+  kAB1,        // the interior of a and an end point of b
+  kInterior    // both interiors (line-line)
 };
 EdgeEdgeType edge_edge_type(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1,
                             const Eigen::Vector3d &b0, const Eigen::Vector3d &b1);
@@ -137,8 +140,7 @@ Matrix12d edge_edge_distance2_hessian(const Eigen::Vector3d &a0, const Eigen::Ve
 // ---- the edge-edge mollifier (IPC section 4.3) ----
 
 // eps = 1e-3 |A1 - A0|^2 |B1 - B0|^2 of a pair from its rest positions.
-double edge_edge_mollifier_threshold(const Eigen::Vector3d &a0_rest,
-                                     const Eigen::Vector3d &a1_rest,
+double edge_edge_mollifier_threshold(const Eigen::Vector3d &a0_rest, const Eigen::Vector3d &a1_rest,
                                      const Eigen::Vector3d &b0_rest,
                                      const Eigen::Vector3d &b1_rest);
 // e(c) = (2 - c / eps) c / eps for c < eps, 1 beyond, c = |(a1 - a0) x (b1 - b0)|^2.
@@ -166,6 +168,6 @@ double point_triangle_distance(const Eigen::Vector3d &p, const Eigen::Vector3d &
 double edge_edge_distance(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1,
                           const Eigen::Vector3d &b0, const Eigen::Vector3d &b1);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_DISTANCE_H
+#endif    // PERISISSM_CONTACT_DISTANCE_H

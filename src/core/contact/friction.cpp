@@ -55,62 +55,67 @@ Eigen::Matrix<double, 3, 2> tangent_basis(const Vector3d &n)
 
 namespace {
 
-using Points4 = std::array<Vector3d, 4>;
+  using Points4 = std::array<Vector3d, 4>;
 
-// Parameter of the closest point of the segment e0 e1 to p, clamped to [0, 1] as
-// point_edge_type() clamps it (0 for a segment of zero length).
-double segment_parameter(const Vector3d &p, const Vector3d &e0, const Vector3d &e1)
-{
-  const Vector3d e = e1 - e0;
-  const double ee = e.squaredNorm();
-  if (!(ee > 0.0)) return 0.0;
-  return std::min(1.0, std::max(0.0, (p - e0).dot(e) / ee));
-}
+  // Parameter of the closest point of the segment e0 e1 to p, clamped to [0, 1] as
+  // point_edge_type() clamps it (0 for a segment of zero length).
+  double segment_parameter(const Vector3d &p, const Vector3d &e0, const Vector3d &e1)
+  {
+    const Vector3d e = e1 - e0;
+    const double ee = e.squaredNorm();
+    if (!(ee > 0.0)) return 0.0;
+    return std::min(1.0, std::max(0.0, (p - e0).dot(e) / ee));
+  }
 
-// The pair's data from its points, the signed weights of its classified closest points, its
-// squared distance D (the barrier's, distance.h) and mollifier e, and the plane normal m of its
-// primitives (triangle normal, edges' cross product; 0 if none). Normal: for a point over the
-// face or two edges' interiors (flat), m turned to the side of r = sum w_i x_i (r is parallel
-// to m there, but m carries no cancellation as r -> 0); otherwise r / |r|; m when r = 0.
-// lambda = kappa e |b'(sqrt(D) - dmin)| within reach.
-FrictionPair make_pair(const Points4 &x, int count, const std::array<double, 4> &w, double D,
-                       double e, const Vector3d &m, bool flat, const BarrierParameters &prm)
-{
-  FrictionPair pair;
-  pair.count = count;
-  pair.w = w;
-  Vector3d r = Vector3d::Zero();
-  for (int i = 0; i < count; i++) r += w[i] * x[i];
-  const double rn = r.norm(), mn = m.norm();
-  if (flat && mn > 0.0)
-    pair.normal = (r.dot(m) < 0.0 ? -m : m) / mn;
-  else if (rn > 0.0)
-    pair.normal = r / rn;
-  else if (mn > 0.0)
-    pair.normal = m / mn;
-  pair.T = tangent_basis(pair.normal);
-  const double d = std::sqrt(D), reach = prm.dmin + prm.dhat;
-  if (d < reach)
-    pair.lambda = prm.kappa * e * std::fabs(barrier_first_derivative(d - prm.dmin, prm.dhat));
-  return pair;
-}
+  // The pair's data from its points, the signed weights of its classified closest points, its
+  // squared distance D (the barrier's, distance.h) and mollifier e, and the plane normal m of its
+  // primitives (triangle normal, edges' cross product; 0 if none). Normal: for a point over the
+  // face or two edges' interiors (flat), m turned to the side of r = sum w_i x_i (r is parallel
+  // to m there, but m carries no cancellation as r -> 0); otherwise r / |r|; m when r = 0.
+  // lambda = kappa e |b'(sqrt(D) - dmin)| within reach.
+  FrictionPair make_pair(const Points4 &x, int count, const std::array<double, 4> &w, double D,
+                         double e, const Vector3d &m, bool flat, const BarrierParameters &prm)
+  {
+    FrictionPair pair;
+    pair.count = count;
+    pair.w = w;
+    Vector3d r = Vector3d::Zero();
+    for (int i = 0; i < count; i++) r += w[i] * x[i];
+    const double rn = r.norm(), mn = m.norm();
+    if (flat && mn > 0.0)
+      pair.normal = (r.dot(m) < 0.0 ? -m : m) / mn;
+    else if (rn > 0.0)
+      pair.normal = r / rn;
+    else if (mn > 0.0)
+      pair.normal = m / mn;
+    pair.T = tangent_basis(pair.normal);
+    const double d = std::sqrt(D), reach = prm.dmin + prm.dhat;
+    if (d < reach)
+      pair.lambda = prm.kappa * e * std::fabs(barrier_first_derivative(d - prm.dmin, prm.dhat));
+    return pair;
+  }
 
-}  // namespace
+}    // namespace
 
 // Weights (1, -b0, -b1, -b2), b the barycentric coordinates of the triangle's closest point:
 // the projection's for the face (signed areas over |n|^2, as point_triangle_type() computes
 // them), a segment's parameter for an edge, a 1 for a vertex.
-FrictionPair point_triangle_friction_pair(const Vector3d &p, const Vector3d &t0,
-                                          const Vector3d &t1, const Vector3d &t2,
-                                          const BarrierParameters &prm)
+FrictionPair point_triangle_friction_pair(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
+                                          const Vector3d &t2, const BarrierParameters &prm)
 {
   const Vector3d n = (t1 - t0).cross(t2 - t0);
   std::array<double, 4> w{1.0, 0.0, 0.0, 0.0};
   const PointTriangleType type = point_triangle_type(p, t0, t1, t2);
   switch (type) {
-    case PointTriangleType::kT0: w[1] = -1.0; break;
-    case PointTriangleType::kT1: w[2] = -1.0; break;
-    case PointTriangleType::kT2: w[3] = -1.0; break;
+    case PointTriangleType::kT0:
+      w[1] = -1.0;
+      break;
+    case PointTriangleType::kT1:
+      w[2] = -1.0;
+      break;
+    case PointTriangleType::kT2:
+      w[3] = -1.0;
+      break;
     case PointTriangleType::kE01: {
       const double s = segment_parameter(p, t0, t1);
       w[1] = -(1.0 - s);
@@ -145,21 +150,37 @@ FrictionPair point_triangle_friction_pair(const Vector3d &p, const Vector3d &t0,
 // Interior: s = ((b0 - a0) x v) . n / |n|^2, t = ((b0 - a0) x u) . n / |n|^2, n = u x v (the
 // stationarity of |a0 + s u - b0 - t v|^2 in s and t, solved by Cramer's rule).
 FrictionPair edge_edge_friction_pair(const Vector3d &a0, const Vector3d &a1, const Vector3d &b0,
-                                     const Vector3d &b1, double eps,
-                                     const BarrierParameters &prm)
+                                     const Vector3d &b1, double eps, const BarrierParameters &prm)
 {
   const Vector3d u = a1 - a0, v = b1 - b0, n = u.cross(v);
   double s = 0.0, t = 0.0;
   const EdgeEdgeType type = edge_edge_type(a0, a1, b0, b1);
   switch (type) {
-    case EdgeEdgeType::kA0B0: break;
-    case EdgeEdgeType::kA0B1: t = 1.0; break;
-    case EdgeEdgeType::kA1B0: s = 1.0; break;
-    case EdgeEdgeType::kA1B1: s = t = 1.0; break;
-    case EdgeEdgeType::kA0B: t = segment_parameter(a0, b0, b1); break;
-    case EdgeEdgeType::kA1B: s = 1.0; t = segment_parameter(a1, b0, b1); break;
-    case EdgeEdgeType::kAB0: s = segment_parameter(b0, a0, a1); break;
-    case EdgeEdgeType::kAB1: t = 1.0; s = segment_parameter(b1, a0, a1); break;
+    case EdgeEdgeType::kA0B0:
+      break;
+    case EdgeEdgeType::kA0B1:
+      t = 1.0;
+      break;
+    case EdgeEdgeType::kA1B0:
+      s = 1.0;
+      break;
+    case EdgeEdgeType::kA1B1:
+      s = t = 1.0;
+      break;
+    case EdgeEdgeType::kA0B:
+      t = segment_parameter(a0, b0, b1);
+      break;
+    case EdgeEdgeType::kA1B:
+      s = 1.0;
+      t = segment_parameter(a1, b0, b1);
+      break;
+    case EdgeEdgeType::kAB0:
+      s = segment_parameter(b0, a0, a1);
+      break;
+    case EdgeEdgeType::kAB1:
+      t = 1.0;
+      s = segment_parameter(b1, a0, a1);
+      break;
     case EdgeEdgeType::kInterior: {
       const Vector3d d = b0 - a0;
       const double nn = n.squaredNorm();
@@ -190,8 +211,7 @@ Eigen::Vector2d tangential_displacement(const FrictionPair &pair, const Vector12
   return pair.T.transpose() * r;
 }
 
-double friction_energy(const FrictionPair &pair, const Vector12d &u,
-                       const FrictionParameters &prm)
+double friction_energy(const FrictionPair &pair, const Vector12d &u, const FrictionParameters &prm)
 {
   const double y = tangential_displacement(pair, u).norm();
   return prm.mu * pair.lambda * friction_f0(y, prm.slip_length);
@@ -202,8 +222,8 @@ Vector12d friction_gradient(const FrictionPair &pair, const Vector12d &u,
                             const FrictionParameters &prm)
 {
   const Eigen::Vector2d uT = tangential_displacement(pair, u);
-  const Vector3d f = prm.mu * pair.lambda * friction_f1_over_y(uT.norm(), prm.slip_length) *
-      (pair.T * uT);
+  const Vector3d f =
+      prm.mu * pair.lambda * friction_f1_over_y(uT.norm(), prm.slip_length) * (pair.T * uT);
   Vector12d g = Vector12d::Zero();
   for (int i = 0; i < pair.count; i++) g.segment<3>(3 * i) = pair.w[i] * f;
   return g;
@@ -226,9 +246,8 @@ Matrix12d friction_hessian(const FrictionPair &pair, const Vector12d &u,
   const Eigen::Matrix3d K = prm.mu * pair.lambda * pair.T * M * pair.T.transpose();
   Matrix12d H = Matrix12d::Zero();
   for (int i = 0; i < pair.count; i++)
-    for (int j = 0; j < pair.count; j++)
-      H.block<3, 3>(3 * i, 3 * j) = pair.w[i] * pair.w[j] * K;
+    for (int j = 0; j < pair.count; j++) H.block<3, 3>(3 * i, 3 * j) = pair.w[i] * pair.w[j] * K;
   return H;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

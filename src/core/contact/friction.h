@@ -110,11 +110,11 @@ struct FrictionParameters {
 
 // The lagged data of one pair at x^n (see the top of this file).
 struct FrictionPair {
-  int count = 0;                   // vertices: 4 (point-triangle, edge-edge), 2 (point-point)
-  std::array<double, 4> w{};       // signed weights: sum w_i x_i = c_A - c_B, sum w_i = 0
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();    // unit, from c_B to c_A
+  int count = 0;                // vertices: 4 (point-triangle, edge-edge), 2 (point-point)
+  std::array<double, 4> w{};    // signed weights: sum w_i x_i = c_A - c_B, sum w_i = 0
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();                      // unit, from c_B to c_A
   Eigen::Matrix<double, 3, 2> T = Eigen::Matrix<double, 3, 2>::Zero();    // tangent basis
-  double lambda = 0.0;             // normal force magnitude kappa e |b'(d - dmin)|
+  double lambda = 0.0;    // normal force magnitude kappa e |b'(d - dmin)|
 };
 
 // Builders from the pair's positions at x^n and the barrier's parameters. Inputs: the pair's
@@ -148,13 +148,12 @@ Eigen::Vector2d tangential_displacement(const FrictionPair &pair, const Vector12
 // D = mu lambda f0(|u_T|), its gradient (12; the force is minus it) and its Hessian (12 x 12,
 // positive semi-definite). Inputs: pair (lagged at x^n); u = x - x^n (or v dt explicitly);
 // prm. Outputs: as above, zero in the slots beyond pair.count.
-double friction_energy(const FrictionPair &pair, const Vector12d &u,
-                       const FrictionParameters &prm);
+double friction_energy(const FrictionPair &pair, const Vector12d &u, const FrictionParameters &prm);
 Vector12d friction_gradient(const FrictionPair &pair, const Vector12d &u,
                             const FrictionParameters &prm);
 Matrix12d friction_hessian(const FrictionPair &pair, const Vector12d &u,
                            const FrictionParameters &prm);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_FRICTION_H
+#endif    // PERISISSM_CONTACT_FRICTION_H

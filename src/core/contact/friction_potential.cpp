@@ -41,8 +41,8 @@ Vector12d lagged_slip(const LaggedPair &p, const double *const *x, const double 
 }
 
 FrictionTally friction_forces(const std::vector<LaggedPair> &lagged, const double *const *x,
-                              const double *const *vel, double dt,
-                              const FrictionParameters &prm, const double *volume, double **f)
+                              const double *const *vel, double dt, const FrictionParameters &prm,
+                              const double *volume, double **f)
 {
   FrictionTally t;
   for (const LaggedPair &p : lagged) {
@@ -70,4 +70,4 @@ void friction_blocks(const std::vector<LaggedPair> &lagged, const double *const 
                         p.pair.count, p.own, volume, block);
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

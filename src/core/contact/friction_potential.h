@@ -19,10 +19,10 @@
 namespace PeriSISSM {
 
 struct LaggedPair {
-  int v[4];                 // local indices of the images used at the build
-  int own[4];               // the owned vertices (-1: others)
-  bool counts;              // this rank counts the pair
-  double xn[12];            // the points' positions at the build
+  int v[4];         // local indices of the images used at the build
+  int own[4];       // the owned vertices (-1: others)
+  bool counts;      // this rank counts the pair
+  double xn[12];    // the points' positions at the build
   FrictionPair pair;
 };
 
@@ -43,14 +43,14 @@ struct FrictionTally {
 // The friction force densities of every lagged pair's owned vertices added to f (slip as in
 // lagged_slip()).
 FrictionTally friction_forces(const std::vector<LaggedPair> &lagged, const double *const *x,
-                              const double *const *vel, double dt,
-                              const FrictionParameters &prm, const double *volume, double **f);
+                              const double *const *vel, double dt, const FrictionParameters &prm,
+                              const double *volume, double **f);
 
 // The diagonal blocks of the friction Hessians (at the slip x - x^n) divided by the volumes,
 // added to block (xx yy zz xy xz yz).
 void friction_blocks(const std::vector<LaggedPair> &lagged, const double *const *x,
                      const FrictionParameters &prm, const double *volume, double **block);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_FRICTION_POTENTIAL_H
+#endif    // PERISISSM_CONTACT_FRICTION_POTENTIAL_H

@@ -49,4 +49,4 @@ double MotionTracker::reach_fraction(int i, const double *xref, const double *x,
   return std::max(0.0, (-ad + std::sqrt(disc)) / d2) * (1.0 - 1.0e-12);
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -72,6 +72,6 @@ class MotionTracker {
   std::vector<double> xbuild;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_MOTION_TRACKER_H
+#endif    // PERISISSM_CONTACT_MOTION_TRACKER_H

@@ -45,4 +45,4 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
   return t_pairs;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -19,6 +19,6 @@ namespace PeriSISSM {
 double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
                   const double *const *x, double dmin, CandidateDistances *known);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_PATH_LIMIT_H
+#endif    // PERISISSM_CONTACT_PATH_LIMIT_H

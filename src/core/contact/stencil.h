@@ -58,6 +58,6 @@ class CollisionStencil {
   double closing(const double *len) const;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CONTACT_STENCIL_H
+#endif    // PERISISSM_CONTACT_STENCIL_H

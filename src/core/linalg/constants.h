@@ -7,6 +7,6 @@ namespace PeriSISSM {
 
 constexpr double kPi = 3.14159265358979323846;
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_LINALG_CONSTANTS_H
+#endif    // PERISISSM_LINALG_CONSTANTS_H

@@ -71,14 +71,14 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 fma4(Double4 a, Dou
 
 // c + w a per lane (a: four doubles in memory), rounded once
 PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 fma4(double w, const double *a,
-                                                                Double4 c)
+                                                                  Double4 c)
 {
   return fma4(splat(w), load4(a), c);
 }
 
 // a[j0], a[j1], a[j2], a[j3] (four loads and the shuffles that join them)
 PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 load_at(const double *a, int j0,
-                                                                   int j1, int j2, int j3)
+                                                                     int j1, int j2, int j3)
 {
   return _mm256_set_pd(a[j3], a[j2], a[j1], a[j0]);
 }
@@ -112,8 +112,8 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline bool any4(Double4 mask)
 }
 
 // (a0, b1, c2, d3): lane l of the l-th argument (three blends)
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 lanes(Double4 a, Double4 b,
-                                                                 Double4 c, Double4 d)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 lanes(Double4 a, Double4 b, Double4 c,
+                                                                   Double4 d)
 {
   return _mm256_blend_pd(_mm256_blend_pd(a, b, 0x2), _mm256_blend_pd(c, d, 0x8), 0xC);
 }
@@ -121,10 +121,8 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 lanes(Double4 a, Do
 // lanes 0-2 of the rows a, b, c, d as columns: c0 = (a0, b0, c0, d0), c1 = (a1, b1, c1, d1),
 // c2 = (a2, b2, c2, d2); seven shuffles, for code that does one thing to four 3-vectors' like
 // components at once
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void columns3(Double4 a, Double4 b,
-                                                                 Double4 c, Double4 d,
-                                                                 Double4 &c0, Double4 &c1,
-                                                                 Double4 &c2)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void
+columns3(Double4 a, Double4 b, Double4 c, Double4 d, Double4 &c0, Double4 &c1, Double4 &c2)
 {
   const Double4 ab02 = _mm256_unpacklo_pd(a, b), ab13 = _mm256_unpackhi_pd(a, b);
   const Double4 cd02 = _mm256_unpacklo_pd(c, d), cd13 = _mm256_unpackhi_pd(c, d);
@@ -136,15 +134,14 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void columns3(Double4 a, Do
 // M x with M given by its columns c0, c1, c2 (lanes 0-2: rows) and x by its components, each
 // in every lane of x0, x1, x2; summed as the scalar passes sum each row:
 // fma(M_r2, x_2, fma(M_r1, x_1, M_r0 * x_0))
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4 mat_vec(Double4 c0, Double4 c1,
-                                                                   Double4 c2, Double4 x0,
-                                                                   Double4 x1, Double4 x2)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline Double4
+mat_vec(Double4 c0, Double4 c1, Double4 c2, Double4 x0, Double4 x1, Double4 x2)
 {
   return fma4(c2, x2, fma4(c1, x1, c0 * x0));
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_CPU_DISPATCH
+#endif    // PERISISSM_CPU_DISPATCH
 
-#endif  // PERISISSM_LINALG_DOUBLE4_H
+#endif    // PERISISSM_LINALG_DOUBLE4_H

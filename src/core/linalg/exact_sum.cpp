@@ -48,4 +48,4 @@ double exact_sum(const double *t, int n, Reductions &red)
   return sum;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

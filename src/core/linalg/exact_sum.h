@@ -21,6 +21,6 @@ void exact_sums(const double *t, int n, int stride, int ncol, Reductions &red, d
 // The same for one column of n contiguous terms.
 double exact_sum(const double *t, int n, Reductions &red);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_LINALG_EXACT_SUM_H
+#endif    // PERISISSM_LINALG_EXACT_SUM_H

@@ -23,13 +23,13 @@ namespace PeriSISSM {
 //   F = U diag(s) V^T to a few eps |F|. Non-finite F gives s = NaN, U = V = I.
 // U and V may differ from signed_svd()'s where singular values repeat (they are not unique
 // there); s, and every isotropic function U diag(g(s)) V^T, agree to round-off.
-SignedSVD fast_signed_svd(const Eigen::Matrix3d& F);
+SignedSVD fast_signed_svd(const Eigen::Matrix3d &F);
 
 // Two at once: a = fast_signed_svd(Fa), b = fast_signed_svd(Fb) to the last bit, in about the
 // time of one and a half (the Jacobi rotations of one matrix are a chain of dependent square
 // roots and divisions; the two chains run side by side).
-void fast_signed_svd(const Eigen::Matrix3d& Fa, const Eigen::Matrix3d& Fb, SignedSVD& a,
-                     SignedSVD& b);
+void fast_signed_svd(const Eigen::Matrix3d &Fa, const Eigen::Matrix3d &Fb, SignedSVD &a,
+                     SignedSVD &b);
 
 // Four at once: out[l] = fast_signed_svd(F[l]) to the last bit, one matrix per lane of 4-wide
 // registers where the build has the x86-64-v3 code (-DPERISISSM_CPU_DISPATCH=ON, the default
@@ -38,6 +38,6 @@ void fast_signed_svd(const Eigen::Matrix3d& Fa, const Eigen::Matrix3d& Fb, Signe
 // tools/bench_passes.sh on a 2-core x86-64 guest: 185 ns a matrix, 330 in pairs, 475 alone.
 void fast_signed_svd(const Eigen::Matrix3d F[4], SignedSVD out[4]);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_FAST_SVD_H
+#endif    // PERISISSM_FAST_SVD_H

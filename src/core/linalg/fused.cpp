@@ -31,9 +31,9 @@ bool fused_passes_available()
 }
 
 namespace {
-// -1: not chosen (fused_passes_available() decides), 0: plain, 1: fused
-int chosen_passes = -1;
-}  // namespace
+  // -1: not chosen (fused_passes_available() decides), 0: plain, 1: fused
+  int chosen_passes = -1;
+}    // namespace
 
 void set_fused_passes(bool fused)
 {
@@ -46,4 +46,4 @@ bool fused_passes()
   return chosen_passes == 1;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

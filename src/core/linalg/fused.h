@@ -23,8 +23,10 @@ namespace PeriSISSM {
 // a * b + c, in one rounding when FUSED
 template <bool FUSED> [[gnu::always_inline]] inline double madd(double a, double b, double c)
 {
-  if constexpr (FUSED) return std::fma(a, b, c);
-  else return a * b + c;
+  if constexpr (FUSED)
+    return std::fma(a, b, c);
+  else
+    return a * b + c;
 }
 
 // True when the build has the x86-64-v3 code (-DPERISISSM_CPU_DISPATCH=ON, the default with GCC
@@ -45,9 +47,9 @@ void set_fused_passes(bool fused);
 // fused_passes_available() until one is made.
 bool fused_passes();
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
 // the target of the fused versions (with PERISISSM_CPU_DISPATCH)
 #define PERISISSM_FUSED_TARGET __attribute__((target("arch=x86-64-v3")))
 
-#endif  // PERISISSM_LINALG_FUSED_H
+#endif    // PERISISSM_LINALG_FUSED_H

@@ -34,6 +34,6 @@ class SerialReductions : public Reductions {
   double rows_;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_LINALG_REDUCTIONS_H
+#endif    // PERISISSM_LINALG_REDUCTIONS_H

@@ -19,7 +19,7 @@ namespace PeriSISSM {
 // both, det U = det V = +1 and s_3 < 0 exactly when det U0 det V0 = -1, which for a nonsingular
 // F is sign(det F) = det U0 det V0. Only the smallest singular value ever changes sign, which is
 // the inversion convention of Irving et al. 2004.
-SignedSVD signed_svd(const Eigen::Matrix3d& F)
+SignedSVD signed_svd(const Eigen::Matrix3d &F)
 {
   SignedSVD out;
   if (!F.allFinite()) {
@@ -50,8 +50,8 @@ SignedSVD signed_svd(const Eigen::Matrix3d& F)
     out.V.col(2) = -out.V.col(2);
     out.s(2) = -out.s(2);
   }
-  if (out.s(2) == 0.0) out.s(2) = 0.0;  // no -0: "s_3 < 0" means inverted, not singular
+  if (out.s(2) == 0.0) out.s(2) = 0.0;    // no -0: "s_3 < 0" means inverted, not singular
   return out;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -27,8 +27,8 @@ struct SignedSVD {
 //         the ordinary SVD of F has det(U_0) det(V_0) = -1, i.e. when det F < 0 (for det F = 0
 //         s_3 = +0). F = U diag(s) V^T to round-off (relative to |F|).
 //   A non-finite entry in F gives s = (NaN, NaN, NaN) and U = V = I (callers check).
-SignedSVD signed_svd(const Eigen::Matrix3d& F);
+SignedSVD signed_svd(const Eigen::Matrix3d &F);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SIGNED_SVD_H
+#endif    // PERISISSM_SIGNED_SVD_H

@@ -41,4 +41,4 @@ void rotate3(const double k[3], double cs, double sn, double r[3])
   for (int c = 0; c < 3; c++) r[c] = r[c] * cs + kr[c] * sn + k[c] * kdr * (1.0 - cs);
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

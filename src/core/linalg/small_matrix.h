@@ -23,6 +23,6 @@ inline void cross3(const double *u, const double *v, double *w)
 // Rotate r in place about the unit axis k by the angle with cosine cs and sine sn (Rodrigues).
 void rotate3(const double k[3], double cs, double sn, double r[3]);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_LINALG_SMALL_MATRIX_H
+#endif    // PERISISSM_LINALG_SMALL_MATRIX_H

@@ -26,7 +26,7 @@ bool lame_parameters_admissible(double mu, double lambda)
 
 // phat_minus is computed as phat - c .* s, so phat_plus + phat_minus reproduces phat up to the
 // rounding of that one subtraction.
-PrincipalSplit Material::split(const Eigen::Vector3d& s) const
+PrincipalSplit Material::split(const Eigen::Vector3d &s) const
 {
   PrincipalSplit out;
   out.phat = principal_stress(s);
@@ -37,31 +37,31 @@ PrincipalSplit Material::split(const Eigen::Vector3d& s) const
 
 namespace {
 
-// Bracket limits of plane_stress_newton in t = ln s3: the smallest normal double and 1e100.
-const double kPlaneStressTMin = std::log(std::numeric_limits<double>::min());  // -708.4
-const double kPlaneStressTMax = std::log(1e100);                               // 230.3
-constexpr int kPlaneStressMaxSteps = 200;
+  // Bracket limits of plane_stress_newton in t = ln s3: the smallest normal double and 1e100.
+  const double kPlaneStressTMin = std::log(std::numeric_limits<double>::min());    // -708.4
+  const double kPlaneStressTMax = std::log(1e100);                                 // 230.3
+  constexpr int kPlaneStressMaxSteps = 200;
 
-// Step in t = ln s3 of the central-difference slope of the default plane_stress_stretch():
-// truncation h^2/6 |phi'''| ~ 2e-11 relative to the slope, round-off ~ eps |phat3 terms| / h
-// ~ 2e-11 of the stress scale. An inexact slope only turns Newton's quadratic convergence into
-// a linear one with that ratio; the bracket keeps every step safe.
-constexpr double kPlaneStressFdStep = 1e-5;
+  // Step in t = ln s3 of the central-difference slope of the default plane_stress_stretch():
+  // truncation h^2/6 |phi'''| ~ 2e-11 relative to the slope, round-off ~ eps |phat3 terms| / h
+  // ~ 2e-11 of the stress scale. An inexact slope only turns Newton's quadratic convergence into
+  // a linear one with that ratio; the bracket keeps every step safe.
+  constexpr double kPlaneStressFdStep = 1e-5;
 
-}  // namespace
+}    // namespace
 
 // The bracket [lo, hi] always has phi(lo) < 0 <= phi(hi) (a NaN phi counts as >= 0). The
 // Newton/bisection choice is rtsafe's: bisect when the Newton point leaves the bracket, when the
 // slope is not positive (phi crosses zero upwards in the bracket), or when |phi / slope| exceeds
 // half of the step before last (not converging fast enough).
-double Material::plane_stress_newton(const std::function<PlaneStressSample(double)>& phi)
+double Material::plane_stress_newton(const std::function<PlaneStressSample(double)> &phi)
 {
   const double eps = std::numeric_limits<double>::epsilon();
   double lo = 0.0, hi = 0.0;
   PlaneStressSample flo{0.0, 0.0}, fhi{0.0, 0.0};
   const PlaneStressSample at_one = phi(0.0);
   if (at_one.phi == 0.0) return 1.0;
-  if (at_one.phi < 0.0) {  // the root is above s3 = 1
+  if (at_one.phi < 0.0) {    // the root is above s3 = 1
     lo = 0.0;
     flo = at_one;
     for (double step = 1.0;; step *= 2.0) {
@@ -77,7 +77,7 @@ double Material::plane_stress_newton(const std::function<PlaneStressSample(doubl
       flo = f;
       if (t >= kPlaneStressTMax) return std::exp(kPlaneStressTMax);
     }
-  } else {  // below s3 = 1 (or phi(0) is NaN)
+  } else {    // below s3 = 1 (or phi(0) is NaN)
     hi = 0.0;
     fhi = at_one;
     for (double step = 1.0;; step *= 2.0) {
@@ -136,7 +136,7 @@ double Material::plane_stress_stretch(double s1, double s2) const
   });
 }
 
-std::unique_ptr<Material> make_material(const std::string& name, double mu, double lambda)
+std::unique_ptr<Material> make_material(const std::string &name, double mu, double lambda)
 {
   if (name == LinearMaterial::kName) return std::make_unique<LinearMaterial>(mu, lambda);
   if (name == StVKMaterial::kName) return std::make_unique<StVKMaterial>(mu, lambda);
@@ -145,26 +145,26 @@ std::unique_ptr<Material> make_material(const std::string& name, double mu, doub
   return nullptr;
 }
 
-ModuliForm moduli_form(const std::string& name)
+ModuliForm moduli_form(const std::string &name)
 {
   return name == XuMaterial::kName ? ModuliForm::ONE_MODULUS : ModuliForm::BULK_SHEAR;
 }
 
-const std::vector<std::string>& material_names()
+const std::vector<std::string> &material_names()
 {
-  static const std::vector<std::string> names = {
-      LinearMaterial::kName, StVKMaterial::kName, NeoHookeanMaterial::kName, XuMaterial::kName};
+  static const std::vector<std::string> names = {LinearMaterial::kName, StVKMaterial::kName,
+                                                 NeoHookeanMaterial::kName, XuMaterial::kName};
   return names;
 }
 
 std::string material_names_joined()
 {
   std::string out;
-  for (const std::string& name : material_names()) {
+  for (const std::string &name : material_names()) {
     if (!out.empty()) out += ", ";
     out += name;
   }
   return out;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

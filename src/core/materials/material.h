@@ -62,7 +62,7 @@ class Material {
   virtual ~Material() = default;
 
   // Model name as used in pair_coeff ("linear", "stvk", "neohookean", "xu").
-  virtual const char* name() const = 0;
+  virtual const char *name() const = 0;
 
   double mu() const { return mu_; }
   double lambda() const { return lambda_; }
@@ -70,22 +70,22 @@ class Material {
   // Strain energy density W(s).
   // Inputs:  s signed singular values of F (signed_svd convention).
   // Outputs: W (energy per reference volume, stress units); W = 0 at s = (1, 1, 1).
-  virtual double energy(const Eigen::Vector3d& s) const = 0;
+  virtual double energy(const Eigen::Vector3d &s) const = 0;
 
   // Principal stresses Phat_k = dW/ds_k.
   // Inputs:  s signed singular values.
   // Outputs: Phat (stress units); P(F) = U diag(Phat) V^T.
-  virtual Eigen::Vector3d principal_stress(const Eigen::Vector3d& s) const = 0;
+  virtual Eigen::Vector3d principal_stress(const Eigen::Vector3d &s) const = 0;
 
   // Implicit coefficients c_k >= 0 (the rule above): Phat_k^+ = c_k s_k.
   // Inputs:  s signed singular values.
   // Outputs: c (stress units), every entry >= 0 and finite.
-  virtual Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d& s) const = 0;
+  virtual Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d &s) const = 0;
 
   // Principal stresses and their split at s in one call.
   // Inputs:  s signed singular values.
   // Outputs: {phat, c, phat_minus = phat - c .* s}.
-  PrincipalSplit split(const Eigen::Vector3d& s) const;
+  PrincipalSplit split(const Eigen::Vector3d &s) const;
 
   // Thickness stretch of plane stress: the s3 > 0 at which principal_stress({s1, s2, s3})[2]
   // vanishes, for in-plane singular values s1, s2 > 0 (a membrane whose through-thickness
@@ -121,7 +121,7 @@ class Material {
   // Outputs: s3 = exp(t) at the root; 0 when phi(t) >= 0 down to s3 = DBL_MIN (no positive
   //          root: the collapse case above); 1e100 when phi(t) < 0 up to s3 = 1e100 (W would
   //          decrease without bound in s3: no model of this package).
-  static double plane_stress_newton(const std::function<PlaneStressSample(double)>& phi);
+  static double plane_stress_newton(const std::function<PlaneStressSample(double)> &phi);
 
   double mu_;
   double lambda_;
@@ -132,7 +132,7 @@ class Material {
 // Inputs:  name model name (one of material_names()), mu, lambda Lame constants. The one-
 //          parameter model "xu" takes its s0 = mu and ignores lambda (its lambda() is 0).
 // Outputs: the model, or nullptr for an unknown name.
-std::unique_ptr<Material> make_material(const std::string& name, double mu, double lambda);
+std::unique_ptr<Material> make_material(const std::string &name, double mu, double lambda);
 
 // How a model reads the two moduli of pair_coeff: the bulk and shear moduli K and G, or one
 // modulus in K's place (xu: s0) with the second number unused.
@@ -140,14 +140,14 @@ enum class ModuliForm { BULK_SHEAR, ONE_MODULUS };
 
 // Inputs:  name model name (one of material_names()).
 // Outputs: the model's form; BULK_SHEAR for an unknown name.
-ModuliForm moduli_form(const std::string& name);
+ModuliForm moduli_form(const std::string &name);
 
 // Names accepted by make_material, in documentation order.
-const std::vector<std::string>& material_names();
+const std::vector<std::string> &material_names();
 
 // The names joined for error messages: "linear, stvk, neohookean, xu".
 std::string material_names_joined();
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MATERIAL_H
+#endif    // PERISISSM_MATERIAL_H

@@ -10,67 +10,67 @@ namespace PeriSISSM {
 
 namespace {
 
-// a unit style as the sizes of its mass, length and time units in kg, m and s
-struct UnitStyle {
-  const char *name;
-  double mass, length, time;
-};
+  // a unit style as the sizes of its mass, length and time units in kg, m and s
+  struct UnitStyle {
+    const char *name;
+    double mass, length, time;
+  };
 
-constexpr UnitStyle kUnitStyles[] = {
-    {"si", 1.0, 1.0, 1.0},
-    {"cgs", 1.0e-3, 1.0e-2, 1.0},
-    {"micro", 1.0e-15, 1.0e-6, 1.0e-6},
-    {"nano", 1.0e-21, 1.0e-9, 1.0e-9},
-};
+  constexpr UnitStyle kUnitStyles[] = {
+      {"si", 1.0, 1.0, 1.0},
+      {"cgs", 1.0e-3, 1.0e-2, 1.0},
+      {"micro", 1.0e-15, 1.0e-6, 1.0e-6},
+      {"nano", 1.0e-21, 1.0e-9, 1.0e-9},
+  };
 
-const UnitStyle *unit_style(const std::string &name)
-{
-  for (const auto &style : kUnitStyles)
-    if (name == style.name) return &style;
-  return nullptr;
-}
+  const UnitStyle *unit_style(const std::string &name)
+  {
+    for (const auto &style : kUnitStyles)
+      if (name == style.name) return &style;
+    return nullptr;
+  }
 
-// the size of one unit of a quantity of dimension mass^m length^l time^t in SI
-double unit_size(const UnitStyle &s, int m, int l, int t)
-{
-  return std::pow(s.mass, m) * std::pow(s.length, l) * std::pow(s.time, t);
-}
+  // the size of one unit of a quantity of dimension mass^m length^l time^t in SI
+  double unit_size(const UnitStyle &s, int m, int l, int t)
+  {
+    return std::pow(s.mass, m) * std::pow(s.length, l) * std::pow(s.time, t);
+  }
 
-std::string trim(const std::string &s)
-{
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return "";
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
+  std::string trim(const std::string &s)
+  {
+    const auto first = s.find_first_not_of(" \t\r");
+    if (first == std::string::npos) return "";
+    const auto last = s.find_last_not_of(" \t\r");
+    return s.substr(first, last - first + 1);
+  }
 
-// the word after tag (e.g. "UNITS:") in a line, or ""
-std::string tag_value(const std::string &line, const std::string &tag)
-{
-  std::istringstream words(line);
-  std::string word;
-  while (words >> word)
-    if (word == tag) return (words >> word) ? word : "";
-  return "";
-}
+  // the word after tag (e.g. "UNITS:") in a line, or ""
+  std::string tag_value(const std::string &line, const std::string &tag)
+  {
+    std::istringstream words(line);
+    std::string word;
+    while (words >> word)
+      if (word == tag) return (words >> word) ? word : "";
+    return "";
+  }
 
-[[noreturn]] void fail(const std::string &filename, int line, const std::string &what)
-{
-  throw std::runtime_error("material file " + filename + " line " + std::to_string(line) +
-                           ": " + what);
-}
+  [[noreturn]] void fail(const std::string &filename, int line, const std::string &what)
+  {
+    throw std::runtime_error("material file " + filename + " line " + std::to_string(line) + ": " +
+                             what);
+  }
 
-double parse_value(const std::string &word, const char *what, const std::string &filename,
-                   int line, bool positive)
-{
-  char *end = nullptr;
-  const double value = std::strtod(word.c_str(), &end);
-  if (end == word.c_str() || *end != '\0' || !std::isfinite(value))
-    fail(filename, line, std::string(what) + " must be a number, got '" + word + "'");
-  if (positive && !(value > 0.0))
-    fail(filename, line, std::string(what) + " must be > 0, got '" + word + "'");
-  return value;
-}
+  double parse_value(const std::string &word, const char *what, const std::string &filename,
+                     int line, bool positive)
+  {
+    char *end = nullptr;
+    const double value = std::strtod(word.c_str(), &end);
+    if (end == word.c_str() || *end != '\0' || !std::isfinite(value))
+      fail(filename, line, std::string(what) + " must be a number, got '" + word + "'");
+    if (positive && !(value > 0.0))
+      fail(filename, line, std::string(what) + " must be > 0, got '" + word + "'");
+    return value;
+  }
 
 }    // namespace
 
@@ -136,10 +136,9 @@ MaterialEntry convert_material(const MaterialEntry &entry, const std::string &fr
   const UnitStyle *src = unit_style(from);
   const UnitStyle *dst = unit_style(to);
   if (!src)
-    throw std::runtime_error(from.empty()
-                                 ? "the file has no UNITS: tag on its first line (one of " +
-                                       allowed + ")"
-                                 : "the file's units '" + from + "' are not one of " + allowed);
+    throw std::runtime_error(
+        from.empty() ? "the file has no UNITS: tag on its first line (one of " + allowed + ")"
+                     : "the file's units '" + from + "' are not one of " + allowed);
   if (!dst)
     throw std::runtime_error("material values cannot be converted to '" + to +
                              "' units (convertible unit styles: " + allowed + ")");

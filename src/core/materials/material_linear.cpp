@@ -7,7 +7,7 @@
 namespace PeriSISSM {
 
 // W = mu |s - 1|^2 + lambda/2 (tr)^2 with tr = sum_k (s_k - 1).
-double LinearMaterial::energy(const Eigen::Vector3d& s) const
+double LinearMaterial::energy(const Eigen::Vector3d &s) const
 {
   const Eigen::Vector3d e = s - Eigen::Vector3d::Ones();
   const double tr = e.sum();
@@ -15,7 +15,7 @@ double LinearMaterial::energy(const Eigen::Vector3d& s) const
 }
 
 // dW/ds_k = 2 mu (s_k - 1) + lambda tr.
-Eigen::Vector3d LinearMaterial::principal_stress(const Eigen::Vector3d& s) const
+Eigen::Vector3d LinearMaterial::principal_stress(const Eigen::Vector3d &s) const
 {
   const Eigen::Vector3d e = s - Eigen::Vector3d::Ones();
   return 2.0 * mu_ * e + Eigen::Vector3d::Constant(lambda_ * e.sum());
@@ -26,7 +26,7 @@ Eigen::Vector3d LinearMaterial::principal_stress(const Eigen::Vector3d& s) const
 // dPhat_k/ds_k exactly and > 0 for every admissible material (also for lambda < 0, nu < 0).
 // So c_k = 2 mu + lambda, the same for all k (H_i is isotropic, doc/theory.rst); the
 // bracket is explicit. Clamped at 0 only for inadmissible parameters (K + 4G/3 <= 0).
-Eigen::Vector3d LinearMaterial::implicit_coefficient(const Eigen::Vector3d& /*s*/) const
+Eigen::Vector3d LinearMaterial::implicit_coefficient(const Eigen::Vector3d & /*s*/) const
 {
   return Eigen::Vector3d::Constant(std::max(2.0 * mu_ + lambda_, 0.0));
 }
@@ -45,4 +45,4 @@ double LinearMaterial::plane_stress_stretch(double s1, double s2) const
   return s3 > 0.0 ? s3 : 0.0;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

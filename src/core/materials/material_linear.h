@@ -14,15 +14,15 @@ namespace PeriSISSM {
 // W is continuous but has a kink), as for every corotated model.
 class LinearMaterial : public Material {
  public:
-  static constexpr const char* kName = "linear";
+  static constexpr const char *kName = "linear";
   using Material::Material;
-  const char* name() const override { return kName; }
-  double energy(const Eigen::Vector3d& s) const override;
-  Eigen::Vector3d principal_stress(const Eigen::Vector3d& s) const override;
-  Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d& s) const override;
+  const char *name() const override { return kName; }
+  double energy(const Eigen::Vector3d &s) const override;
+  Eigen::Vector3d principal_stress(const Eigen::Vector3d &s) const override;
+  Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d &s) const override;
   double plane_stress_stretch(double s1, double s2) const override;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MATERIAL_LINEAR_H
+#endif    // PERISISSM_MATERIAL_LINEAR_H

@@ -41,27 +41,27 @@ double NeoHookeanMaterial::volumetric_slope(double J) const
 
 namespace {
 
-// psi(x) = x - ln(1 + x) >= 0 for x > -1, accurate to round-off relative to psi itself.
-// Written as x - log1p(x) it loses ~2 eps / |x| relative near 0, where psi ~ x^2/2. With
-// u = x / (2 + x), ln(1 + x) = 2 atanh(u) = 2 (u + u^3/3 + u^5/5 + ...) and x - 2u = x u, so
-//   psi(x) = x u - 2 (u^3/3 + u^5/5 + ...),
-// a leading term free of cancellation plus a series that is smaller by ~|x|/6 and converges
-// like u^2. Used for |x| <= 1/4 (|u| <= 1/7: 20 terms reach u^41 < 1e-34, below round-off of
-// psi >= x^2/3 there); beyond, x - log1p(x) loses at most a factor |x|/psi(x) < 10.
-double x_minus_log1p(double x)
-{
-  if (!(std::abs(x) <= 0.25)) return x - std::log1p(x);
-  const double u = x / (2.0 + x);
-  const double u2 = u * u;
-  double term = u * u2, series = 0.0;
-  for (int k = 3; k <= 41; k += 2) {
-    series += term / k;
-    term *= u2;
+  // psi(x) = x - ln(1 + x) >= 0 for x > -1, accurate to round-off relative to psi itself.
+  // Written as x - log1p(x) it loses ~2 eps / |x| relative near 0, where psi ~ x^2/2. With
+  // u = x / (2 + x), ln(1 + x) = 2 atanh(u) = 2 (u + u^3/3 + u^5/5 + ...) and x - 2u = x u, so
+  //   psi(x) = x u - 2 (u^3/3 + u^5/5 + ...),
+  // a leading term free of cancellation plus a series that is smaller by ~|x|/6 and converges
+  // like u^2. Used for |x| <= 1/4 (|u| <= 1/7: 20 terms reach u^41 < 1e-34, below round-off of
+  // psi >= x^2/3 there); beyond, x - log1p(x) loses at most a factor |x|/psi(x) < 10.
+  double x_minus_log1p(double x)
+  {
+    if (!(std::abs(x) <= 0.25)) return x - std::log1p(x);
+    const double u = x / (2.0 + x);
+    const double u2 = u * u;
+    double term = u * u2, series = 0.0;
+    for (int k = 3; k <= 41; k += 2) {
+      series += term / k;
+      term *= u2;
+    }
+    return x * u - 2.0 * series;
   }
-  return x * u - 2.0 * series;
-}
 
-}  // namespace
+}    // namespace
 
 // W = mu/2 (|s|^2 - 3) + g(J), J = s_1 s_2 s_3, evaluated so that W near rest (where W ~ e^2
 // for F = I + O(e) but its terms are O(e) each) keeps round-off accuracy relative to W itself.
@@ -72,7 +72,7 @@ double x_minus_log1p(double x)
 // non-negative terms, and nothing cancels. Equal to the defining form in exact arithmetic.
 // Otherwise (J < J0: continued volumetric term, or a non-positive s_k, which the signed SVD
 // gives only for J <= 0) W = mu/2 sum_k (s_k - 1)(s_k + 1) + g(J), far from rest.
-double NeoHookeanMaterial::energy(const Eigen::Vector3d& s) const
+double NeoHookeanMaterial::energy(const Eigen::Vector3d &s) const
 {
   const double J = s.prod();
   if (J >= j0_ && s.minCoeff() > 0.0) {
@@ -91,7 +91,7 @@ double NeoHookeanMaterial::energy(const Eigen::Vector3d& s) const
 
 // dJ/ds_k = J/s_k = product of the other two singular values (no division: finite at s_k = 0),
 // so Phat_k = mu s_k + g'(J) s_l s_m.
-Eigen::Vector3d NeoHookeanMaterial::principal_stress(const Eigen::Vector3d& s) const
+Eigen::Vector3d NeoHookeanMaterial::principal_stress(const Eigen::Vector3d &s) const
 {
   const double dg = volumetric_slope(s.prod());
   const Eigen::Vector3d cof(s(1) * s(2), s(0) * s(2), s(0) * s(1));
@@ -111,7 +111,7 @@ double NeoHookeanMaterial::volumetric_curvature(double J) const
 // 2 mu + lambda, as for the linear model (with c_k = mu alone the SISSM block missed the
 // volumetric stiffness and the iteration diverged beyond twice the explicit time step).
 // The rest, g'(J) s_l s_m - max(g'', 0) (s_l s_m)^2 s_k, is explicit.
-Eigen::Vector3d NeoHookeanMaterial::implicit_coefficient(const Eigen::Vector3d& s) const
+Eigen::Vector3d NeoHookeanMaterial::implicit_coefficient(const Eigen::Vector3d &s) const
 {
   const double curv = std::max(volumetric_curvature(s.prod()), 0.0);
   const Eigen::Vector3d cof(s(1) * s(2), s(0) * s(2), s(0) * s(1));
@@ -134,4 +134,4 @@ double NeoHookeanMaterial::plane_stress_stretch(double s1, double s2) const
   });
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -42,15 +42,15 @@ constexpr double kNeoHookeanJ0 = 0.1;
 //    for J > 0.128. Only the volumetric term g is guaranteed restoring for every J < J0.
 class NeoHookeanMaterial : public Material {
  public:
-  static constexpr const char* kName = "neohookean";
+  static constexpr const char *kName = "neohookean";
 
   // Inputs: mu, lambda Lame constants. Computes J0 and the Taylor coefficients.
   NeoHookeanMaterial(double mu, double lambda);
 
-  const char* name() const override { return kName; }
-  double energy(const Eigen::Vector3d& s) const override;
-  Eigen::Vector3d principal_stress(const Eigen::Vector3d& s) const override;
-  Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d& s) const override;
+  const char *name() const override { return kName; }
+  double energy(const Eigen::Vector3d &s) const override;
+  Eigen::Vector3d principal_stress(const Eigen::Vector3d &s) const override;
+  Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d &s) const override;
   double plane_stress_stretch(double s1, double s2) const override;
 
   // Continuation threshold J0 (dimensionless, in [0.1, 1)).
@@ -67,12 +67,12 @@ class NeoHookeanMaterial : public Material {
   double volumetric_curvature(double J) const;
 
  private:
-  double j0_;  // continuation threshold
-  double g0_;  // g(J0)
-  double g1_;  // g'(J0)
-  double g2_;  // g''(J0) (>= 0)
+  double j0_;    // continuation threshold
+  double g0_;    // g(J0)
+  double g1_;    // g'(J0)
+  double g2_;    // g''(J0) (>= 0)
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MATERIAL_NEOHOOKEAN_H
+#endif    // PERISISSM_MATERIAL_NEOHOOKEAN_H

@@ -8,7 +8,7 @@
 namespace PeriSISSM {
 
 // E_k = (s_k^2 - 1)/2;  W = mu sum_k E_k^2 + lambda/2 (sum_k E_k)^2.
-double StVKMaterial::energy(const Eigen::Vector3d& s) const
+double StVKMaterial::energy(const Eigen::Vector3d &s) const
 {
   const Eigen::Vector3d E = 0.5 * (s.cwiseProduct(s) - Eigen::Vector3d::Ones());
   const double trE = E.sum();
@@ -16,7 +16,7 @@ double StVKMaterial::energy(const Eigen::Vector3d& s) const
 }
 
 // dE_k/ds_k = s_k, so dW/ds_k = s_k (2 mu E_k + lambda trE).
-Eigen::Vector3d StVKMaterial::principal_stress(const Eigen::Vector3d& s) const
+Eigen::Vector3d StVKMaterial::principal_stress(const Eigen::Vector3d &s) const
 {
   const Eigen::Vector3d E = 0.5 * (s.cwiseProduct(s) - Eigen::Vector3d::Ones());
   const double trE = E.sum();
@@ -33,7 +33,7 @@ Eigen::Vector3d StVKMaterial::principal_stress(const Eigen::Vector3d& s) const
 // and, when lambda < 0, the whole volumetric term lambda s_k trE, whose slope in s_k,
 // lambda (trE + s_k^2), has no fixed sign. Near F = I, c_k = mu + 3 max(lambda, 0)/2 while the
 // tangent dPhat_k/ds_k = 2 mu + lambda.
-Eigen::Vector3d StVKMaterial::implicit_coefficient(const Eigen::Vector3d& s) const
+Eigen::Vector3d StVKMaterial::implicit_coefficient(const Eigen::Vector3d &s) const
 {
   const Eigen::Vector3d s2 = s.cwiseProduct(s);
   const double vol = 0.5 * std::max(lambda_, 0.0) * s2.sum();
@@ -52,9 +52,9 @@ double StVKMaterial::plane_stress_stretch(double s1, double s2) const
 {
   const double p_wave = 2.0 * mu_ + lambda_;
   if (!(p_wave > 0.0)) return Material::plane_stress_stretch(s1, s2);
-  const double e_sum = (s1 - 1.0) * (s1 + 1.0) + (s2 - 1.0) * (s2 + 1.0);  // 2 (E1 + E2)
+  const double e_sum = (s1 - 1.0) * (s1 + 1.0) + (s2 - 1.0) * (s2 + 1.0);    // 2 (E1 + E2)
   const double q = 1.0 - lambda_ * e_sum / p_wave;
   return q > 0.0 ? std::sqrt(q) : 0.0;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -14,15 +14,15 @@ namespace PeriSISSM {
 // an equilibrium and a fully inverted F = -R has W = 0, so it is not inversion-safe.
 class StVKMaterial : public Material {
  public:
-  static constexpr const char* kName = "stvk";
+  static constexpr const char *kName = "stvk";
   using Material::Material;
-  const char* name() const override { return kName; }
-  double energy(const Eigen::Vector3d& s) const override;
-  Eigen::Vector3d principal_stress(const Eigen::Vector3d& s) const override;
-  Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d& s) const override;
+  const char *name() const override { return kName; }
+  double energy(const Eigen::Vector3d &s) const override;
+  Eigen::Vector3d principal_stress(const Eigen::Vector3d &s) const override;
+  Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d &s) const override;
   double plane_stress_stretch(double s1, double s2) const override;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MATERIAL_STVK_H
+#endif    // PERISISSM_MATERIAL_STVK_H

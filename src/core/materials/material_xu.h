@@ -42,15 +42,15 @@ constexpr double kXuThreshold = 0.3;
 // a sixth of the tangent 2 s0.
 class XuMaterial : public Material {
  public:
-  static constexpr const char* kName = "xu";
+  static constexpr const char *kName = "xu";
 
   // Inputs: s0 the model's stress parameter (stress units); mu() = s0, lambda() = 0.
   explicit XuMaterial(double s0) : Material(s0, 0.0) {}
 
-  const char* name() const override { return kName; }
-  double energy(const Eigen::Vector3d& s) const override;
-  Eigen::Vector3d principal_stress(const Eigen::Vector3d& s) const override;
-  Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d& s) const override;
+  const char *name() const override { return kName; }
+  double energy(const Eigen::Vector3d &s) const override;
+  Eigen::Vector3d principal_stress(const Eigen::Vector3d &s) const override;
+  Eigen::Vector3d implicit_coefficient(const Eigen::Vector3d &s) const override;
 
   // Plane stress: Phat_3 = s0/3 g'(s3) does not depend on s1, s2 and vanishes only at s3 = 1.
   // Inputs: s1, s2 (unused). Outputs: 1.
@@ -67,6 +67,6 @@ class XuMaterial : public Material {
   static double stretch_slope(double s);
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MATERIAL_XU_H
+#endif    // PERISISSM_MATERIAL_XU_H

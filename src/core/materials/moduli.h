@@ -38,21 +38,21 @@ enum class ModuliProblem {
   POISSON_OUT_OF_RANGE     // BULK_SHEAR with nu outside (-1, 0.5) in floating point, or Lame
                            // constants not admissible (lame_parameters_admissible)
 };
-ModuliProblem check_moduli(const Moduli& m);
+ModuliProblem check_moduli(const Moduli &m);
 
 // Small-strain constants of the material.
 // Outputs: K (ONE_MODULUS: 2 s0 / 3); E and nu (ONE_MODULUS: 2 s0 and 0).
-double bulk_modulus(const Moduli& m);
-double young_modulus(const Moduli& m);
-double poisson_ratio(const Moduli& m);
+double bulk_modulus(const Moduli &m);
+double young_modulus(const Moduli &m);
+double poisson_ratio(const Moduli &m);
 
 // Plate bending stiffness per cubed thickness, E / (12 (1 - nu^2)): D = that times t^3.
-double bending_factor(const Moduli& m);
+double bending_factor(const Moduli &m);
 
 // The material model: make_material(model, mu, lambda) with the Lame constants of K and G
 // (lame_from_bulk_shear), or with mu = s0 for ONE_MODULUS. Null for an unknown model.
-std::unique_ptr<Material> make_material(const Moduli& m);
+std::unique_ptr<Material> make_material(const Moduli &m);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MATERIALS_MODULI_H
+#endif    // PERISISSM_MATERIALS_MODULI_H

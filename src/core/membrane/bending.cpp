@@ -97,8 +97,8 @@ void bending_pass(const std::vector<Hinge> &hinges, const Particles &p, double *
   for (const Hinge &h : hinges) {
     const int *v = h.v;
     double force[4][3], blk[4][6];
-    const double E = hinge_energy(x + 3 * v[0], x + 3 * v[1], x + 3 * v[2], x + 3 * v[3],
-                                  h.theta0, h.c, force, block ? blk : nullptr);
+    const double E = hinge_energy(x + 3 * v[0], x + 3 * v[1], x + 3 * v[2], x + 3 * v[3], h.theta0,
+                                  h.c, force, block ? blk : nullptr);
     for (int k = 0; k < 4; k++) {
       const int i = h.own[k];
       if (i < 0) continue;
@@ -149,4 +149,4 @@ void hinge_couplings(const std::vector<Hinge> &hinges, const Particles &p, bool 
   }
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -38,9 +38,9 @@ struct Hinge {
 class HingeMesh {
  public:
   virtual ~HingeMesh() = default;
-  virtual int nlocal() const = 0;                   // owned rows 0 .. nlocal-1
-  virtual std::int64_t id(int i) const = 0;         // ID of the particle in row i (any row)
-  virtual int ntri(int i) const = 0;                // triangles of owned vertex i
+  virtual int nlocal() const = 0;              // owned rows 0 .. nlocal-1
+  virtual std::int64_t id(int i) const = 0;    // ID of the particle in row i (any row)
+  virtual int ntri(int i) const = 0;           // triangles of owned vertex i
   // the other two vertices (a, b) of triangle k of owned vertex i, as IDs, in the triangle's
   // orientation (i, a, b)
   virtual void triangle(int i, int k, std::int64_t &a, std::int64_t &b) const = 0;
@@ -88,6 +88,6 @@ void bending_pass(const std::vector<Hinge> &hinges, const Particles &p, double *
 void hinge_couplings(const std::vector<Hinge> &hinges, const Particles &p, bool gradients,
                      HingeCouplings &couplings);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MEMBRANE_BENDING_H
+#endif    // PERISISSM_MEMBRANE_BENDING_H

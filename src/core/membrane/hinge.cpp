@@ -10,17 +10,17 @@ namespace PeriSISSM {
 
 namespace {
 
-inline double dot(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+  inline double dot(const double a[3], const double b[3])
+  {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  }
 
-inline void sub(const double *a, const double *b, double c[3])
-{
-  for (int k = 0; k < 3; k++) c[k] = a[k] - b[k];
-}
+  inline void sub(const double *a, const double *b, double c[3])
+  {
+    for (int k = 0; k < 3; k++) c[k] = a[k] - b[k];
+  }
 
-}  // namespace
+}    // namespace
 
 // With e = x1 - x0, NA = e x (x2 - x0) and NB = (x3 - x0) x e (the two triangles' normals times
 // twice their areas; equal directions when flat), theta = atan2((NA x NB) . e / |e|, NA . NB).
@@ -71,8 +71,10 @@ double hinge_energy(const double *x0, const double *x1, const double *x2, const 
   const double theta = hinge_angle(x0, x1, x2, x3, g);
   double d = theta - theta0;
   // the angle difference on the circle (a rest angle near +-pi and a current one across it)
-  if (d > M_PI) d -= 2.0 * M_PI;
-  else if (d < -M_PI) d += 2.0 * M_PI;
+  if (d > M_PI)
+    d -= 2.0 * M_PI;
+  else if (d < -M_PI)
+    d += 2.0 * M_PI;
   if (force)
     for (int v = 0; v < 4; v++)
       for (int k = 0; k < 3; k++) force[v][k] = -2.0 * c * d * g[v][k];
@@ -103,4 +105,4 @@ double hinge_stiffness(double D, const double *x0, const double *x1, const doubl
   return area > 0.0 ? 0.5 * D * dot(e, e) / area : 0.0;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -43,6 +43,6 @@ double hinge_energy(const double *x0, const double *x1, const double *x2, const 
 double hinge_stiffness(double D, const double *x0, const double *x1, const double *x2,
                        const double *x3);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MEMBRANE_HINGE_H
+#endif    // PERISISSM_MEMBRANE_HINGE_H

@@ -16,46 +16,46 @@ namespace PeriSISSM {
 
 namespace {
 
-using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
-inline double dot(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+  inline double dot(const double a[3], const double b[3])
+  {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  }
 
-// y = A x for row-major A
-inline void apply(const double A[9], const double x[3], double y[3])
-{
-  for (int r = 0; r < 3; r++) y[r] = A[3 * r] * x[0] + A[3 * r + 1] * x[1] + A[3 * r + 2] * x[2];
-}
+  // y = A x for row-major A
+  inline void apply(const double A[9], const double x[3], double y[3])
+  {
+    for (int r = 0; r < 3; r++) y[r] = A[3 * r] * x[0] + A[3 * r + 1] * x[1] + A[3 * r + 2] * x[2];
+  }
 
-// v scaled to unit length; false (v unchanged) when it has none
-inline bool normalize(double v[3])
-{
-  const double l = std::sqrt(dot(v, v));
-  if (!(l > 0.0)) return false;
-  for (int k = 0; k < 3; k++) v[k] /= l;
-  return true;
-}
+  // v scaled to unit length; false (v unchanged) when it has none
+  inline bool normalize(double v[3])
+  {
+    const double l = std::sqrt(dot(v, v));
+    if (!(l > 0.0)) return false;
+    for (int k = 0; k < 3; k++) v[k] /= l;
+    return true;
+  }
 
-// Closed-form SVD of a 2x2 matrix m = R(phi) diag(s1, s2) R(theta), R(x) the rotation by x,
-// s1 >= |s2|, s2 < 0 only when det m < 0 (Blinn's construction from the matrix's conformal and
-// anti-conformal parts).
-struct SVD2 {
-  double s1, s2, cphi, sphi, ctheta, stheta;
-};
+  // Closed-form SVD of a 2x2 matrix m = R(phi) diag(s1, s2) R(theta), R(x) the rotation by x,
+  // s1 >= |s2|, s2 < 0 only when det m < 0 (Blinn's construction from the matrix's conformal and
+  // anti-conformal parts).
+  struct SVD2 {
+    double s1, s2, cphi, sphi, ctheta, stheta;
+  };
 
-SVD2 svd2(double m00, double m01, double m10, double m11)
-{
-  const double e = 0.5 * (m00 + m11), f = 0.5 * (m00 - m11);
-  const double g = 0.5 * (m10 + m01), h = 0.5 * (m10 - m01);
-  const double q = std::hypot(e, h), r = std::hypot(f, g);
-  const double a1 = std::atan2(g, f), a2 = std::atan2(h, e);
-  const double theta = 0.5 * (a2 - a1), phi = 0.5 * (a2 + a1);
-  return {q + r, q - r, std::cos(phi), std::sin(phi), std::cos(theta), std::sin(theta)};
-}
+  SVD2 svd2(double m00, double m01, double m10, double m11)
+  {
+    const double e = 0.5 * (m00 + m11), f = 0.5 * (m00 - m11);
+    const double g = 0.5 * (m10 + m01), h = 0.5 * (m10 - m01);
+    const double q = std::hypot(e, h), r = std::hypot(f, g);
+    const double a1 = std::atan2(g, f), a2 = std::atan2(h, e);
+    const double theta = 0.5 * (a2 - a1), phi = 0.5 * (a2 + a1);
+    return {q + r, q - r, std::cos(phi), std::sin(phi), std::cos(theta), std::sin(theta)};
+  }
 
-}  // namespace
+}    // namespace
 
 void tangent_frame(const double n0[3], double t1[3], double t2[3])
 {
@@ -102,7 +102,7 @@ bool invert_membrane_shape_tensor(const double K[9], const double n0[3], double 
   return true;
 }
 
-double membrane_state(const Material& material, const double M[9], const double Kinv[9],
+double membrane_state(const Material &material, const double M[9], const double Kinv[9],
                       const double n0[3], double F[9], double A[9], double H[6])
 {
   const RowMatrix3d kinv = Eigen::Map<const RowMatrix3d>(Kinv);
@@ -184,4 +184,4 @@ double membrane_stabilization_modulus(double Cs, double K, const double Kinv[9])
   return 2.4 * Cs * K * (Kinv[0] + Kinv[4] + Kinv[8]);
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -49,7 +49,7 @@ bool invert_membrane_shape_tensor(const double K[9], const double n0[3], double 
 //          direction, which carries no stress, gets none). Returns W(s1, s2, s3).
 // A family collapsed to a line or a point has no image normal; n is then taken perpendicular to
 // the image in the plane nearest to n0, and F stays finite.
-double membrane_state(const Material& material, const double M[9], const double Kinv[9],
+double membrane_state(const Material &material, const double M[9], const double Kinv[9],
                       const double n0[3], double F[9], double A[9], double H[6] = nullptr);
 
 // Stabilization modulus of a membrane particle: the volumetric rule (stabilization.h) in the
@@ -57,6 +57,6 @@ double membrane_state(const Material& material, const double M[9], const double 
 // particle's correspondence stiffness as in a volume.
 double membrane_stabilization_modulus(double Cs, double K, const double Kinv[9]);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_MEMBRANE_MEMBRANE_H
+#endif    // PERISISSM_MEMBRANE_MEMBRANE_H

@@ -9,17 +9,17 @@ namespace PeriSISSM {
 
 namespace {
 
-void cross(const double a[3], const double b[3], double c[3])
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
+  void cross(const double a[3], const double b[3], double c[3])
+  {
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+  }
 
-double dot(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+  double dot(const double a[3], const double b[3])
+  {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  }
 
 }    // namespace
 
@@ -55,8 +55,8 @@ std::vector<double> vertex_areas(const std::vector<std::array<double, 3>> &verti
 {
   std::vector<double> area(vertices.size(), 0.0);
   for (const auto &t : triangles) {
-    const double third = triangle_area(vertices[t[0]].data(), vertices[t[1]].data(),
-                                       vertices[t[2]].data()) / 3.0;
+    const double third =
+        triangle_area(vertices[t[0]].data(), vertices[t[1]].data(), vertices[t[2]].data()) / 3.0;
     for (int c = 0; c < 3; c++) area[t[c]] += third;
   }
   return area;

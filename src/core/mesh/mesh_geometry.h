@@ -14,8 +14,8 @@ namespace PeriSISSM {
 // origin, then shifted.
 struct Placement {
   double scale = 1.0;
-  double theta = 0.0;                     // degrees
-  double axis[3] = {0.0, 0.0, 1.0};       // any nonzero length
+  double theta = 0.0;                  // degrees
+  double axis[3] = {0.0, 0.0, 1.0};    // any nonzero length
   double offset[3] = {0.0, 0.0, 0.0};
 };
 

@@ -12,64 +12,64 @@ namespace PeriSISSM {
 
 namespace {
 
-[[noreturn]] void fail(const std::string &filename, int line, const std::string &what)
-{
-  throw std::runtime_error("mesh file " + filename + " line " + std::to_string(line) + ": " +
-                           what);
-}
-
-// the words of a line (blanks separate them; '#' starts a comment)
-std::vector<std::string> words_of(const std::string &line)
-{
-  std::vector<std::string> words;
-  size_t k = 0;
-  const size_t end = line.find('#');
-  const size_t n = (end == std::string::npos) ? line.size() : end;
-  while (k < n) {
-    while (k < n && (line[k] == ' ' || line[k] == '\t' || line[k] == '\r')) k++;
-    const size_t first = k;
-    while (k < n && line[k] != ' ' && line[k] != '\t' && line[k] != '\r') k++;
-    if (k > first) words.push_back(line.substr(first, k - first));
+  [[noreturn]] void fail(const std::string &filename, int line, const std::string &what)
+  {
+    throw std::runtime_error("mesh file " + filename + " line " + std::to_string(line) + ": " +
+                             what);
   }
-  return words;
-}
 
-bool is_number(const std::string &word, double &value)
-{
-  char *end = nullptr;
-  value = std::strtod(word.c_str(), &end);
-  return end != word.c_str() && *end == '\0' && std::isfinite(value);
-}
-
-bool is_integer(const std::string &word, long &value)
-{
-  if (word.empty()) return false;
-  char *end = nullptr;
-  errno = 0;
-  value = std::strtol(word.c_str(), &end, 10);
-  return *end == '\0' && errno == 0 && value >= INT_MIN && value <= INT_MAX;
-}
-
-// the vertex index of a face word (a, a/t, a//n, a/t/n); 0 if malformed
-long vertex_index(const std::string &word)
-{
-  std::vector<std::string> parts;
-  size_t first = 0;
-  while (true) {
-    const size_t slash = word.find('/', first);
-    parts.push_back(word.substr(first, slash - first));
-    if (slash == std::string::npos) break;
-    first = slash + 1;
+  // the words of a line (blanks separate them; '#' starts a comment)
+  std::vector<std::string> words_of(const std::string &line)
+  {
+    std::vector<std::string> words;
+    size_t k = 0;
+    const size_t end = line.find('#');
+    const size_t n = (end == std::string::npos) ? line.size() : end;
+    while (k < n) {
+      while (k < n && (line[k] == ' ' || line[k] == '\t' || line[k] == '\r')) k++;
+      const size_t first = k;
+      while (k < n && line[k] != ' ' && line[k] != '\t' && line[k] != '\r') k++;
+      if (k > first) words.push_back(line.substr(first, k - first));
+    }
+    return words;
   }
-  long index = 0, other = 0;
-  if (parts.size() > 3 || !is_integer(parts[0], index)) return 0;
-  if (parts.size() == 2 && !is_integer(parts[1], other)) return 0;    // a/t
-  if (parts.size() == 3) {                                             // a/t/n or a//n
-    if (!parts[1].empty() && !is_integer(parts[1], other)) return 0;
-    if (!is_integer(parts[2], other)) return 0;
+
+  bool is_number(const std::string &word, double &value)
+  {
+    char *end = nullptr;
+    value = std::strtod(word.c_str(), &end);
+    return end != word.c_str() && *end == '\0' && std::isfinite(value);
   }
-  return index;
-}
+
+  bool is_integer(const std::string &word, long &value)
+  {
+    if (word.empty()) return false;
+    char *end = nullptr;
+    errno = 0;
+    value = std::strtol(word.c_str(), &end, 10);
+    return *end == '\0' && errno == 0 && value >= INT_MIN && value <= INT_MAX;
+  }
+
+  // the vertex index of a face word (a, a/t, a//n, a/t/n); 0 if malformed
+  long vertex_index(const std::string &word)
+  {
+    std::vector<std::string> parts;
+    size_t first = 0;
+    while (true) {
+      const size_t slash = word.find('/', first);
+      parts.push_back(word.substr(first, slash - first));
+      if (slash == std::string::npos) break;
+      first = slash + 1;
+    }
+    long index = 0, other = 0;
+    if (parts.size() > 3 || !is_integer(parts[0], index)) return 0;
+    if (parts.size() == 2 && !is_integer(parts[1], other)) return 0;    // a/t
+    if (parts.size() == 3) {                                            // a/t/n or a//n
+      if (!parts[1].empty() && !is_integer(parts[1], other)) return 0;
+      if (!is_integer(parts[2], other)) return 0;
+    }
+    return index;
+  }
 
 }    // namespace
 

@@ -11,44 +11,44 @@ namespace PeriSISSM {
 
 namespace {
 
-[[noreturn]] void fail(const std::string &filename, int line, const std::string &what)
-{
-  throw std::runtime_error("mesh file " + filename +
-                           (line > 0 ? " line " + std::to_string(line) : std::string()) + ": " +
-                           what);
-}
-
-// file number (1-based) of a vertex
-std::string vertex_name(int v)
-{
-  return std::to_string(v + 1);
-}
-
-// the triangles of an undirected edge, with the direction they pass it in
-struct EdgeUse {
-  int count = 0;
-  int triangle[2] = {-1, -1};
-  bool forward[2] = {false, false};    // from the smaller vertex index to the larger
-};
-
-// |(b - a) x (c - a)| against the longest edge squared: 0 for a degenerate triangle
-bool zero_area(const std::array<double, 3> &a, const std::array<double, 3> &b,
-               const std::array<double, 3> &c)
-{
-  double e1[3], e2[3], e3[3];
-  for (int k = 0; k < 3; k++) {
-    e1[k] = b[k] - a[k];
-    e2[k] = c[k] - a[k];
-    e3[k] = c[k] - b[k];
+  [[noreturn]] void fail(const std::string &filename, int line, const std::string &what)
+  {
+    throw std::runtime_error("mesh file " + filename +
+                             (line > 0 ? " line " + std::to_string(line) : std::string()) + ": " +
+                             what);
   }
-  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                       e1[0] * e2[1] - e1[1] * e2[0]};
-  const double twice_area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  double longest = 0.0;
-  for (const double *e : {e1, e2, e3})
-    longest = std::max(longest, e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-  return !(twice_area > 1.0e-12 * longest);
-}
+
+  // file number (1-based) of a vertex
+  std::string vertex_name(int v)
+  {
+    return std::to_string(v + 1);
+  }
+
+  // the triangles of an undirected edge, with the direction they pass it in
+  struct EdgeUse {
+    int count = 0;
+    int triangle[2] = {-1, -1};
+    bool forward[2] = {false, false};    // from the smaller vertex index to the larger
+  };
+
+  // |(b - a) x (c - a)| against the longest edge squared: 0 for a degenerate triangle
+  bool zero_area(const std::array<double, 3> &a, const std::array<double, 3> &b,
+                 const std::array<double, 3> &c)
+  {
+    double e1[3], e2[3], e3[3];
+    for (int k = 0; k < 3; k++) {
+      e1[k] = b[k] - a[k];
+      e2[k] = c[k] - a[k];
+      e3[k] = c[k] - b[k];
+    }
+    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+    const double twice_area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double longest = 0.0;
+    for (const double *e : {e1, e2, e3})
+      longest = std::max(longest, e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    return !(twice_area > 1.0e-12 * longest);
+  }
 
 }    // namespace
 
@@ -62,8 +62,8 @@ void check_mesh(const TriangleMesh &mesh, const std::string &filename, int maxtr
 
   for (int t = 0; t < ntriangle; t++) {
     const auto &tri = mesh.triangles[t];
-    const std::string names = vertex_name(tri[0]) + " " + vertex_name(tri[1]) + " " +
-                              vertex_name(tri[2]);
+    const std::string names =
+        vertex_name(tri[0]) + " " + vertex_name(tri[1]) + " " + vertex_name(tri[2]);
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
       fail(filename, mesh.triangle_line[t],
            "the triangle of vertices " + names + " repeats a vertex (zero area)");

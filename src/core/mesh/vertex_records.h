@@ -27,12 +27,12 @@ constexpr int kVertexBorderScalars = 6;
 
 // the rows of the per-atom arrays (owned and ghost atoms)
 template <class Id> struct VertexArrays {
-  int *mesh;           // mesh id, 0 = not a mesh vertex
-  double *thickness;   // thickness of the atom's mesh, 0 for other atoms
-  Id *owntag;          // the atom's ID when its triangles were stored
-  double **normal0;    // reference unit normal (3 per row)
-  int *ntri;           // triangles at the atom
-  Id ***tri;           // tri[i][k][0..1]: the other two vertices of triangle k of atom i
+  int *mesh;            // mesh id, 0 = not a mesh vertex
+  double *thickness;    // thickness of the atom's mesh, 0 for other atoms
+  Id *owntag;           // the atom's ID when its triangles were stored
+  double **normal0;     // reference unit normal (3 per row)
+  int *ntri;            // triangles at the atom
+  Id ***tri;            // tri[i][k][0..1]: the other two vertices of triangle k of atom i
 };
 
 // an ID as a double carrying its 64-bit integer bits, and back
@@ -182,8 +182,8 @@ template <class Id> bool writes_triangle(Id me, Id a, Id b)
 // Row i gets triangle v (three vertex IDs in the triangle's orientation) in which it is corner
 // c (v[c] is the atom): stored rotated to start at it, as (v[c+1], v[c+2]). Returns false (and
 // stores nothing) when row i has maxtri triangles already.
-template <class Id> bool add_corner(const VertexArrays<Id> &a, int i, const Id v[3], int c,
-                                    int maxtri)
+template <class Id>
+bool add_corner(const VertexArrays<Id> &a, int i, const Id v[3], int c, int maxtri)
 {
   if (a.ntri[i] >= maxtri) return false;
   a.tri[i][a.ntri[i]][0] = v[(c + 1) % 3];

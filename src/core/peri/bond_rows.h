@@ -45,8 +45,8 @@ class BondRows {
   // (FUSED: each term added with one rounding, linalg/fused.h)
   template <bool FUSED = false> [[gnu::always_inline]] void outer_sum(double S[9]) const
   {
-    double s00 = 0.0, s01 = 0.0, s02 = 0.0, s10 = 0.0, s11 = 0.0, s12 = 0.0, s20 = 0.0,
-           s21 = 0.0, s22 = 0.0;
+    double s00 = 0.0, s01 = 0.0, s02 = 0.0, s10 = 0.0, s11 = 0.0, s12 = 0.0, s20 = 0.0, s21 = 0.0,
+           s22 = 0.0;
     for (int k = 0; k < n_; k++) {
       const double *u = rows_.data() + 6 * k;
       const double a0 = u[0], a1 = u[1], a2 = u[2], x0 = u[3], x1 = u[4], x2 = u[5];
@@ -76,6 +76,6 @@ class BondRows {
   int n_ = 0;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_BOND_ROWS_H
+#endif    // PERISISSM_PERI_BOND_ROWS_H

@@ -42,4 +42,4 @@ void bond_springs(const Families &fam, const Particles &p, const ParticleFields 
   }
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

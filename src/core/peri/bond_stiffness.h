@@ -57,6 +57,6 @@ struct HingeCouplings {
   int count() const { return (int) vertex.size() / 4; }
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_BOND_STIFFNESS_H
+#endif    // PERISISSM_PERI_BOND_STIFFNESS_H

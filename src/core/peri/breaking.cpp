@@ -10,4 +10,4 @@ double s00_from_fracture_energy(double g0, double k, double g, double cs, double
   return sqrt(g0 / (modulus * delta));
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

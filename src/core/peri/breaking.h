@@ -25,8 +25,7 @@ class BreakingRule {
 
   // Inputs: ntypes; for every type pair 1 <= i, j <= ntypes (symmetric) whether its bonds
   // break, s00 and alpha (given by the callables brk(i, j), s00(i, j), alpha(i, j)).
-  template <class B, class S, class A>
-  void configure(int ntypes, B brk, S s00, A alpha)
+  template <class B, class S, class A> void configure(int ntypes, B brk, S s00, A alpha)
   {
     n_ = ntypes + 1;
     break_.assign(n_ * n_, 0);
@@ -99,7 +98,10 @@ class BreakingRule {
   }
 
   // start value of acc for check()
-  template <int UNIFORM> static constexpr double initial() { return UNIFORM ? 1.0 : DBL_MAX; }
+  template <int UNIFORM> static constexpr double initial()
+  {
+    return UNIFORM ? 1.0 : DBL_MAX;
+  }
 
   // s_min from the accumulated checks; sold if there was no unbroken bond
   template <int UNIFORM> static inline double smin_from(double acc, double den, double sold)
@@ -131,6 +133,6 @@ constexpr double kG0CoefM = 0.58376;
 constexpr double kG0CoefS = 1.19321;
 double s00_from_fracture_energy(double g0, double k, double g, double cs, double delta, double h);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_BREAKING_H
+#endif    // PERISISSM_PERI_BREAKING_H

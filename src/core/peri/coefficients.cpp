@@ -8,11 +8,11 @@
 
 namespace PeriSISSM {
 
-PairCoefficients mix_coefficients(const PairCoefficients& ii, const PairCoefficients& jj)
+PairCoefficients mix_coefficients(const PairCoefficients &ii, const PairCoefficients &jj)
 {
   // the critical stretch comes from the weaker of the types whose bonds can break (a 'break
   // no' type has no meaningful s00)
-  const PairCoefficients* weak = (ii.s00 <= jj.s00) ? &ii : &jj;
+  const PairCoefficients *weak = (ii.s00 <= jj.s00) ? &ii : &jj;
   if (ii.breaks != jj.breaks) weak = ii.breaks ? &ii : &jj;
   PairCoefficients m;
   m.moduli.model = ii.moduli.model;
@@ -35,7 +35,7 @@ double contact_stiffness(double bulk, double horizon)
   return 15.0 * 18.0 * bulk / (kPi * d2 * d2);
 }
 
-bool pair_spacing(const std::vector<double>& sums, int i, int j, double& h)
+bool pair_spacing(const std::vector<double> &sums, int i, int j, double &h)
 {
   double hsum = sums[2 * i] + (j != i ? sums[2 * j] : 0.0);
   double count = sums[2 * i + 1] + (j != i ? sums[2 * j + 1] : 0.0);
@@ -55,7 +55,7 @@ void CoefficientTable::resize(int ntypes)
   given_.assign(n_ * n_, 0);
 }
 
-void CoefficientTable::set(int i, int j, const PairCoefficients& c)
+void CoefficientTable::set(int i, int j, const PairCoefficients &c)
 {
   c_[i * n_ + j] = c;
   given_[i * n_ + j] = 1;
@@ -86,23 +86,30 @@ bool CoefficientTable::any_contact() const
   return false;
 }
 
-void CoefficientTable::configure(Model& model) const
+void CoefficientTable::configure(Model &model) const
 {
   const int n = ntypes();
   model.set_ntypes(n);
   for (int i = 1; i <= n; i++) {
-    const PairCoefficients& own = at(i, i);
+    const PairCoefficients &own = at(i, i);
     model.set_type(i, make_material(own.moduli), own.cs, bulk_modulus(own.moduli));
     model.set_membrane(i, own.membrane);
     for (int j = i; j <= n; j++) {
-      const PairCoefficients& c = at(i, j);
+      const PairCoefficients &c = at(i, j);
       model.set_pair(i, j, c.horizon, c.contact, contact_stiffness(c.moduli.k, c.horizon));
     }
   }
   model.breaking().configure(
-      n, [this](int i, int j) { return at(i, j).breaks; },
-      [this](int i, int j) { return at(i, j).s00; },
-      [this](int i, int j) { return at(i, j).alpha; });
+      n,
+      [this](int i, int j) {
+        return at(i, j).breaks;
+      },
+      [this](int i, int j) {
+        return at(i, j).s00;
+      },
+      [this](int i, int j) {
+        return at(i, j).alpha;
+      });
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

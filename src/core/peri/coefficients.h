@@ -26,22 +26,22 @@ constexpr double kDefaultCs = 2.0;
 
 // One line of pair_coeff (with the numbers or with a material file entry).
 struct PairCoefficients {
-  Moduli moduli;           // model and its two moduli
+  Moduli moduli;    // model and its two moduli
   double horizon = 0.0;
-  double s00 = 0.0;        // critical stretch (with g0 > 0: set from g0 at init)
+  double s00 = 0.0;    // critical stretch (with g0 > 0: set from g0 at init)
   double alpha = 0.0;
-  double cs = kDefaultCs;  // stabilization factor
-  double g0 = 0.0;         // critical energy release rate of the G0 keyword, 0: s00 given
+  double cs = kDefaultCs;    // stabilization factor
+  double g0 = 0.0;           // critical energy release rate of the G0 keyword, 0: s00 given
   bool breaks = true;
   bool contact = true;
-  bool membrane = false;   // a type property (the line I I)
+  bool membrane = false;    // a type property (the line I I)
 };
 
 // The coefficients of a type pair I J not given, from the lines I I and J J: the model of
 // I I, the means of K and G, the larger horizon, s00 and alpha of the weaker type (the smaller
 // s00 among the types whose bonds can break), breaking and contact on if on for either type;
 // Cs 0, no G0, no membrane (per-particle and per-type values are taken from I I and J J).
-PairCoefficients mix_coefficients(const PairCoefficients& ii, const PairCoefficients& jj);
+PairCoefficients mix_coefficients(const PairCoefficients &ii, const PairCoefficients &jj);
 
 // Short-range contact stiffness 15 * 18 K / (pi delta^4) of a pair with bulk modulus K (the
 // first modulus of its line) and horizon delta.
@@ -52,7 +52,7 @@ double contact_stiffness(double bulk, double horizon);
 // Inputs:  sums[2t], sums[2t + 1] the sum of V^(1/3) and the count of the particles of type t
 //          (1 <= t <= ntypes), sums[0], sums[1] those of all particles; types i, j.
 // Outputs: h; false when there are no particles at all (h untouched).
-bool pair_spacing(const std::vector<double>& sums, int i, int j, double& h);
+bool pair_spacing(const std::vector<double> &sums, int i, int j, double &h);
 
 // The coefficients of all type pairs, 1 <= i, j <= ntypes.
 class CoefficientTable {
@@ -62,11 +62,11 @@ class CoefficientTable {
   int ntypes() const { return n_ - 1; }
 
   // the line of pair I J (i <= j)
-  void set(int i, int j, const PairCoefficients& c);
+  void set(int i, int j, const PairCoefficients &c);
   // whether the line of pair i <= j was given (set)
   bool given(int i, int j) const { return given_[i * n_ + j] != 0; }
-  PairCoefficients& at(int i, int j) { return c_[i * n_ + j]; }
-  const PairCoefficients& at(int i, int j) const { return c_[i * n_ + j]; }
+  PairCoefficients &at(int i, int j) { return c_[i * n_ + j]; }
+  const PairCoefficients &at(int i, int j) const { return c_[i * n_ + j]; }
 
   // every pair i < j not given from mix_coefficients(), then at(j, i) = at(i, j) for i <= j
   void complete();
@@ -77,7 +77,7 @@ class CoefficientTable {
   // the model of the completed table: per type the material (make_material(moduli)), Cs,
   // bulk_modulus() and membrane flag of the line I I; per pair horizon, contact and
   // contact_stiffness(moduli.k, horizon); the breaking rule from breaks, s00 and alpha
-  void configure(Model& model) const;
+  void configure(Model &model) const;
 
  private:
   int n_ = 1;
@@ -85,6 +85,6 @@ class CoefficientTable {
   std::vector<char> given_;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_COEFFICIENTS_H
+#endif    // PERISISSM_PERI_COEFFICIENTS_H

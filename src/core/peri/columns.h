@@ -33,9 +33,9 @@ inline void fill_columns(const double *rows, int width, int n, double *cols)
 // lane of x0, x1, x2 (from the partner's reference position rj and splats ri0, ri1, ri2 of
 // the particle's); its minimum image in a periodic box (PBC)
 template <int PBC>
-PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void bond_xi(
-    const double *rj, Double4 ri0, Double4 ri1, Double4 ri2, const ReferenceBox &box,
-    Double4 &x0, Double4 &x1, Double4 &x2)
+PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void
+bond_xi(const double *rj, Double4 ri0, Double4 ri1, Double4 ri2, const ReferenceBox &box,
+        Double4 &x0, Double4 &x1, Double4 &x2)
 {
   x0 = bcast(rj) - ri0;
   x1 = bcast(rj + 1) - ri1;
@@ -50,6 +50,6 @@ PERISISSM_FUSED_TARGET [[gnu::always_inline]] inline void bond_xi(
 }
 #endif
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_COLUMNS_H
+#endif    // PERISISSM_PERI_COLUMNS_H

@@ -98,12 +98,12 @@ void contact_pass(const Model &model, const Particles &p, const ReferenceBox &bo
         }
       }
       if (tally) {
-        const double energy = 2.0 * contact_energy(r, d, kc, vfrac[i], vfrac[j]) /
-            (vfrac[i] + vfrac[j]);
+        const double energy =
+            2.0 * contact_energy(r, d, kc, vfrac[i], vfrac[j]) / (vfrac[i] + vfrac[j]);
         pairs.tally(i, j, energy, fpi * vfrac[i], delx, dely, delz);
       }
     }
   }
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

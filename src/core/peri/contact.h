@@ -61,6 +61,6 @@ void contact_pass(const Model &model, const Particles &p, const ReferenceBox &bo
                   const ContactCandidates &cand, bool newton, bool tally, ContactPairs &pairs,
                   double *block = nullptr);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_CONTACT_H
+#endif    // PERISISSM_PERI_CONTACT_H

@@ -42,6 +42,6 @@ void elastic_state_pass(const Model &model, const Particles &p, const Families &
 void elastic_force_pass(const Particles &p, const Families &fam, const ReferenceBox &box,
                         const ParticleFields &fields, const Virial &virial, double **block);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_ELASTIC_H
+#endif    // PERISISSM_PERI_ELASTIC_H

@@ -14,8 +14,8 @@
 namespace PeriSISSM {
 
 namespace {
-using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
-}  // namespace
+  using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+}    // namespace
 
 // K is symmetric PSD by construction (sum of w V xi xi^T). The singularity test uses its
 // eigenvalues from the closed-form 3x3 solver (accurate to ~1e-8 relative to lambda_max,
@@ -24,8 +24,7 @@ using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 // round-off times the condition number (the eigen-decomposition would be only as accurate as
 // the closed-form eigenvectors, which are poor for the nearly isotropic K of interior
 // particles).
-bool invert_shape_tensor(const double K[9], double lambda_ref, double Kinv[9],
-                         double *lambda_max)
+bool invert_shape_tensor(const double K[9], double lambda_ref, double Kinv[9], double *lambda_max)
 {
   Eigen::Map<RowMatrix3d> out(Kinv);
   out.setZero();
@@ -35,7 +34,7 @@ bool invert_shape_tensor(const double K[9], double lambda_ref, double Kinv[9],
   const Eigen::Matrix3d ks = 0.5 * (k + k.transpose());
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(ks, Eigen::EigenvaluesOnly);
-  const Eigen::Vector3d lam = eig.eigenvalues();  // ascending
+  const Eigen::Vector3d lam = eig.eigenvalues();    // ascending
   if (lambda_max) *lambda_max = lam(2);
   const double ref = std::max(lam(2), lambda_ref);
   if (!(lam(2) > 0.0) || !(lam(0) >= kMinShapeConditioning * ref)) return false;
@@ -85,4 +84,4 @@ void update_shape(const Families &fam, const double *x0, const ReferenceBox &box
   fam.lamref[i] = std::max(fam.lamref[i], lmax);
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -46,22 +46,24 @@ struct ReferenceBox {
       }
     }
     if (periodic[0]) {
-      if (dx > 0.5 * box[0]) dx -= box[0];
-      else if (dx < -0.5 * box[0]) dx += box[0];
+      if (dx > 0.5 * box[0])
+        dx -= box[0];
+      else if (dx < -0.5 * box[0])
+        dx += box[0];
     }
   }
 };
 
 // The families of the local particles (arrays of at least nlocal rows).
 struct Families {
-  int *npartner = nullptr;    // bond slots of each particle
-  int **jlocal = nullptr;     // local index of each partner (its closest image), -1 = broken
-  double **omega = nullptr;   // weight of each bond, omega = w beta V_j
-  double **kinv = nullptr;    // K^-1 (row-major 3x3) of each particle; zeros when singular
-  int *kregular = nullptr;    // 1 if K is regular (F defined), 0 otherwise
-  double *lamref = nullptr;   // largest eigenvalue of the particle's initial K
-  double **normal = nullptr;  // reference unit normal of each membrane particle (rows of the
-                              //   others unused); null when no particle is a membrane
+  int *npartner = nullptr;      // bond slots of each particle
+  int **jlocal = nullptr;       // local index of each partner (its closest image), -1 = broken
+  double **omega = nullptr;     // weight of each bond, omega = w beta V_j
+  double **kinv = nullptr;      // K^-1 (row-major 3x3) of each particle; zeros when singular
+  int *kregular = nullptr;      // 1 if K is regular (F defined), 0 otherwise
+  double *lamref = nullptr;     // largest eigenvalue of the particle's initial K
+  double **normal = nullptr;    // reference unit normal of each membrane particle (rows of the
+                                //   others unused); null when no particle is a membrane
 };
 
 // Smallest accepted ratio lambda_min(K) / lambda_ref for a shape tensor K, where lambda_ref is
@@ -102,8 +104,7 @@ double partial_volume_factor(double r, double delta, double h);
 //         particles (0 for volume particles). Outputs: omega (volume).
 // A volume particle's size is V^(1/3); a membrane particle's, its spacing in the plane,
 // (V / t)^(1/2) (V = area times thickness t).
-double bond_weight(double r, double delta, double vi, double vj, double ti = 0.0,
-                   double tj = 0.0);
+double bond_weight(double r, double delta, double vi, double vj, double ti = 0.0, double tj = 0.0);
 
 // Reference bond xi = x0_j - x0_i of particles i and j (x0 three doubles per particle).
 inline void reference_bond(const double *x0, const ReferenceBox &box, int i, int j, double xi[3])
@@ -149,6 +150,6 @@ template <class Id> double damage(int n, const Id *partner, const double *omega,
   return 1.0 - vnow / vinit;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_FAMILY_H
+#endif    // PERISISSM_PERI_FAMILY_H

@@ -10,14 +10,14 @@ namespace PeriSISSM {
 
 // What the particles are.
 struct Particles {
-  int nlocal = 0;                   // owned particles (rows 0 .. nlocal-1)
-  int nall = 0;                     // owned and ghost rows (membrane decks, ParticleFields::cols)
-  const double *x = nullptr;        // current positions
-  const double *x0 = nullptr;       // reference positions
-  const double *volume = nullptr;   // V_i
-  const int *type = nullptr;        // type of each particle (1 .. ntypes)
-  double *smin = nullptr;           // smallest bond stretch of the last evaluation (breaking)
-  double *f = nullptr;              // force density, accumulated into for the owned rows
+  int nlocal = 0;                    // owned particles (rows 0 .. nlocal-1)
+  int nall = 0;                      // owned and ghost rows (membrane decks, ParticleFields::cols)
+  const double *x = nullptr;         // current positions
+  const double *x0 = nullptr;        // reference positions
+  const double *volume = nullptr;    // V_i
+  const int *type = nullptr;         // type of each particle (1 .. ntypes)
+  double *smin = nullptr;            // smallest bond stretch of the last evaluation (breaking)
+  double *f = nullptr;               // force density, accumulated into for the owned rows
 };
 
 // Per-particle state of the correspondence model, written for the owned rows and sent to the
@@ -29,17 +29,17 @@ struct ParticleFields {
   // family's k rows then carries the family's weight sum too; eight doubles, one cache line),
   // for the SISSM blocks
   enum { K_C = 6, K_ONE = 7, NK = 8 };
-  double *g = nullptr;          // NG per particle
-  double *h = nullptr;          // 9 per particle: H = (P + Q) K^-1
-  double *k = nullptr;          // NK per particle (only when blocks are asked for)
-  double *w = nullptr;          // energy density of each owned particle (complete only with energy)
-  bool energy = true;           // false: w lacks the stabilization energy (not summed: faster)
-  double *smin_new = nullptr;   // scratch, one per owned particle
-  double *normal = nullptr;     // scratch, 3 per particle (owned and ghost): current normals of
-                                // membrane particles; needed only when the model has membranes
-  double *cols = nullptr;       // scratch, NCOLS per particle (owned and ghost), optional: the
-                                // fused passes' copy of F, then of H, by columns (peri/columns.h);
-                                // without it they run their scalar code
+  double *g = nullptr;    // NG per particle
+  double *h = nullptr;    // 9 per particle: H = (P + Q) K^-1
+  double *k = nullptr;    // NK per particle (only when blocks are asked for)
+  double *w = nullptr;    // energy density of each owned particle (complete only with energy)
+  bool energy = true;     // false: w lacks the stabilization energy (not summed: faster)
+  double *smin_new = nullptr;    // scratch, one per owned particle
+  double *normal = nullptr;      // scratch, 3 per particle (owned and ghost): current normals of
+                                 // membrane particles; needed only when the model has membranes
+  double *cols = nullptr;        // scratch, NCOLS per particle (owned and ghost), optional: the
+                                 // fused passes' copy of F, then of H, by columns (peri/columns.h);
+                                 // without it they run their scalar code
   enum { NCOLS = 12 };
 };
 
@@ -94,6 +94,6 @@ struct BondVirial {
   }
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_FIELDS_H
+#endif    // PERISISSM_PERI_FIELDS_H

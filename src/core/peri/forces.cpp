@@ -9,9 +9,8 @@
 namespace PeriSISSM {
 
 void evaluate_bond_terms(const Model &model, const Particles &p, const Families &fam,
-                         const ReferenceBox &box, int mode, double **block,
-                         ParticleFields &fields, Halo &halo, const Virial &virial,
-                         std::vector<int> &broke)
+                         const ReferenceBox &box, int mode, double **block, ParticleFields &fields,
+                         Halo &halo, const Virial &virial, std::vector<int> &broke)
 {
   const bool blocks = block != nullptr;
   elastic_state_pass(model, p, fam, box, mode, blocks, fields, broke);
@@ -26,4 +25,4 @@ void evaluate_bond_terms(const Model &model, const Particles &p, const Families 
   elastic_force_pass(p, fam, box, fields, virial, block);
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

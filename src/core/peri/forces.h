@@ -31,10 +31,9 @@ class Model;
 // index is -1 now; the owner of the family storage clears whatever else it keeps about those
 // bonds).
 void evaluate_bond_terms(const Model &model, const Particles &p, const Families &fam,
-                         const ReferenceBox &box, int mode, double **block,
-                         ParticleFields &fields, Halo &halo, const Virial &virial,
-                         std::vector<int> &broke);
+                         const ReferenceBox &box, int mode, double **block, ParticleFields &fields,
+                         Halo &halo, const Virial &virial, std::vector<int> &broke);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_FORCES_H
+#endif    // PERISISSM_PERI_FORCES_H

@@ -21,15 +21,19 @@ namespace PeriSISSM {
 // f(I<a>) with I<v> = std::integral_constant<int, v>
 template <class Fn> [[gnu::always_inline]] inline void with_flag(bool a, Fn &&f)
 {
-  if (a) f(std::integral_constant<int, 1>());
-  else f(std::integral_constant<int, 0>());
+  if (a)
+    f(std::integral_constant<int, 1>());
+  else
+    f(std::integral_constant<int, 0>());
 }
 
 // f(I<a>, I<b>)
 template <class Fn> [[gnu::always_inline]] inline void with_flags(bool a, bool b, Fn &&f)
 {
   with_flag(a, [&](auto ia) PERISISSM_INLINE {
-    with_flag(b, [&](auto ib) PERISISSM_INLINE { f(ia, ib); });
+    with_flag(b, [&](auto ib) PERISISSM_INLINE {
+      f(ia, ib);
+    });
   });
 }
 
@@ -51,6 +55,6 @@ template <class Body> [[gnu::always_inline]] inline void with_version(Body &&bod
   body(std::false_type());
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_INSTANCES_H
+#endif    // PERISISSM_PERI_INSTANCES_H

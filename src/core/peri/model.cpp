@@ -62,8 +62,7 @@ bool Model::any_contact() const
 double Model::bond_weight(double r, int itype, int jtype, double vi, double vj, double ti,
                           double tj) const
 {
-  return PeriSISSM::bond_weight(r, horizon(itype, jtype), vi, vj,
-                                types_[itype].membrane ? ti : 0.0,
+  return PeriSISSM::bond_weight(r, horizon(itype, jtype), vi, vj, types_[itype].membrane ? ti : 0.0,
                                 types_[jtype].membrane ? tj : 0.0);
 }
 
@@ -74,4 +73,4 @@ double Model::stabilization_modulus(int itype, const double Kinv[9]) const
                     : PeriSISSM::stabilization_modulus(t.cs, t.bulk, Kinv);
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

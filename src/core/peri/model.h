@@ -74,6 +74,6 @@ class Model {
   BreakingRule breaking_;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_MODEL_H
+#endif    // PERISISSM_PERI_MODEL_H

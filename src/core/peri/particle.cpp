@@ -11,18 +11,18 @@
 namespace PeriSISSM {
 
 namespace {
-using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
-using ConstMap = Eigen::Map<const RowMatrix3d>;
-using Map = Eigen::Map<RowMatrix3d>;
-}  // namespace
+  using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  using ConstMap = Eigen::Map<const RowMatrix3d>;
+  using Map = Eigen::Map<RowMatrix3d>;
+}    // namespace
 
-void particle_stress(const Material& material, const Eigen::Matrix3d& F, ParticleStress& out,
+void particle_stress(const Material &material, const Eigen::Matrix3d &F, ParticleStress &out,
                      bool with_split)
 {
   stress_from_svd(material, fast_signed_svd(F), out, with_split);
 }
 
-void stress_from_svd(const Material& material, const SignedSVD& svd, ParticleStress& out,
+void stress_from_svd(const Material &material, const SignedSVD &svd, ParticleStress &out,
                      bool with_split)
 {
   // (P is formed in a local and then stored: Eigen's vectorized 3x3 products may sum in another
@@ -37,25 +37,25 @@ void stress_from_svd(const Material& material, const SignedSVD& svd, ParticleStr
   out.W = material.energy(out.svd.s);
 }
 
-Eigen::Matrix3d first_piola(const Material& material, const Eigen::Matrix3d& F)
+Eigen::Matrix3d first_piola(const Material &material, const Eigen::Matrix3d &F)
 {
   ParticleStress ps;
   particle_stress(material, F, ps);
   return ps.P;
 }
 
-Eigen::Matrix3d implicit_part(const ParticleStress& ps)
+Eigen::Matrix3d implicit_part(const ParticleStress &ps)
 {
   return ps.svd.U * ps.c.cwiseProduct(ps.svd.s).asDiagonal() * ps.svd.V.transpose();
 }
 
-Eigen::Matrix3d implicit_direction(const ParticleStress& ps)
+Eigen::Matrix3d implicit_direction(const ParticleStress &ps)
 {
   const Eigen::Matrix3d D = ps.svd.U * ps.c.asDiagonal() * ps.svd.U.transpose();
   return 0.5 * (D + D.transpose());
 }
 
-void implicit_stiffness(const ParticleStress& ps, double kappa, double H[6])
+void implicit_stiffness(const ParticleStress &ps, double kappa, double H[6])
 {
   const Eigen::Matrix3d h = kappa * ps.svd.U * ps.c.asDiagonal() * ps.svd.U.transpose();
   H[0] = h(0, 0);
@@ -68,37 +68,37 @@ void implicit_stiffness(const ParticleStress& ps, double kappa, double H[6])
 
 namespace {
 
-// F = M K^-1
-Eigen::Matrix3d gradient(const double M[9], const double Kinv[9])
-{
-  const RowMatrix3d kinv = ConstMap(Kinv);
-  return ConstMap(M) * kinv;
-}
+  // F = M K^-1
+  Eigen::Matrix3d gradient(const double M[9], const double Kinv[9])
+  {
+    const RowMatrix3d kinv = ConstMap(Kinv);
+    return ConstMap(M) * kinv;
+  }
 
-// the outputs of correspondence_state() from F and its SVD
-double finish_state(const Material& material, const Eigen::Matrix3d& f, const SignedSVD& svd,
-                    const double Kinv[9], double F[9], double A[9], double H[6])
-{
-  ParticleStress ps;
-  stress_from_svd(material, svd, ps, H != nullptr);
-  const RowMatrix3d kinv = ConstMap(Kinv);
-  Map fout(F), aout(A);
-  fout = f;
-  aout = ps.P * kinv;
-  if (H) implicit_stiffness(ps, (Kinv[0] + Kinv[4] + Kinv[8]) / 3.0, H);
-  return ps.W;
-}
+  // the outputs of correspondence_state() from F and its SVD
+  double finish_state(const Material &material, const Eigen::Matrix3d &f, const SignedSVD &svd,
+                      const double Kinv[9], double F[9], double A[9], double H[6])
+  {
+    ParticleStress ps;
+    stress_from_svd(material, svd, ps, H != nullptr);
+    const RowMatrix3d kinv = ConstMap(Kinv);
+    Map fout(F), aout(A);
+    fout = f;
+    aout = ps.P * kinv;
+    if (H) implicit_stiffness(ps, (Kinv[0] + Kinv[4] + Kinv[8]) / 3.0, H);
+    return ps.W;
+  }
 
-}  // namespace
+}    // namespace
 
-double correspondence_state(const Material& material, const double M[9], const double Kinv[9],
+double correspondence_state(const Material &material, const double M[9], const double Kinv[9],
                             double F[9], double A[9], double H[6])
 {
   const Eigen::Matrix3d f = gradient(M, Kinv);
   return finish_state(material, f, fast_signed_svd(f), Kinv, F, A, H);
 }
 
-void correspondence_states(const CorrespondenceState& a, const CorrespondenceState& b)
+void correspondence_states(const CorrespondenceState &a, const CorrespondenceState &b)
 {
   const Eigen::Matrix3d fa = gradient(a.M, a.Kinv), fb = gradient(b.M, b.Kinv);
   SignedSVD sa, sb;
@@ -118,12 +118,12 @@ void correspondence_states(const CorrespondenceState (&s)[4])
 }
 
 // tau = P F^T = U diag(phat) V^T V diag(s) U^T = U diag(phat .* s) U^T.
-double cauchy_stress(const Material& material, const double F[9], double sigma[6], double& J)
+double cauchy_stress(const Material &material, const double F[9], double sigma[6], double &J)
 {
   ParticleStress ps;
   particle_stress(material, ConstMap(F), ps);
   J = ps.svd.s.prod();
-  const Eigen::Matrix3d& U = ps.svd.U;
+  const Eigen::Matrix3d &U = ps.svd.U;
   const Eigen::Matrix3d tau = U * ps.phat.cwiseProduct(ps.svd.s).asDiagonal() * U.transpose();
   const double scale = 1.0 / std::max(J, kCauchyMinJ);
   sigma[0] = scale * tau(0, 0);
@@ -141,4 +141,4 @@ double von_mises(const double s[6])
   return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

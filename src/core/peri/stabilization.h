@@ -65,6 +65,6 @@ void stabilization_pass(const Model &model, const Particles &p, const Families &
                         const ReferenceBox &box, ParticleFields &fields, const Virial &virial,
                         bool energy);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_STABILIZATION_H
+#endif    // PERISISSM_PERI_STABILIZATION_H

@@ -22,4 +22,4 @@ double stable_time_step(double rho, double d)
                    : std::numeric_limits<double>::infinity();
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

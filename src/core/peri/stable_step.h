@@ -33,6 +33,6 @@ double stable_step_stiffness(const Material &material, const double Kinv[9], dou
 // dt_i from rho_i and d_i = sum_j omega_ij (s_i + s_j); +infinity when d_i <= 0.
 double stable_time_step(double rho, double d);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_PERI_STABLE_STEP_H
+#endif    // PERISISSM_PERI_STABLE_STEP_H

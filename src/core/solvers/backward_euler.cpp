@@ -28,4 +28,4 @@ void BackwardEuler::finish(const Rows &rows, const StepArrays &a)
   }
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

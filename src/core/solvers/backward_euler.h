@@ -29,6 +29,6 @@ class BackwardEuler : public TimeScheme {
   void finish(const Rows &rows, const StepArrays &a) override;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_BACKWARD_EULER_H
+#endif    // PERISISSM_SOLVERS_BACKWARD_EULER_H

@@ -71,4 +71,4 @@ void Bdf2::finish(const Rows &rows, const StepArrays &a)
   hprev_ = h_;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

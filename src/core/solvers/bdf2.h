@@ -43,11 +43,11 @@ class Bdf2 : public TimeScheme {
   void set_state(const double *s) override { hprev_ = s[0]; }
 
  private:
-  double hprev_ = 0.0;    // the step of the history (0: no step yet)
-  bool restart_ = true;   // this step starts the history anew
+  double hprev_ = 0.0;     // the step of the history (0: no step yet)
+  bool restart_ = true;    // this step starts the history anew
   double a0_ = 1.5, a2_ = 0.5;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_BDF2_H
+#endif    // PERISISSM_SOLVERS_BDF2_H

@@ -17,4 +17,4 @@ void BlockPreconditioner::apply(NonlinearSystem &sys, double **r, double **z)
   }
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -6,8 +6,7 @@ namespace PeriSISSM {
 
 ExternalRole external_role(const ExternalFix &fix)
 {
-  if (fix.integrator || fix.dynamic_group || fix.reservoir || fix.keeps_state ||
-      fix.named_lagged)
+  if (fix.integrator || fix.dynamic_group || fix.reservoir || fix.keeps_state || fix.named_lagged)
     return ExternalRole::lagged;
   return fix.potential ? ExternalRole::adds : ExternalRole::may_rewrite;
 }
@@ -25,4 +24,4 @@ ExternalMode external_mode(const std::vector<ExternalRole> &roles, bool implicit
   return rewriting ? ExternalMode::lagged : ExternalMode::mixed;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

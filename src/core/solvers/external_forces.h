@@ -46,6 +46,6 @@ enum class ExternalMode { none, implicit, mixed, lagged };
 // roles: of all fixes that act in post_force; implicit_asked: keyword external implicit
 ExternalMode external_mode(const std::vector<ExternalRole> &roles, bool implicit_asked);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_EXTERNAL_FORCES_H
+#endif    // PERISISSM_SOLVERS_EXTERNAL_FORCES_H

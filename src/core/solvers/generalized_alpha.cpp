@@ -42,8 +42,7 @@ void GeneralizedAlpha::begin(const Rows &rows, const StepArrays &a)
   }
 }
 
-void GeneralizedAlpha::end_state(int i, int k, const StepArrays &a, double &acc,
-                                 double &vel) const
+void GeneralizedAlpha::end_state(int i, int k, const StepArrays &a, double &acc, double &vel) const
 {
   const double h = h_, an = a.hist[i][k], vn = a.vn[i][k];
   const double dy = (a.y[i][k] - a.yn[i][k]) / (1.0 - alpha_f_);    // y^{n+1} - y^n
@@ -74,4 +73,4 @@ void GeneralizedAlpha::finish(const Rows &rows, const StepArrays &a)
   }
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

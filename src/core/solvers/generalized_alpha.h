@@ -43,6 +43,6 @@ class GeneralizedAlpha : public TimeScheme {
   double alpha_m_, alpha_f_, gamma_, beta_;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_GENERALIZED_ALPHA_H
+#endif    // PERISISSM_SOLVERS_GENERALIZED_ALPHA_H

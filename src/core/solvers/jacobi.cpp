@@ -28,8 +28,8 @@ void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &relax)
       if (dd > 0.0) {
         const double dDd = D[0] * dp[0] * dp[0] + D[1] * dp[1] * dp[1] + D[2] * dp[2] * dp[2] +
             2.0 * (D[3] * dp[0] * dp[1] + D[4] * dp[0] * dp[2] + D[5] * dp[1] * dp[2]);
-        const double dr = -((r[0] - rp[0]) * dp[0] + (r[1] - rp[1]) * dp[1] +
-                             (r[2] - rp[2]) * dp[2]);
+        const double dr =
+            -((r[0] - rp[0]) * dp[0] + (r[1] - rp[1]) * dp[1] + (r[2] - rp[2]) * dp[2]);
         if (dr > dDd) alpha = dDd / dr;
       }
     }
@@ -58,4 +58,4 @@ SolveResult solve_jacobi(NonlinearSystem &sys, int maxiter, const SweepMemory &r
   return out;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

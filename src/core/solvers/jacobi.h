@@ -36,6 +36,6 @@ void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &relax);
 // whose starting residual meets the tolerance is the last one.
 SolveResult solve_jacobi(NonlinearSystem &sys, int maxiter, const SweepMemory &relax);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_JACOBI_H
+#endif    // PERISISSM_SOLVERS_JACOBI_H

@@ -9,8 +9,8 @@
 
 namespace PeriSISSM {
 
-void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &step,
-                      double **x, double **yn, double **yhat, double **fext, double **moment)
+void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &step, double **x,
+                      double **yn, double **yhat, double **fext, double **moment)
 {
   const double h = step.h, cf = step.c;
   const bool euler = step.euler;
@@ -57,7 +57,7 @@ void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &
   exact_sums(t, nlocal, NM, 12, red, s);
   double dcen[3], d[3], Ln[3];
   for (int k = 0; k < 3; k++) {
-    dcen[k] = s[k] / mass;                                   // c - c^n
+    dcen[k] = s[k] / mass;    // c - c^n
     // move of the centre: the target sum m (y - y^n) (euler: h P^{n+1}; else
     // sum m (yhat - y^n) + c F) minus where the solve left it
     const double target = euler ? h * (s[3 + k] + h * s[6 + k]) : h * s[3 + k] + cf * s[6 + k];
@@ -108,8 +108,8 @@ void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &
     const double jtrace = fabs(s[3]) + fabs(s[7]) + fabs(s[11]);
     double dtheta[3];
     if (!solve3(s + 3, G, 1.0e-12 * jtrace * jtrace * jtrace, dtheta)) break;
-    const double angle = sqrt(dtheta[0] * dtheta[0] + dtheta[1] * dtheta[1] +
-                              dtheta[2] * dtheta[2]);
+    const double angle =
+        sqrt(dtheta[0] * dtheta[0] + dtheta[1] * dtheta[1] + dtheta[2] * dtheta[2]);
     if (!(angle > 0.0)) break;
     const double k[3] = {dtheta[0] / angle, dtheta[1] / angle, dtheta[2] / angle};
     const double cs = cos(angle), sn = sin(angle);
@@ -129,4 +129,4 @@ void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &
   }
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -45,9 +45,9 @@ constexpr int kMomentumColumns = 15;
 // which angular balance (see above): backward Euler's L^{n+1} = L^n + h T, or the converged
 // step's identity of a scheme with force factor c
 struct MomentumBalance {
-  double h = 0.0;          // the time step
-  double c = 0.0;          // the scheme's force factor (h^2 for backward Euler)
-  bool euler = true;       // true: backward Euler's balance; false: the general one
+  double h = 0.0;       // the time step
+  double c = 0.0;       // the scheme's force factor (h^2 for backward Euler)
+  bool euler = true;    // true: backward Euler's balance; false: the general one
 };
 
 // Inputs: the unknown rows (a free group), reductions, the scheme's step (above), y^{n+1} (the
@@ -56,6 +56,6 @@ struct MomentumBalance {
 void balance_momentum(const Rows &rows, Reductions &red, const MomentumBalance &step, double **y,
                       double **yn, double **yhat, double **fext, double **moment);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_MOMENTUM_H
+#endif    // PERISISSM_SOLVERS_MOMENTUM_H

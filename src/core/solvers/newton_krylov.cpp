@@ -147,4 +147,4 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
   return out;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -35,6 +35,6 @@ struct KrylovWork {
 SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, int maxiter,
                                 const KrylovWork &work);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_NEWTON_KRYLOV_H
+#endif    // PERISISSM_SOLVERS_NEWTON_KRYLOV_H

@@ -33,6 +33,6 @@ class BlockPreconditioner : public Preconditioner {
   void apply(NonlinearSystem &sys, double **r, double **z) override;
 };
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_PRECONDITIONER_H
+#endif    // PERISISSM_SOLVERS_PRECONDITIONER_H

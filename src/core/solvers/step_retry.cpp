@@ -6,27 +6,27 @@ namespace PeriSISSM {
 
 namespace {
 
-// rung 4: levels of 2^level sub-steps; true when a level converged
-bool cut_back(StepAttempts &step, const RetryPolicy &policy, RetryOutcome &out)
-{
-  bool done = false;
-  for (int level = 1; level <= policy.max_cutback && !done; level++) {
-    const int n = 1 << level;
-    step.restore_start();
-    done = true;
-    for (int s = 0; s < n; s++) {
-      out.result = step.solve(n, s);
-      out.evaluations += step.evaluations();
-      if (!out.result.converged()) {
-        done = false;
-        break;
+  // rung 4: levels of 2^level sub-steps; true when a level converged
+  bool cut_back(StepAttempts &step, const RetryPolicy &policy, RetryOutcome &out)
+  {
+    bool done = false;
+    for (int level = 1; level <= policy.max_cutback && !done; level++) {
+      const int n = 1 << level;
+      step.restore_start();
+      done = true;
+      for (int s = 0; s < n; s++) {
+        out.result = step.solve(n, s);
+        out.evaluations += step.evaluations();
+        if (!out.result.converged()) {
+          done = false;
+          break;
+        }
       }
+      out.substeps = n;
     }
-    out.substeps = n;
+    step.end_cutback();
+    return done;
   }
-  step.end_cutback();
-  return done;
-}
 
 }    // namespace
 
@@ -64,4 +64,4 @@ StepVerdict step_verdict(const RetryPolicy &policy, double measure, double toler
   return StepVerdict::warn;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

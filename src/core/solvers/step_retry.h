@@ -25,8 +25,8 @@ enum class Unconverged { warn, error, cutback };
 
 struct RetryPolicy {
   Unconverged unconverged = Unconverged::cutback;
-  int max_cutback = 4;            // cutback: at most 2^max_cutback sub-steps
-  bool fixed_count = false;       // tolerance 0: no retries, no verdict against the step
+  int max_cutback = 4;         // cutback: at most 2^max_cutback sub-steps
+  bool fixed_count = false;    // tolerance 0: no retries, no verdict against the step
   bool two_preconditioners = false;
 };
 
@@ -51,11 +51,11 @@ class StepAttempts {
 };
 
 struct RetryOutcome {
-  SolveResult result;        // of the last solve
-  int evaluations = 0;       // over all attempts
-  int substeps = 1;          // sub-steps of the last level tried (1: not cut back)
-  bool refreshed = false;    // rung 2 was taken
-  bool switched = false;     // rung 3 was taken
+  SolveResult result;               // of the last solve
+  int evaluations = 0;              // over all attempts
+  int substeps = 1;                 // sub-steps of the last level tried (1: not cut back)
+  bool refreshed = false;           // rung 2 was taken
+  bool switched = false;            // rung 3 was taken
   bool switch_converged = false;    // ... and converged the step
   bool cut_back = false;            // rung 4 was taken
   bool cutback_failed = false;      // ... and no level converged: the step fails
@@ -68,6 +68,6 @@ enum class StepVerdict { converged, warn, error };
 // measure against the tolerance the step was held to
 StepVerdict step_verdict(const RetryPolicy &policy, double measure, double tolerance);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_STEP_RETRY_H
+#endif    // PERISISSM_SOLVERS_STEP_RETRY_H

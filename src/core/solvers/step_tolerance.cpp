@@ -8,10 +8,10 @@
 namespace PeriSISSM {
 
 namespace {
-double largest_coordinate(const double x[3])
-{
-  return fmax(fabs(x[0]), fmax(fabs(x[1]), fabs(x[2])));
-}
+  double largest_coordinate(const double x[3])
+  {
+    return fmax(fabs(x[0]), fmax(fabs(x[1]), fabs(x[2])));
+  }
 }    // namespace
 
 double roundoff_term(const double x[3], const double block[6], double size, double density,
@@ -39,4 +39,4 @@ StepTolerance step_tolerance(double asked, const Rows &rows, double **x, double 
   return result;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

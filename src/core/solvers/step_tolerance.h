@@ -37,6 +37,6 @@ double roundoff_term(const double x[3], const double block[6], double size, doub
 StepTolerance step_tolerance(double asked, const Rows &rows, double **x, double **block,
                              double force_factor, Reductions &reductions);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_STEP_TOLERANCE_H
+#endif    // PERISISSM_SOLVERS_STEP_TOLERANCE_H

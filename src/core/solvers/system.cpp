@@ -44,4 +44,4 @@ double scaled_max(NonlinearSystem &sys, double **a, bool per_density)
   return local;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -63,6 +63,6 @@ double merit(NonlinearSystem &sys, double *term);
 // particle size; near a stable state J >= rho, so |r|/rho bounds the distance to the solution)
 double scaled_max(NonlinearSystem &sys, double **a, bool per_density);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_SYSTEM_H
+#endif    // PERISISSM_SOLVERS_SYSTEM_H

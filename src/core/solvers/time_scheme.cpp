@@ -16,4 +16,4 @@ std::unique_ptr<TimeScheme> make_time_scheme(const std::string &name, double rho
   return nullptr;
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -27,15 +27,15 @@ namespace PeriSISSM {
 
 // The per-row arrays of one step (row i of rows.n), owned by the caller.
 struct StepArrays {
-  double **y = nullptr;       // positions: y^n on begin(), the iterate, then the result
-  double **v = nullptr;       // velocities: v^n on begin(), v^{n+1} after finish()
-  double **yn = nullptr;      // y^n (written by begin())
-  double **vn = nullptr;      // v^n (written by begin(); schemes with history only)
-  double **yhat = nullptr;    // the predictor (written by begin())
-  double **hist = nullptr;    // history_columns() per row, kept by the caller between steps
-  double **flag = nullptr;    // a lagged force density the predictor carries (null: none)
-  double **fstart = nullptr;  // force density at y^n (starts rows without history; may be
-                              // null for schemes without history)
+  double **y = nullptr;         // positions: y^n on begin(), the iterate, then the result
+  double **v = nullptr;         // velocities: v^n on begin(), v^{n+1} after finish()
+  double **yn = nullptr;        // y^n (written by begin())
+  double **vn = nullptr;        // v^n (written by begin(); schemes with history only)
+  double **yhat = nullptr;      // the predictor (written by begin())
+  double **hist = nullptr;      // history_columns() per row, kept by the caller between steps
+  double **flag = nullptr;      // a lagged force density the predictor carries (null: none)
+  double **fstart = nullptr;    // force density at y^n (starts rows without history; may be
+                                // null for schemes without history)
 };
 
 class TimeScheme {
@@ -59,8 +59,7 @@ class TimeScheme {
   // outside the group are placed there while the step is solved
   virtual double force_time() const { return 1.0; }
   // residual of one row from its force density f at the current iterate y
-  void residual(double rho, const double *yhat, const double *y, const double *f,
-                double *r) const
+  void residual(double rho, const double *yhat, const double *y, const double *f, double *r) const
   {
     for (int k = 0; k < 3; k++) r[k] = rho * (yhat[k] - y[k]) + c_ * f[k];
   }
@@ -90,6 +89,6 @@ class TimeScheme {
 // h omega, 0 to 1). Null for an unknown name.
 std::unique_ptr<TimeScheme> make_time_scheme(const std::string &name, double rho_inf = 1.0);
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SOLVERS_TIME_SCHEME_H
+#endif    // PERISISSM_SOLVERS_TIME_SCHEME_H

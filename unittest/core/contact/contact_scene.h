@@ -20,7 +20,7 @@ namespace PeriSISSMContactTest {
 
 struct Scene {
   std::vector<std::array<double, 3>> pos;
-  std::vector<double *> rows;                   // pos as double **
+  std::vector<double *> rows;    // pos as double **
   std::vector<std::int64_t> tag;
   std::vector<PeriSISSM::ContactRole> role;
   std::vector<std::array<int, 3>> triangles;    // local indices

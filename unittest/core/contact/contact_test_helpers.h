@@ -45,9 +45,9 @@ inline Points gaussian_points(std::mt19937_64 &rng, double scale = 1.0)
 // Central differences of f at x with step h in each coordinate: truncation h^2 f''' / 6,
 // round-off about eps |f| / h.
 template <int N>
-Eigen::Matrix<double, N, 1> fd_gradient(
-    const std::function<double(const Eigen::Matrix<double, N, 1> &)> &f,
-    const Eigen::Matrix<double, N, 1> &x, double h)
+Eigen::Matrix<double, N, 1>
+fd_gradient(const std::function<double(const Eigen::Matrix<double, N, 1> &)> &f,
+            const Eigen::Matrix<double, N, 1> &x, double h)
 {
   Eigen::Matrix<double, N, 1> g;
   for (int i = 0; i < N; i++) {
@@ -61,9 +61,9 @@ Eigen::Matrix<double, N, 1> fd_gradient(
 
 // Central differences of a gradient: column i of the Hessian.
 template <int N>
-Eigen::Matrix<double, N, N> fd_hessian(
-    const std::function<Eigen::Matrix<double, N, 1>(const Eigen::Matrix<double, N, 1> &)> &g,
-    const Eigen::Matrix<double, N, 1> &x, double h)
+Eigen::Matrix<double, N, N>
+fd_hessian(const std::function<Eigen::Matrix<double, N, 1>(const Eigen::Matrix<double, N, 1> &)> &g,
+           const Eigen::Matrix<double, N, 1> &x, double h)
 {
   Eigen::Matrix<double, N, N> H;
   for (int i = 0; i < N; i++) {
@@ -82,6 +82,6 @@ template <class A, class B> double relative_error(const A &a, const B &b, double
   return (a - b).cwiseAbs().maxCoeff() / std::max(b.cwiseAbs().maxCoeff(), floor);
 }
 
-}  // namespace PeriSISSMContactTest
+}    // namespace PeriSISSMContactTest
 
-#endif  // PERISISSM_CONTACT_TEST_HELPERS_H
+#endif    // PERISISSM_CONTACT_TEST_HELPERS_H

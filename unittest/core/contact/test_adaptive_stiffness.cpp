@@ -13,8 +13,8 @@
 #include <cmath>
 
 using namespace PeriSISSM;
-using PeriSISSMContactTest::Scene;
 using Eigen::Vector3d;
+using PeriSISSMContactTest::Scene;
 
 TEST(AdaptiveStiffness, BoundsFromTheScene)
 {
@@ -97,8 +97,8 @@ TEST(AdaptiveStiffness, BalanceSumsOverTheGroup)
   const double volume[4] = {0.5, 2.0, 1.0, 1.0};
   const int mask[4] = {1, 1, 0, 1};
   // distances not valid: nothing active
-  BalanceSums b = balance_sums(cands, dist, s.rows.data(), rres.data(), volume, mask, 1, 4, dhat,
-                               dmin);
+  BalanceSums b =
+      balance_sums(cands, dist, s.rows.data(), rres.data(), volume, mask, 1, 4, dhat, dmin);
   EXPECT_FALSE(b.active);
   dist.evaluate(cands, s.rows.data(), s.n(), 1, dmin + dhat, 1.0);
   b = balance_sums(cands, dist, s.rows.data(), rres.data(), volume, mask, 1, 4, dhat, dmin);

@@ -66,8 +66,9 @@ TEST(Barrier, DerivativesMatchFiniteDifferences)
     for (double r : {1e-6, 1e-3, 0.1, 0.5, 0.9, 0.99}) {
       const double g = r * dhat, h = 1e-6 * g;
       const double fd1 = (barrier(g + h, dhat) - barrier(g - h, dhat)) / (2.0 * h);
-      const double fd2 = (barrier_first_derivative(g + h, dhat) -
-                          barrier_first_derivative(g - h, dhat)) / (2.0 * h);
+      const double fd2 =
+          (barrier_first_derivative(g + h, dhat) - barrier_first_derivative(g - h, dhat)) /
+          (2.0 * h);
       EXPECT_NEAR(barrier_first_derivative(g, dhat), fd1,
                   1e-6 * std::fabs(barrier_first_derivative(g, dhat)))
           << dhat << " " << r;
@@ -94,10 +95,11 @@ TEST(Barrier, SquaredDistanceChainRule)
         EXPECT_NEAR(distance_barrier(D, dmin, dhat), barrier(g, dhat), 1e-9 * barrier(g, dhat));
         const double B1 = distance_barrier_first_derivative(D, dmin, dhat);
         const double B2 = distance_barrier_second_derivative(D, dmin, dhat);
-        const double fd1 = (distance_barrier(D + h, dmin, dhat) -
-                            distance_barrier(D - h, dmin, dhat)) / (2.0 * h);
+        const double fd1 =
+            (distance_barrier(D + h, dmin, dhat) - distance_barrier(D - h, dmin, dhat)) / (2.0 * h);
         const double fd2 = (distance_barrier_first_derivative(D + h, dmin, dhat) -
-                            distance_barrier_first_derivative(D - h, dmin, dhat)) / (2.0 * h);
+                            distance_barrier_first_derivative(D - h, dmin, dhat)) /
+            (2.0 * h);
         EXPECT_NEAR(B1, fd1, 1e-4 * std::fabs(B1)) << L << " " << dmin << " " << r;
         EXPECT_NEAR(B2, fd2, 1e-4 * std::fabs(B2)) << L << " " << dmin << " " << r;
       }
@@ -155,8 +157,12 @@ void pair_fd(Energy E, Gradient G, Hessian H, const PairCase &c, double gap, dou
 {
   const X12 x = pack(c.x);
   const double h = 1e-6 * gap;
-  const std::function<double(const X12 &)> f = [&](const X12 &y) { return E(unpack(y)); };
-  const std::function<X12(const X12 &)> g = [&](const X12 &y) { return G(unpack(y)); };
+  const std::function<double(const X12 &)> f = [&](const X12 &y) {
+    return E(unpack(y));
+  };
+  const std::function<X12(const X12 &)> g = [&](const X12 &y) {
+    return G(unpack(y));
+  };
   const X12 g0 = g(x);
   const M12 H0 = H(unpack(x));
   const double eg = relative_error(g0, fd_gradient<12>(f, x, h), 1e-300);
@@ -197,8 +203,8 @@ TEST(Barrier, PointTrianglePairMatchesFiniteDifferences)
       EXPECT_GT(point_triangle_barrier_energy(c.x[0], c.x[1], c.x[2], c.x[3], prm), 0.0);
     }
     EXPECT_GE(tested, 40);
-    std::printf("point-triangle barrier, scale %g: worst FD error gradient %.1e Hessian %.1e\n",
-                L, wg, wh);
+    std::printf("point-triangle barrier, scale %g: worst FD error gradient %.1e Hessian %.1e\n", L,
+                wg, wh);
   }
 }
 
@@ -213,7 +219,9 @@ TEST(Barrier, EdgeEdgePairMatchesFiniteDifferences)
     for (int trial = 0; trial < 400 && tested < 60; trial++) {
       PairCase c;
       c.x = gaussian_points(rng, L);
-      auto dist = [](const Points &x) { return edge_edge_distance(x[0], x[1], x[2], x[3]); };
+      auto dist = [](const Points &x) {
+        return edge_edge_distance(x[0], x[1], x[2], x[3]);
+      };
       if (!place_within_reach(c.x, L, rng, c.prm, true, dist)) continue;
       tested++;
       const double cval = (c.x[1] - c.x[0]).cross(c.x[3] - c.x[2]).squaredNorm();
@@ -236,7 +244,8 @@ TEST(Barrier, EdgeEdgePairMatchesFiniteDifferences)
     EXPECT_GE(tested, 60);
     EXPECT_GE(mollified, 25);
     std::printf("edge-edge barrier, scale %g (%d of %d mollified): worst FD error gradient "
-                "%.1e Hessian %.1e\n", L, mollified, tested, wg, wh);
+                "%.1e Hessian %.1e\n",
+                L, mollified, tested, wg, wh);
   }
 }
 
@@ -290,7 +299,9 @@ TEST(Barrier, ProjectedHessianIsPositiveSemiDefinite)
   for (int trial = 0; trial < 200; trial++) {
     PairCase c;
     c.x = gaussian_points(rng, 1.0);
-    auto dist = [](const Points &x) { return point_triangle_distance(x[0], x[1], x[2], x[3]); };
+    auto dist = [](const Points &x) {
+      return point_triangle_distance(x[0], x[1], x[2], x[3]);
+    };
     if (!place_within_reach(c.x, 1.0, rng, c.prm, false, dist)) continue;
     const Points &x = c.x;
     const Matrix12d H = point_triangle_barrier_hessian(x[0], x[1], x[2], x[3], c.prm, false);
@@ -315,17 +326,16 @@ TEST(Barrier, StiffnessHelpers)
   double kappa_max = 0.0;
   const double kmin_expected = 1e11 * mass / barrier_second_derivative(2e-8, dhat);
   // no barrier gradient: kappa_min
-  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(diag, dhat, mass, 0.0, 0.0, kappa_max),
-                   kmin_expected);
+  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(diag, dhat, mass, 0.0, 0.0, kappa_max), kmin_expected);
   EXPECT_DOUBLE_EQ(kappa_max, 100.0 * kmin_expected);
   // balance within the bounds: -gE.gB / |gB|^2
-  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(diag, dhat, mass, -5.0 * kmin_expected, 1.0,
-                                             kappa_max), 5.0 * kmin_expected);
+  EXPECT_DOUBLE_EQ(
+      initial_barrier_stiffness(diag, dhat, mass, -5.0 * kmin_expected, 1.0, kappa_max),
+      5.0 * kmin_expected);
   // clamped above and below
-  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(diag, dhat, mass, -1e3 * kmin_expected, 1.0,
-                                             kappa_max), kappa_max);
-  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(diag, dhat, mass, 1.0, 1.0, kappa_max),
-                   kmin_expected);
+  EXPECT_DOUBLE_EQ(
+      initial_barrier_stiffness(diag, dhat, mass, -1e3 * kmin_expected, 1.0, kappa_max), kappa_max);
+  EXPECT_DOUBLE_EQ(initial_barrier_stiffness(diag, dhat, mass, 1.0, 1.0, kappa_max), kmin_expected);
   // doubling while the smallest gap is tiny and shrinking, capped
   EXPECT_EQ(update_barrier_stiffness(1e-9, 5e-10, 10.0, 3.0, diag), 6.0);
   EXPECT_EQ(update_barrier_stiffness(1e-9, 5e-10, 10.0, 6.0, diag), 10.0);
@@ -333,4 +343,4 @@ TEST(Barrier, StiffnessHelpers)
   EXPECT_EQ(update_barrier_stiffness(1e-3, 5e-4, 10.0, 3.0, diag), 3.0);     // not tiny
 }
 
-}  // namespace
+}    // namespace

@@ -13,8 +13,8 @@
 #include <cmath>
 
 using namespace PeriSISSM;
-using PeriSISSMContactTest::Scene;
 using Eigen::Vector3d;
+using PeriSISSMContactTest::Scene;
 
 namespace {
 
@@ -121,8 +121,8 @@ TEST(BarrierPotential, ForcesAreMinusTheGradientOfTheEnergy)
   }
   EXPECT_GT(checked, 0);
   const BarrierParameters thick{2.0, 0.15, 0.12};
-  const BarrierTally stop = barrier_forces(cands, dist, s.rows.data(), volume.data(), thick, 1.0,
-                                           f.data());
+  const BarrierTally stop =
+      barrier_forces(cands, dist, s.rows.data(), volume.data(), thick, 1.0, f.data());
   ASSERT_GE(stop.too_close, 0);
   EXPECT_LE(dist[stop.too_close], thick.dmin);
 }

@@ -13,8 +13,8 @@
 #include <random>
 
 using namespace PeriSISSM;
-using PeriSISSMContactTest::Scene;
 using Eigen::Vector3d;
+using PeriSISSMContactTest::Scene;
 
 namespace {
 

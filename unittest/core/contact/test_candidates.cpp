@@ -17,8 +17,8 @@
 #include <tuple>
 
 using namespace PeriSISSM;
-using PeriSISSMContactTest::Scene;
 using Eigen::Vector3d;
+using PeriSISSMContactTest::Scene;
 
 namespace {
 
@@ -34,9 +34,13 @@ std::set<Key> brute_force(const Scene &s, double reach,
                           const std::function<bool(int, int)> &partners)
 {
   std::set<Key> keys;
-  auto p3 = [&](int k) { return Vector3d(s.pos[k][0], s.pos[k][1], s.pos[k][2]); };
+  auto p3 = [&](int k) {
+    return Vector3d(s.pos[k][0], s.pos[k][1], s.pos[k][2]);
+  };
   auto sorted = [&](std::vector<int> v) {
-    std::sort(v.begin(), v.end(), [&](int a, int b) { return s.tag[a] < s.tag[b]; });
+    std::sort(v.begin(), v.end(), [&](int a, int b) {
+      return s.tag[a] < s.tag[b];
+    });
     return v;
   };
   const CollisionStencil &pt = CollisionStencil::of(StencilType::kPointTriangle);
@@ -64,8 +68,7 @@ std::set<Key> brute_force(const Scene &s, double reach,
   for (std::size_t a = 0; a < edges.size(); a++)
     for (std::size_t b = a + 1; b < edges.size(); b++) {
       auto u = edges[a], w = edges[b];
-      if (u.first == w.first || u.first == w.second || u.second == w.first ||
-          u.second == w.second)
+      if (u.first == w.first || u.first == w.second || u.second == w.first || u.second == w.second)
         continue;
       if (s.tag[w.first] < s.tag[u.first]) std::swap(u, w);
       const Vector3d y[4] = {p3(u.first), p3(u.second), p3(w.first), p3(w.second)};
@@ -161,8 +164,7 @@ TEST(Candidates, RestShapeAndOwners)
     }
     ee++;
     const Vector3d ra = atoms.rest_vector(c.v[0], c.v[1]), rb = atoms.rest_vector(c.v[2], c.v[3]);
-    EXPECT_EQ(c.eps,
-              edge_edge_mollifier_threshold(Vector3d::Zero(), ra, Vector3d::Zero(), rb));
+    EXPECT_EQ(c.eps, edge_edge_mollifier_threshold(Vector3d::Zero(), ra, Vector3d::Zero(), rb));
     EXPECT_GT(c.eps, 0.0);
   }
   EXPECT_GT(ee, 0);
@@ -174,7 +176,9 @@ TEST(Candidates, PartnersAreNoPair)
 {
   const Scene s = two_sheets(4);
   // the first two particles (local 50 and 51) were bonded
-  auto partners = [](int a, int b) { return std::min(a, b) == 50 && std::max(a, b) == 51; };
+  auto partners = [](int a, int b) {
+    return std::min(a, b) == 50 && std::max(a, b) == 51;
+  };
   ContactAtoms atoms = s.atoms();
   atoms.were_partners = partners;
   std::vector<Candidate> with, without;

@@ -72,8 +72,8 @@ TEST(Ccd, PointMovingParallelToTriangle)
     const double t = point_triangle_ccd(Vector3d(0.2, 0.2, 0.1), t0, t1, t2,
                                         Vector3d(0.5, 0.3, 0.0), zero, zero, zero, opt, &rep);
     EXPECT_EQ(t, 1.0);
-    std::printf("point parallel to a triangle (gap %.2f, motion 0.58): %ld sub-steps\n",
-                0.1 - dmin, rep.iterations);
+    std::printf("point parallel to a triangle (gap %.2f, motion 0.58): %ld sub-steps\n", 0.1 - dmin,
+                rep.iterations);
   }
 }
 
@@ -140,8 +140,8 @@ TEST(Ccd, ParallelEdgesSlidingIntoEachOther)
     const double tau = t * k / 1000.0;
     EXPECT_GT(edge_edge_distance(a0, a1, b0 + tau * db, b1 + tau * db), opt.dmin);
   }
-  std::printf("parallel edges sliding in: t = %.4f (gap s g0 reached at %.4f), %ld sub-steps\n",
-              t, t_keep, rep.iterations);
+  std::printf("parallel edges sliding in: t = %.4f (gap s g0 reached at %.4f), %ld sub-steps\n", t,
+              t_keep, rep.iterations);
   // with dmin = 0 and s small enough that s g0 < 0.1 they never come within s g0: t = 1
   opt.dmin = 0.0;
   opt.s = 0.05;
@@ -220,9 +220,9 @@ TEST(Ccd, AlreadyWithinThickness)
   EXPECT_EQ(rep.iterations, 0);
   // touching exactly, dmin = 0
   opt.dmin = 0.0;
-  EXPECT_EQ(point_triangle_ccd(Vector3d(0.2, 0.2, 0.0), t0, t1, t2, away, zero, zero, zero, opt,
-                               &rep),
-            0.0);
+  EXPECT_EQ(
+      point_triangle_ccd(Vector3d(0.2, 0.2, 0.0), t0, t1, t2, away, zero, zero, zero, opt, &rep),
+      0.0);
   EXPECT_TRUE(rep.initially_close);
   // intersecting edges
   EXPECT_EQ(edge_edge_ccd(Vector3d(-1, 0, 0), Vector3d(1, 0, 0), Vector3d(0, -1, 0),
@@ -300,13 +300,19 @@ Points at(const Motion &m, double t)
   return {m.x[0] + t * m.dx[0], m.x[1] + t * m.dx[1], m.x[2] + t * m.dx[2], m.x[3] + t * m.dx[3]};
 }
 
-double pt_distance(const Points &y) { return point_triangle_distance(y[0], y[1], y[2], y[3]); }
-double ee_distance(const Points &y) { return edge_edge_distance(y[0], y[1], y[2], y[3]); }
+double pt_distance(const Points &y)
+{
+  return point_triangle_distance(y[0], y[1], y[2], y[3]);
+}
+double ee_distance(const Points &y)
+{
+  return edge_edge_distance(y[0], y[1], y[2], y[3]);
+}
 
 double pt_ccd(const Motion &m, const CcdOptions &opt, CcdReport *rep)
 {
-  return point_triangle_ccd(m.x[0], m.x[1], m.x[2], m.x[3], m.dx[0], m.dx[1], m.dx[2], m.dx[3],
-                            opt, rep);
+  return point_triangle_ccd(m.x[0], m.x[1], m.x[2], m.x[3], m.dx[0], m.dx[1], m.dx[2], m.dx[3], opt,
+                            rep);
 }
 
 double ee_ccd(const Motion &m, const CcdOptions &opt, CcdReport *rep)
@@ -322,8 +328,8 @@ double ee_ccd(const Motion &m, const CcdOptions &opt, CcdReport *rep)
 // t is before the first such sample; the crossing time is refined by bisection to measure how
 // early t is (t / t_cross, printed with the sub-step counts).
 void random_pairs(double (*distance)(const Points &),
-                  double (*ccd)(const Motion &, const CcdOptions &, CcdReport *),
-                  const char *name, bool edges, unsigned seed)
+                  double (*ccd)(const Motion &, const CcdOptions &, CcdReport *), const char *name,
+                  bool edges, unsigned seed)
 {
   std::mt19937_64 rng(seed);
   const int n = 2000, samples = 1000;
@@ -409,4 +415,4 @@ TEST(Ccd, ScaleInvariance)
   std::printf("largest relative change of t under scaling by 1e-6 and 1e6: %.1e\n", worst);
 }
 
-}  // namespace
+}    // namespace

@@ -165,9 +165,7 @@ TEST(Distance, PointTriangleMatchesBruteForce)
       const double brute = point_triangle_brute(x[0], x[1], x[2], x[3], n);
       EXPECT_GE(brute, d * (1.0 - 1e-14)) << trial;
       EXPECT_LE(brute, d + longest_edge(x[1], x[2], x[3]) / n) << trial;
-      if (d > 1e-3 * L) {
-        EXPECT_NEAR(std::sqrt(d2), d, 1e-10 * d) << trial;
-      }
+      if (d > 1e-3 * L) { EXPECT_NEAR(std::sqrt(d2), d, 1e-10 * d) << trial; }
       seen[point_triangle_type(x[0], x[1], x[2], x[3])]++;
     }
   EXPECT_EQ(seen.size(), 7u);    // every class came up
@@ -186,9 +184,7 @@ TEST(Distance, EdgeEdgeMatchesBruteForce)
       const double brute = edge_edge_brute(x[0], x[1], x[2], x[3], n);
       EXPECT_GE(brute, d * (1.0 - 1e-14)) << trial;
       EXPECT_LE(brute, d + (x[1] - x[0]).norm() / n) << trial;
-      if (d > 1e-3 * L) {
-        EXPECT_NEAR(std::sqrt(d2), d, 1e-10 * d) << trial;
-      }
+      if (d > 1e-3 * L) { EXPECT_NEAR(std::sqrt(d2), d, 1e-10 * d) << trial; }
       seen[edge_edge_type(x[0], x[1], x[2], x[3])]++;
     }
   EXPECT_EQ(seen.size(), 9u);
@@ -246,21 +242,25 @@ TEST(Distance, BuildingBlockDerivativesMatchFiniteDifferences)
       if (point_line_distance2(x[0], x[1], x[2]) < 1e-4 * L * L) continue;
       FdError e[4];
       e[0] = fd_errors<6>(
-          [](const V6 &y) { return point_point_distance2(y.head<3>(), y.tail<3>()); },
-          [](const V6 &y) { return point_point_distance2_gradient(y.head<3>(), y.tail<3>()); },
-          [](const V6 &y) { return point_point_distance2_hessian(y.head<3>(), y.tail<3>()); },
+          [](const V6 &y) {
+            return point_point_distance2(y.head<3>(), y.tail<3>());
+          },
+          [](const V6 &y) {
+            return point_point_distance2_gradient(y.head<3>(), y.tail<3>());
+          },
+          [](const V6 &y) {
+            return point_point_distance2_hessian(y.head<3>(), y.tail<3>());
+          },
           pack(x).head<6>(), L);
       e[1] = fd_errors<9>(
           [](const V9 &y) {
             return point_line_distance2(y.segment<3>(0), y.segment<3>(3), y.segment<3>(6));
           },
           [](const V9 &y) {
-            return point_line_distance2_gradient(y.segment<3>(0), y.segment<3>(3),
-                                                 y.segment<3>(6));
+            return point_line_distance2_gradient(y.segment<3>(0), y.segment<3>(3), y.segment<3>(6));
           },
           [](const V9 &y) {
-            return point_line_distance2_hessian(y.segment<3>(0), y.segment<3>(3),
-                                                y.segment<3>(6));
+            return point_line_distance2_hessian(y.segment<3>(0), y.segment<3>(3), y.segment<3>(6));
           },
           pack(x).head<9>(), L);
       e[2] = fd_errors<12>(
@@ -313,8 +313,7 @@ void classified_fd(const std::function<Type(const Points &)> &type,
                    const std::function<double(const Points &)> &f,
                    const std::function<X12(const Points &)> &g,
                    const std::function<M12(const Points &)> &H,
-                   const std::function<bool(const Points &)> &usable, unsigned seed,
-                   size_t classes)
+                   const std::function<bool(const Points &)> &usable, unsigned seed, size_t classes)
 {
   std::mt19937_64 rng(seed);
   for (double L : kScales) {
@@ -334,9 +333,17 @@ void classified_fd(const std::function<Type(const Points &)> &type,
         }
       if (!same) continue;
       tested[t]++;
-      const FdError e = fd_errors<12>([&](const X12 &y) { return f(unpack(y)); },
-                                      [&](const X12 &y) { return g(unpack(y)); },
-                                      [&](const X12 &y) { return H(unpack(y)); }, pack(x), L);
+      const FdError e = fd_errors<12>(
+          [&](const X12 &y) {
+            return f(unpack(y));
+          },
+          [&](const X12 &y) {
+            return g(unpack(y));
+          },
+          [&](const X12 &y) {
+            return H(unpack(y));
+          },
+          pack(x), L);
       EXPECT_LE(e.gradient, 1e-6) << "class " << int(t) << " scale " << L;
       EXPECT_LE(e.hessian, 1e-6) << "class " << int(t) << " scale " << L;
       worst.gradient = std::max(worst.gradient, e.gradient);
@@ -351,10 +358,18 @@ void classified_fd(const std::function<Type(const Points &)> &type,
 TEST(Distance, PointTriangleDerivativesMatchFiniteDifferences)
 {
   classified_fd<PointTriangleType>(
-      [](const Points &x) { return point_triangle_type(x[0], x[1], x[2], x[3]); },
-      [](const Points &x) { return point_triangle_distance2(x[0], x[1], x[2], x[3]); },
-      [](const Points &x) { return point_triangle_distance2_gradient(x[0], x[1], x[2], x[3]); },
-      [](const Points &x) { return point_triangle_distance2_hessian(x[0], x[1], x[2], x[3]); },
+      [](const Points &x) {
+        return point_triangle_type(x[0], x[1], x[2], x[3]);
+      },
+      [](const Points &x) {
+        return point_triangle_distance2(x[0], x[1], x[2], x[3]);
+      },
+      [](const Points &x) {
+        return point_triangle_distance2_gradient(x[0], x[1], x[2], x[3]);
+      },
+      [](const Points &x) {
+        return point_triangle_distance2_hessian(x[0], x[1], x[2], x[3]);
+      },
       [](const Points &x) {
         const double L = (x[1] - x[2]).norm();
         return good_triangle(x[1], x[2], x[3]) &&
@@ -366,10 +381,18 @@ TEST(Distance, PointTriangleDerivativesMatchFiniteDifferences)
 TEST(Distance, EdgeEdgeDerivativesMatchFiniteDifferences)
 {
   classified_fd<EdgeEdgeType>(
-      [](const Points &x) { return edge_edge_type(x[0], x[1], x[2], x[3]); },
-      [](const Points &x) { return edge_edge_distance2(x[0], x[1], x[2], x[3]); },
-      [](const Points &x) { return edge_edge_distance2_gradient(x[0], x[1], x[2], x[3]); },
-      [](const Points &x) { return edge_edge_distance2_hessian(x[0], x[1], x[2], x[3]); },
+      [](const Points &x) {
+        return edge_edge_type(x[0], x[1], x[2], x[3]);
+      },
+      [](const Points &x) {
+        return edge_edge_distance2(x[0], x[1], x[2], x[3]);
+      },
+      [](const Points &x) {
+        return edge_edge_distance2_gradient(x[0], x[1], x[2], x[3]);
+      },
+      [](const Points &x) {
+        return edge_edge_distance2_hessian(x[0], x[1], x[2], x[3]);
+      },
       [](const Points &x) {
         const double L = (x[1] - x[0]).norm();
         return good_edges(x) && edge_edge_distance(x[0], x[1], x[2], x[3]) > 1e-2 * L;
@@ -466,8 +489,8 @@ TEST(Distance, NearlyParallelEdgesStayFinite)
       EXPECT_NEAR(d, h * L, 1e-12 * L) << theta;
       EXPECT_NEAR(std::sqrt(d2), h * L, 1e-8 * L) << theta;
       if (L == 1.0)
-        std::printf("theta %.0e: class %d, |sqrt(d2) - h| / h = %.1e, |d - h| / h = %.1e\n",
-                    theta, int(edge_edge_type(a0, a1, b0, b1)), std::fabs(std::sqrt(d2) - h) / h,
+        std::printf("theta %.0e: class %d, |sqrt(d2) - h| / h = %.1e, |d - h| / h = %.1e\n", theta,
+                    int(edge_edge_type(a0, a1, b0, b1)), std::fabs(std::sqrt(d2) - h) / h,
                     std::fabs(d - h) / h);
     }
   }
@@ -481,15 +504,15 @@ TEST(Distance, DegeneratePrimitivesStayFinite)
 {
   const Vector3d p(0.3, 0.7, 0.4);
   const std::vector<std::array<Vector3d, 3>> triangles = {
-      {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(2, 0, 0)},         // collinear
-      {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0, 0)},       // collinear, inside
-      {Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(1, 1, 0)},         // two coincident
+      {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(2, 0, 0)},                // collinear
+      {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0, 0)},              // collinear, inside
+      {Vector3d(0, 0, 0), Vector3d(0, 0, 0), Vector3d(1, 1, 0)},                // two coincident
       {Vector3d(0.1, 0.2, 0), Vector3d(0.1, 0.2, 0), Vector3d(0.1, 0.2, 0)},    // a point
   };
   for (const auto &t : triangles) {
-    const double brute = std::min(segment_distance(p, t[0], t[1]),
-                                  std::min(segment_distance(p, t[1], t[2]),
-                                           segment_distance(p, t[2], t[0])));
+    const double brute =
+        std::min(segment_distance(p, t[0], t[1]),
+                 std::min(segment_distance(p, t[1], t[2]), segment_distance(p, t[2], t[0])));
     EXPECT_NE(point_triangle_type(p, t[0], t[1], t[2]), PointTriangleType::kFace);
     EXPECT_NEAR(point_triangle_distance(p, t[0], t[1], t[2]), brute, 1e-15);
     EXPECT_NEAR(point_triangle_distance2(p, t[0], t[1], t[2]), brute * brute, 1e-15);
@@ -549,4 +572,4 @@ TEST(Distance, ScaleCovariance)
   EXPECT_LE(worst, 1e-10);
 }
 
-}  // namespace
+}    // namespace

@@ -192,8 +192,8 @@ TEST(Friction, PointPointPairAgreesWithTheBarrier)
 TEST(Friction, LambdaCarriesTheMollifierAndVanishesBeyondReach)
 {
   const Vector3d a0(0, 0, 0), a1(1, 0, 0), b0(0.2, 1e-3, 0.1), b1(0.8, -1e-3, 0.1);
-  const double eps = edge_edge_mollifier_threshold(a0, a1, Vector3d(0, 0, 0.1),
-                                                   Vector3d(0, 1, 0.1));
+  const double eps =
+      edge_edge_mollifier_threshold(a0, a1, Vector3d(0, 0, 0.1), Vector3d(0, 1, 0.1));
   const double e = edge_edge_mollifier(a0, a1, b0, b1, eps);
   ASSERT_GT(e, 0.0);
   ASSERT_LT(e, 0.1);
@@ -203,15 +203,14 @@ TEST(Friction, LambdaCarriesTheMollifierAndVanishesBeyondReach)
   prm.dmin = 0.01;
   const FrictionPair pair = edge_edge_friction_pair(a0, a1, b0, b1, eps, prm);
   const double d = std::sqrt(edge_edge_distance2(a0, a1, b0, b1));
-  EXPECT_NEAR(pair.lambda, prm.kappa * e * std::fabs(barrier_first_derivative(d - prm.dmin,
-                                                                              prm.dhat)),
+  EXPECT_NEAR(pair.lambda,
+              prm.kappa * e * std::fabs(barrier_first_derivative(d - prm.dmin, prm.dhat)),
               1e-14 * pair.lambda);
 
   prm.dhat = 0.05;    // d = 0.1 > dmin + dhat
   EXPECT_EQ(edge_edge_friction_pair(a0, a1, b0, b1, eps, prm).lambda, 0.0);
   const Vector3d t0(0, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
-  EXPECT_EQ(point_triangle_friction_pair(Vector3d(0.2, 0.2, 0.07), t0, t1, t2, prm).lambda,
-            0.0);
+  EXPECT_EQ(point_triangle_friction_pair(Vector3d(0.2, 0.2, 0.07), t0, t1, t2, prm).lambda, 0.0);
   const FrictionPair on = point_triangle_friction_pair(Vector3d(0.2, 0.2, 0.0), t0, t1, t2, prm);
   EXPECT_EQ(on.normal, Vector3d::UnitZ());
 }
@@ -232,9 +231,15 @@ PotentialCase random_case(std::mt19937_64 &rng, int kind, double L, double r)
   Points x = gaussian_points(rng, L);
   const BarrierParameters prm = reaching(L, L);    // gap irrelevant: lambda reset below
   switch (kind) {
-    case 0: c.pair = point_triangle_friction_pair(x[0], x[1], x[2], x[3], prm); break;
-    case 1: c.pair = edge_edge_friction_pair(x[0], x[1], x[2], x[3], 1e-300, prm); break;
-    default: c.pair = point_point_friction_pair(x[0], x[1], prm); break;
+    case 0:
+      c.pair = point_triangle_friction_pair(x[0], x[1], x[2], x[3], prm);
+      break;
+    case 1:
+      c.pair = edge_edge_friction_pair(x[0], x[1], x[2], x[3], 1e-300, prm);
+      break;
+    default:
+      c.pair = point_point_friction_pair(x[0], x[1], prm);
+      break;
   }
   c.pair.lambda = 2.3 / L;
   c.prm.mu = 0.4;
@@ -271,11 +276,10 @@ TEST(Friction, GradientAndHessianMatchFiniteDifferences)
             return friction_gradient(c.pair, u, c.prm);
           };
           const double mul = c.prm.mu * c.pair.lambda;
-          const double eg =
-              relative_error(g(c.u), fd_gradient<12>(f, c.u, h), 1e-2 * mul);
-          const double eh = relative_error(friction_hessian(c.pair, c.u, c.prm),
-                                           fd_hessian<12>(g, c.u, h),
-                                           1e-2 * mul / c.prm.slip_length);
+          const double eg = relative_error(g(c.u), fd_gradient<12>(f, c.u, h), 1e-2 * mul);
+          const double eh =
+              relative_error(friction_hessian(c.pair, c.u, c.prm), fd_hessian<12>(g, c.u, h),
+                             1e-2 * mul / c.prm.slip_length);
           const bool kink = r == 1.0 || r < 1e-3;
           EXPECT_LE(eg, 1e-6) << L << " " << kind << " " << r;
           EXPECT_LE(eh, kink ? 1e-5 : 1e-6) << L << " " << kind << " " << r;
@@ -283,7 +287,8 @@ TEST(Friction, GradientAndHessianMatchFiniteDifferences)
           (kink ? worst_kink : worst_h) = std::max(kink ? worst_kink : worst_h, eh);
         }
     std::printf("friction, scale %g: worst FD error gradient %.1e Hessian %.1e (at y = 0, "
-                "eps: %.1e)\n", L, worst_g, worst_h, worst_kink);
+                "eps: %.1e)\n",
+                L, worst_g, worst_h, worst_kink);
   }
 }
 
@@ -371,9 +376,7 @@ TEST(Friction, StaticForceGrowsLinearlyWithSmallSlips)
         return f.norm();
       };
       EXPECT_NEAR(force(c.u), mul * (2.0 * r - r * r), 1e-13 * mul);
-      if (r < 0.01) {
-        EXPECT_NEAR(force(2.0 * c.u) / force(c.u), 2.0, 2.0 * r);
-      }
+      if (r < 0.01) { EXPECT_NEAR(force(2.0 * c.u) / force(c.u), 2.0, 2.0 * r); }
     }
 }
 
@@ -415,9 +418,9 @@ TEST(Friction, EnergyIndependentOfTheBasisInThePlane)
     turned.T = c.pair.T * Eigen::Rotation2Dd(a).toRotationMatrix();
     const double E = friction_energy(c.pair, c.u, c.prm);
     EXPECT_NEAR(friction_energy(turned, c.u, c.prm), E, 1e-14 * E);
-    EXPECT_LE((friction_gradient(turned, c.u, c.prm) - friction_gradient(c.pair, c.u, c.prm))
-                  .norm(),
-              1e-14 * c.prm.mu * c.pair.lambda);
+    EXPECT_LE(
+        (friction_gradient(turned, c.u, c.prm) - friction_gradient(c.pair, c.u, c.prm)).norm(),
+        1e-14 * c.prm.mu * c.pair.lambda);
   }
 }
 
@@ -517,8 +520,8 @@ TEST(Friction, VertexOnAnInclineSlidesWithCoulombAcceleration)
     const double a = (run.v2 - run.v1) / 0.3;
     const double expected = grav * (std::sin(theta) - mu * std::cos(theta));
     std::printf("incline 30 deg, mu %.2f: acceleration %.6f, expected %.6f (error %.1e), "
-                "lambda / (m g cos) - 1 = %.1e\n", mu, a, expected, a / expected - 1.0,
-                run.lambda / (grav * std::cos(theta)) - 1.0);
+                "lambda / (m g cos) - 1 = %.1e\n",
+                mu, a, expected, a / expected - 1.0, run.lambda / (grav * std::cos(theta)) - 1.0);
     EXPECT_EQ(run.failed, 0);
     EXPECT_NEAR(a, expected, 0.02 * expected) << mu;
     EXPECT_NEAR(run.lambda, grav * std::cos(theta), 1e-3 * grav * std::cos(theta));
@@ -537,7 +540,8 @@ TEST(Friction, VertexOnAnInclineSticksBelowTheSlipSpeed)
     const double speed = (run.x2 - run.x1) / 0.3, a = (run.v2 - run.v1) / 0.3;
     const double creep = eps_v * (1.0 - std::sqrt(1.0 - std::tan(theta) / mu));
     std::printf("incline 30 deg, mu %.2f: creep %.4e m/s, expected %.4e (error %.1e), "
-                "acceleration %.1e\n", mu, speed, creep, speed / creep - 1.0, a);
+                "acceleration %.1e\n",
+                mu, speed, creep, speed / creep - 1.0, a);
     EXPECT_EQ(run.failed, 0);
     EXPECT_LT(speed, eps_v);
     EXPECT_NEAR(speed, creep, 0.02 * creep) << mu;
@@ -545,4 +549,4 @@ TEST(Friction, VertexOnAnInclineSticksBelowTheSlipSpeed)
   }
 }
 
-}  // namespace
+}    // namespace

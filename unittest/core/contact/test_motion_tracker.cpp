@@ -112,10 +112,10 @@ TEST(MotionTracker, ReachLimitOverTheGroup)
   MotionTracker m;
   m.record(rb.data(), 4);
   std::vector<std::array<double, 3>> ref = build, end = build;
-  end[0][0] += 0.5;      // within R = 1
-  end[1][1] += 2.0;      // leaves at t = 0.5
-  end[2][2] -= 2.0;      // leaves at t = 0.5 too
-  end[3][0] += 4.0;      // leaves at t = 0.25, outside the group
+  end[0][0] += 0.5;    // within R = 1
+  end[1][1] += 2.0;    // leaves at t = 0.5
+  end[2][2] -= 2.0;    // leaves at t = 0.5 too
+  end[3][0] += 4.0;    // leaves at t = 0.25, outside the group
   auto rr = rows_of(ref), re = rows_of(end);
   const int mask[4] = {1, 1, 1, 2};
   const long tag[4] = {4, 9, 7, 1};

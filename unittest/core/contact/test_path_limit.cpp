@@ -12,8 +12,8 @@
 #include <random>
 
 using namespace PeriSISSM;
-using PeriSISSMContactTest::Scene;
 using Eigen::Vector3d;
+using PeriSISSMContactTest::Scene;
 
 namespace {
 
@@ -35,8 +35,9 @@ TEST(PathLimit, OnePairIsItsCcd)
   CcdOptions opt;
   opt.dmin = 0.1;
   const double t = path_limit(cands, ra.data(), rb.data(), 0.1, nullptr);
-  EXPECT_EQ(t, point_point_ccd(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0, 0),
-                               Vector3d(-0.5, 0, 0), opt));
+  EXPECT_EQ(t,
+            point_point_ccd(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0, 0),
+                            Vector3d(-0.5, 0, 0), opt));
   EXPECT_LT(t, 0.9);
   // no move: no limit
   EXPECT_EQ(path_limit(cands, ra.data(), ra.data(), 0.1, nullptr), 1.0);

@@ -13,9 +13,9 @@
 #include <random>
 
 using namespace PeriSISSM;
+using Eigen::Vector3d;
 using PeriSISSMContactTest::gaussian_points;
 using PeriSISSMContactTest::Points;
-using Eigen::Vector3d;
 
 namespace {
 

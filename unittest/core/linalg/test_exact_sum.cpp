@@ -55,4 +55,4 @@ TEST(ExactSum, ColumnsAreIndependent)
   EXPECT_EQ(out[2], -14.0);
 }
 
-}  // namespace
+}    // namespace

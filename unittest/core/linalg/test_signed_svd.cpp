@@ -14,8 +14,8 @@
 #include <cstring>
 #include <limits>
 #include <memory>
-#include <vector>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -28,17 +28,17 @@ using PeriSISSMTest::max_abs;
 // O(10) plane rotations, so 1e-12 leaves two orders of magnitude of head room.
 constexpr double kTol = 1e-12;
 
-using Svd = SignedSVD (*)(const Matrix3d&);
+using Svd = SignedSVD (*)(const Matrix3d &);
 
 // Every test below runs for both implementations.
 class SignedSVDTest : public ::testing::TestWithParam<Svd> {
  protected:
-  SignedSVD signed_svd(const Matrix3d& F) const { return GetParam()(F); }
-  void check_signed_svd(const Matrix3d& F, const std::string& label) const;
+  SignedSVD signed_svd(const Matrix3d &F) const { return GetParam()(F); }
+  void check_signed_svd(const Matrix3d &F, const std::string &label) const;
 };
 
 // Every property of the contract, for one F. label names the case in failure messages.
-void SignedSVDTest::check_signed_svd(const Matrix3d& F, const std::string& label) const
+void SignedSVDTest::check_signed_svd(const Matrix3d &F, const std::string &label) const
 {
   SCOPED_TRACE(label);
   const SignedSVD d = signed_svd(F);
@@ -72,7 +72,7 @@ void SignedSVDTest::check_signed_svd(const Matrix3d& F, const std::string& label
 
 TEST_P(SignedSVDTest, RandomFamilies)
 {
-  for (const auto& sample : PeriSISSMTest::random_samples(20240601u)) {
+  for (const auto &sample : PeriSISSMTest::random_samples(20240601u)) {
     check_signed_svd(sample.F, PeriSISSMTest::family_name(sample.family));
     if (HasFailure()) return;
   }
@@ -130,9 +130,9 @@ TEST_P(SignedSVDTest, MinusIdentityAndReflections)
 TEST_P(SignedSVDTest, KnownSignedValues)
 {
   std::mt19937_64 rng(11u);
-  const Vector3d cases[] = {{3, 2, 0.5}, {3, 2, -0.5}, {2, 2, 1}, {2, 1, 1}, {2, 2, -2},
-                            {1, 1, -1e-6}, {5, 1e-3, -1e-7}, {1e8, 1, 1e-8}};
-  for (const Vector3d& s : cases) {
+  const Vector3d cases[] = {{3, 2, 0.5}, {3, 2, -0.5},  {2, 2, 1},        {2, 1, 1},
+                            {2, 2, -2},  {1, 1, -1e-6}, {5, 1e-3, -1e-7}, {1e8, 1, 1e-8}};
+  for (const Vector3d &s : cases) {
     for (int i = 0; i < 50; ++i) {
       const Matrix3d F = PeriSISSMTest::rotated_diag(rng, s);
       check_signed_svd(F, "rotated diag");
@@ -203,9 +203,9 @@ TEST(FastSignedSVD, AgreesWithReference)
 {
   constexpr double kEps = std::numeric_limits<double>::epsilon();
   std::vector<Matrix3d> cases;
-  for (const auto& sample : PeriSISSMTest::random_samples(20261126u)) cases.push_back(sample.F);
+  for (const auto &sample : PeriSISSMTest::random_samples(20261126u)) cases.push_back(sample.F);
   std::mt19937_64 rng(29u);
-  for (const Vector3d& s : {Vector3d(1, 1, 1), Vector3d(1, 1, 1 + 1e-9), Vector3d(1 + 1e-6, 1, 1),
+  for (const Vector3d &s : {Vector3d(1, 1, 1), Vector3d(1, 1, 1 + 1e-9), Vector3d(1 + 1e-6, 1, 1),
                             Vector3d(2, 2, 1), Vector3d(2, 1, -1 + 1e-12), Vector3d(1, 0, 0),
                             Vector3d(1e8, 1, 1e-8), Vector3d(5, 1e-3, -1e-7)})
     for (int i = 0; i < 50; ++i) cases.push_back(PeriSISSMTest::rotated_diag(rng, s));
@@ -214,13 +214,13 @@ TEST(FastSignedSVD, AgreesWithReference)
                     (Matrix3d::Identity() + 1e-6 * PeriSISSMTest::gaussian_matrix(rng)));
 
   std::vector<std::unique_ptr<PeriSISSM::Material>> models;
-  for (const std::string& name : PeriSISSM::material_names())
+  for (const std::string &name : PeriSISSM::material_names())
     models.push_back(PeriSISSM::make_material(name, 1.0, 2.0));
-  for (const Matrix3d& F : cases) {
+  for (const Matrix3d &F : cases) {
     const SignedSVD r = PeriSISSM::signed_svd(F), f = PeriSISSM::fast_signed_svd(F);
     const double smax = r.s.cwiseAbs().maxCoeff();
     ASSERT_LE((r.s - f.s).cwiseAbs().maxCoeff(), 1e-13 * smax) << "F =\n" << F;
-    for (const auto& m : models) {
+    for (const auto &m : models) {
       // the corotated model's P = U (2 mu (s - 1) + ...) V^T is not unique where s_2 + s_3 = 0
       // (its kink of inverted F, material_linear.h, and rank < 2, where the rotation U V^T
       // is not defined); nor is xu's, whose energy is not even in s either (material_xu.h)
@@ -234,14 +234,13 @@ TEST(FastSignedSVD, AgreesWithReference)
       // (neo-Hookean) turns that into a relative error of eps times the condition number
       const double kappa = smax / std::max(std::abs(r.s(2)), 1e-300);
       const double tol = 1e-11 * std::max(1.0, max_abs(Pr)) + 1e3 * kEps * kappa * max_abs(Pr);
-      ASSERT_LE(max_abs(Pr - Pf), tol)
-          << m->name() << " F =\n" << F;
+      ASSERT_LE(max_abs(Pr - Pf), tol) << m->name() << " F =\n" << F;
     }
   }
 }
 
 // The same bits (a -0 and a +0 differ); a non-finite F's NaN s on both sides
-bool same_bits(const SignedSVD& x, const SignedSVD& y)
+bool same_bits(const SignedSVD &x, const SignedSVD &y)
 {
   if (x.s.array().isNaN().any() || y.s.array().isNaN().any())
     return x.s.array().isNaN().all() && y.s.array().isNaN().all();
@@ -255,7 +254,7 @@ bool same_bits(const SignedSVD& x, const SignedSVD& y)
 TEST(FastSignedSVD, PairsEqualSingles)
 {
   std::vector<Matrix3d> cases;
-  for (const auto& sample : PeriSISSMTest::random_samples(77u, 40)) cases.push_back(sample.F);
+  for (const auto &sample : PeriSISSMTest::random_samples(77u, 40)) cases.push_back(sample.F);
   cases.push_back(Matrix3d::Identity());
   cases.push_back(Matrix3d::Zero());
   Matrix3d bad = Matrix3d::Identity();
@@ -276,13 +275,13 @@ TEST(FastSignedSVD, PairsEqualSingles)
 TEST(FastSignedSVD, FoursEqualSingles)
 {
   std::vector<Matrix3d> cases;
-  for (const auto& sample : PeriSISSMTest::random_samples(91u, 40)) cases.push_back(sample.F);
+  for (const auto &sample : PeriSISSMTest::random_samples(91u, 40)) cases.push_back(sample.F);
   std::mt19937_64 rng(5u);
   for (int i = 0; i < 40; ++i)    // small strains, rotated: the common case
     cases.push_back(PeriSISSMTest::random_rotation(rng) *
                     (Matrix3d::Identity() + 1e-6 * PeriSISSMTest::gaussian_matrix(rng)));
-  for (const Vector3d& s : {Vector3d(1, 1, 1 + 1e-9), Vector3d(2, 1, -1 + 1e-12),
-                            Vector3d(1, 0, 0), Vector3d(1e8, 1, 1e-8)})
+  for (const Vector3d &s : {Vector3d(1, 1, 1 + 1e-9), Vector3d(2, 1, -1 + 1e-12), Vector3d(1, 0, 0),
+                            Vector3d(1e8, 1, 1e-8)})
     for (int i = 0; i < 4; ++i) cases.push_back(PeriSISSMTest::rotated_diag(rng, s));
   // a nearly diagonal matrix, whose first sweep takes the small-angle branch, falls in the same
   // four as matrices that take the general one
@@ -308,7 +307,7 @@ TEST(FastSignedSVD, FoursEqualSingles)
     PeriSISSM::fast_signed_svd(F, out);
     for (int l = 0; l < 4; l++)
       ASSERT_TRUE(same_bits(out[l], PeriSISSM::fast_signed_svd(F[l]))) << "lane " << l << ", F =\n"
-                                                                  << F[l];
+                                                                       << F[l];
   }
 }
 
@@ -322,7 +321,9 @@ TEST(FastSignedSVD, PowerOfTwoScalesAreExact)
     const Matrix3d F = PeriSISSMTest::gaussian_matrix(rng);
     const SignedSVD one = PeriSISSM::fast_signed_svd(F);
     for (int e : {-900, -600, -300, -150, 150, 300, 600, 900}) {
-      const Matrix3d G = F.unaryExpr([e](double a) { return std::ldexp(a, e); });
+      const Matrix3d G = F.unaryExpr([e](double a) {
+        return std::ldexp(a, e);
+      });
       const SignedSVD scaled = PeriSISSM::fast_signed_svd(G);
       for (int k = 0; k < 3; k++)
         ASSERT_EQ(scaled.s(k), std::ldexp(one.s(k), e)) << "2^" << e << " F, F =\n" << F;
@@ -335,8 +336,8 @@ TEST(FastSignedSVD, PowerOfTwoScalesAreExact)
 INSTANTIATE_TEST_SUITE_P(Implementations, SignedSVDTest,
                          ::testing::Values(&PeriSISSM::signed_svd,
                                            static_cast<Svd>(&PeriSISSM::fast_signed_svd)),
-                         [](const ::testing::TestParamInfo<Svd>& info) {
+                         [](const ::testing::TestParamInfo<Svd> &info) {
                            return std::string(info.index == 0 ? "Reference" : "Fast");
                          });
 
-}  // namespace
+}    // namespace

@@ -26,14 +26,19 @@ TEST(SmallMatrix, SolvesAndRefusesSingular)
     const double r[3] = {u(rng), u(rng), u(rng)};
     double d[3];
     PeriSISSM::solve_spd3(D, r, d);
-    const Eigen::Vector3d res = S * Eigen::Vector3d(d[0], d[1], d[2]) - Eigen::Vector3d(r[0], r[1], r[2]);
+    const Eigen::Vector3d res =
+        S * Eigen::Vector3d(d[0], d[1], d[2]) - Eigen::Vector3d(r[0], r[1], r[2]);
     const double cond = S.norm() * S.inverse().norm();
-    EXPECT_LE(res.norm(), 1e-14 * cond * S.norm() * Eigen::Vector3d(d[0], d[1], d[2]).norm() + 1e-15);
+    EXPECT_LE(res.norm(),
+              1e-14 * cond * S.norm() * Eigen::Vector3d(d[0], d[1], d[2]).norm() + 1e-15);
     double M[9], x[3] = {7, 7, 7};
     for (int q = 0; q < 9; q++) M[q] = G(q / 3, q % 3);
     ASSERT_TRUE(PeriSISSM::solve3(M, r, 0.0, x));
-    const Eigen::Vector3d res2 = G * Eigen::Vector3d(x[0], x[1], x[2]) - Eigen::Vector3d(r[0], r[1], r[2]);
-    EXPECT_LE(res2.norm(), 1e-12 * G.norm() * G.inverse().norm() * (1.0 + Eigen::Vector3d(x[0], x[1], x[2]).norm()));
+    const Eigen::Vector3d res2 =
+        G * Eigen::Vector3d(x[0], x[1], x[2]) - Eigen::Vector3d(r[0], r[1], r[2]);
+    EXPECT_LE(res2.norm(),
+              1e-12 * G.norm() * G.inverse().norm() *
+                  (1.0 + Eigen::Vector3d(x[0], x[1], x[2]).norm()));
   }
   const double sing[9] = {1, 2, 3, 2, 4, 6, 0, 1, 1};
   const double r[3] = {1, 1, 1};
@@ -59,4 +64,4 @@ TEST(SmallMatrix, RotationMatchesAngleAxis)
   }
 }
 
-}  // namespace
+}    // namespace

@@ -1,8 +1,8 @@
 // Tests common to every material model, over >= 1000 seeded random F per model and parameter
 // set: P = dW/dF, the implicit/explicit split, isotropy, the reference state, finiteness.
 
-#include "materials/material.h"
 #include "linalg/signed_svd.h"
+#include "materials/material.h"
 #include "peri/particle.h"
 #include "test_helpers.h"
 
@@ -18,14 +18,14 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using PeriSISSM::Material;
-using PeriSISSMTest::max_abs;
 using PeriSISSMTest::MaterialCase;
+using PeriSISSMTest::max_abs;
 
 constexpr unsigned kSeed = 1234567u;
 
 TEST(MaterialFactory, KnownNames)
 {
-  for (const std::string& name : PeriSISSM::material_names()) {
+  for (const std::string &name : PeriSISSM::material_names()) {
     const auto m = PeriSISSM::make_material(name, 2.0, 3.0);
     ASSERT_NE(m, nullptr) << name;
     EXPECT_EQ(name, m->name());
@@ -49,9 +49,9 @@ TEST(MaterialFactory, LameFromBulkShear)
   const PeriSISSM::LameParameters p = PeriSISSM::lame_from_bulk_shear(3.0, 1.5);
   EXPECT_DOUBLE_EQ(p.mu, 1.5);
   EXPECT_DOUBLE_EQ(p.lambda, 2.0);
-  EXPECT_TRUE(PeriSISSM::lame_parameters_admissible(1.0, -0.6));    // nu < 0
-  EXPECT_FALSE(PeriSISSM::lame_parameters_admissible(1.0, -0.7));   // K < 0
-  EXPECT_FALSE(PeriSISSM::lame_parameters_admissible(0.0, 1.0));    // G = 0
+  EXPECT_TRUE(PeriSISSM::lame_parameters_admissible(1.0, -0.6));     // nu < 0
+  EXPECT_FALSE(PeriSISSM::lame_parameters_admissible(1.0, -0.7));    // K < 0
+  EXPECT_FALSE(PeriSISSM::lame_parameters_admissible(0.0, 1.0));     // G = 0
   EXPECT_FALSE(PeriSISSM::lame_parameters_admissible(1.0, std::nan("")));
 }
 
@@ -60,13 +60,13 @@ class MaterialTest : public ::testing::TestWithParam<std::tuple<std::string, Mat
  protected:
   void SetUp() override
   {
-    const MaterialCase& c = std::get<1>(GetParam());
+    const MaterialCase &c = std::get<1>(GetParam());
     material_ = PeriSISSM::make_material(std::get<0>(GetParam()), c.mu, c.lambda);
     ASSERT_NE(material_, nullptr);
     modulus_ = std::abs(c.mu) + std::abs(c.lambda);
   }
   std::unique_ptr<Material> material_;
-  double modulus_ = 0.0;  // stress scale mu + |lambda|
+  double modulus_ = 0.0;    // stress scale mu + |lambda|
 };
 
 // P = dW/dF by central differences, h = 1e-6 |F|_F (floor 1e-9).
@@ -80,21 +80,24 @@ class MaterialTest : public ::testing::TestWithParam<std::tuple<std::string, Mat
 // of Phat is an O(1) relative error.
 TEST_P(MaterialTest, StressIsEnergyGradient)
 {
-  const auto W = [this](const Matrix3d& F) { return PeriSISSMTest::energy_of_F(*material_, F); };
+  const auto W = [this](const Matrix3d &F) {
+    return PeriSISSMTest::energy_of_F(*material_, F);
+  };
   double worst = 0.0;
-  for (const auto& sample : PeriSISSMTest::random_samples(kSeed)) {
-    const Matrix3d& F = sample.F;
+  for (const auto &sample : PeriSISSMTest::random_samples(kSeed)) {
+    const Matrix3d &F = sample.F;
     const double normF = F.norm();
     const double h = 1e-6 * std::max(normF, 1e-3);
     const Matrix3d P = PeriSISSM::first_piola(*material_, F);
     const Matrix3d Pfd = PeriSISSMTest::fd_gradient(W, F, h);
-    const double floor = 1e-8 * modulus_ * std::pow(1.0 + normF * normF, 2) /
-                         std::max(normF, 1e-3);
+    const double floor = 1e-8 * modulus_ * std::pow(1.0 + normF * normF, 2) / std::max(normF, 1e-3);
     const double tol = 1e-6 * max_abs(P) + floor;
     const double err = max_abs(P - Pfd);
     worst = std::max(worst, err / tol);
     ASSERT_LE(err, tol) << PeriSISSMTest::family_name(sample.family) << "\nF =\n"
-                        << F << "\nP =\n" << P << "\nP_fd =\n" << Pfd;
+                        << F << "\nP =\n"
+                        << P << "\nP_fd =\n"
+                        << Pfd;
   }
   RecordProperty("worst_error_over_tolerance", std::to_string(worst));
 }
@@ -102,7 +105,7 @@ TEST_P(MaterialTest, StressIsEnergyGradient)
 // Phat^+ + Phat^- = Phat to round-off and c >= 0, finite.
 TEST_P(MaterialTest, SplitAddsUpAndIsNonNegative)
 {
-  for (const auto& sample : PeriSISSMTest::random_samples(kSeed + 1)) {
+  for (const auto &sample : PeriSISSMTest::random_samples(kSeed + 1)) {
     const Vector3d s = PeriSISSM::signed_svd(sample.F).s;
     const PeriSISSM::PrincipalSplit sp = material_->split(s);
     ASSERT_TRUE(sp.c.allFinite() && sp.phat.allFinite() && sp.phat_minus.allFinite());
@@ -120,8 +123,8 @@ TEST_P(MaterialTest, SplitAddsUpAndIsNonNegative)
 TEST_P(MaterialTest, Isotropy)
 {
   std::mt19937_64 rng(kSeed + 2);
-  for (const auto& sample : PeriSISSMTest::random_samples(kSeed + 3)) {
-    const Matrix3d& F = sample.F;
+  for (const auto &sample : PeriSISSMTest::random_samples(kSeed + 3)) {
+    const Matrix3d &F = sample.F;
     const Matrix3d R = PeriSISSMTest::random_rotation(rng);
     const double W = PeriSISSMTest::energy_of_F(*material_, F);
     const Matrix3d P = PeriSISSM::first_piola(*material_, F);
@@ -157,36 +160,41 @@ TEST_P(MaterialTest, ReferenceStateIsStressFree)
 TEST_P(MaterialTest, FiniteForDegenerateAndExtremeF)
 {
   std::mt19937_64 rng(kSeed + 5);
-  std::vector<Matrix3d> Fs = {Matrix3d::Zero(), -Matrix3d::Identity(),
-                              Vector3d(1, 1, -1).asDiagonal(), Vector3d(1, 1, 0).asDiagonal(),
-                              Vector3d(1, 0, 0).asDiagonal(), Vector3d(1e8, 1, 1e-8).asDiagonal(),
+  std::vector<Matrix3d> Fs = {Matrix3d::Zero(),
+                              -Matrix3d::Identity(),
+                              Vector3d(1, 1, -1).asDiagonal(),
+                              Vector3d(1, 1, 0).asDiagonal(),
+                              Vector3d(1, 0, 0).asDiagonal(),
+                              Vector3d(1e8, 1, 1e-8).asDiagonal(),
                               Vector3d(1e-8, 1e-8, -1e-8).asDiagonal()};
   for (int i = 0; i < 50; ++i) {
     const Vector3d a = PeriSISSMTest::gaussian_matrix(rng).col(0);
     const Vector3d b = PeriSISSMTest::gaussian_matrix(rng).col(0);
     const Matrix3d R = PeriSISSMTest::random_rotation(rng);
     const Matrix3d G = PeriSISSMTest::gaussian_matrix(rng);
-    Fs.push_back(a * b.transpose());                    // rank 1
-    Fs.push_back(1e8 * R);                              // huge
-    Fs.push_back(1e-8 * R);                             // tiny
-    Fs.push_back(1e8 * G);                              // huge, either det sign
-    Fs.push_back(1e-8 * G);                             // tiny, either det sign
-    Fs.push_back(-1e8 * R);                             // huge inverted
+    Fs.push_back(a * b.transpose());    // rank 1
+    Fs.push_back(1e8 * R);              // huge
+    Fs.push_back(1e-8 * R);             // tiny
+    Fs.push_back(1e8 * G);              // huge, either det sign
+    Fs.push_back(1e-8 * G);             // tiny, either det sign
+    Fs.push_back(-1e8 * R);             // huge inverted
     Fs.push_back(R * Vector3d(1e-8, 1e-8, -1.0).asDiagonal());
   }
-  for (const Matrix3d& F : Fs) {
+  for (const Matrix3d &F : Fs) {
     PeriSISSM::ParticleStress ps;
     PeriSISSM::particle_stress(*material_, F, ps, true);
     const PeriSISSM::PrincipalSplit sp = material_->split(ps.svd.s);
     EXPECT_TRUE(std::isfinite(ps.W)) << F;
-    EXPECT_TRUE(ps.P.allFinite() && PeriSISSM::implicit_part(ps).allFinite() && PeriSISSM::implicit_direction(ps).allFinite()) << F;
+    EXPECT_TRUE(ps.P.allFinite() && PeriSISSM::implicit_part(ps).allFinite() &&
+                PeriSISSM::implicit_direction(ps).allFinite())
+        << F;
     EXPECT_TRUE(sp.c.allFinite() && sp.phat_minus.allFinite()) << F;
     EXPECT_GE(sp.c.minCoeff(), 0.0);
     if (HasFailure()) return;
   }
 }
 
-std::string case_name(const ::testing::TestParamInfo<MaterialTest::ParamType>& info)
+std::string case_name(const ::testing::TestParamInfo<MaterialTest::ParamType> &info)
 {
   return std::get<0>(info.param) + "_" + std::get<1>(info.param).label;
 }
@@ -196,4 +204,4 @@ INSTANTIATE_TEST_SUITE_P(AllModels, MaterialTest,
                                             ::testing::ValuesIn(PeriSISSMTest::material_cases())),
                          case_name);
 
-}  // namespace
+}    // namespace

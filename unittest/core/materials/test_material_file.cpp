@@ -58,7 +58,9 @@ TEST(MaterialFile, ErrorsNameTheLineAndTheValue)
 {
   const std::string head = "# UNITS: si\n";
   auto parse = [&](const std::string &body) {
-    return error_of([&] { parse_material_file(head + body, "bad.nosb"); });
+    return error_of([&] {
+      parse_material_file(head + body, "bad.nosb");
+    });
   };
   EXPECT_NE(parse("steel 1e11 8e10 7850\n").find("bad.nosb line 2"), std::string::npos);
   EXPECT_NE(parse("steel 1e11 8e10 7850\n").find("got 4 words"), std::string::npos);
@@ -67,8 +69,9 @@ TEST(MaterialFile, ErrorsNameTheLineAndTheValue)
   EXPECT_NE(parse("steel 1e11 8e10 -7850 -\n").find("density must be > 0"), std::string::npos);
   EXPECT_NE(parse("steel 1e11 8e10 7850 0\n").find("G0 must be > 0"), std::string::npos);
   EXPECT_NE(parse("steel inf 8e10 7850 -\n").find("must be a number"), std::string::npos);
-  EXPECT_NE(parse("a 1 1 1 -\n\na 2 2 2 -\n").find("line 4: material 'a' is already defined "
-                                                    "on line 2"),
+  EXPECT_NE(parse("a 1 1 1 -\n\na 2 2 2 -\n")
+                .find("line 4: material 'a' is already defined "
+                      "on line 2"),
             std::string::npos);
   EXPECT_EQ(parse("a 1 1 1 -\n"), "");
 }
@@ -76,10 +79,10 @@ TEST(MaterialFile, ErrorsNameTheLineAndTheValue)
 TEST(MaterialFile, ConvertsBetweenMechanicalUnitStyles)
 {
   MaterialEntry si;
-  si.bulk = 2.0e9;      // Pa
-  si.shear = 1.0e9;     // Pa
-  si.density = 1000.0;  // kg/m^3
-  si.g0 = 10.0;         // J/m^2
+  si.bulk = 2.0e9;        // Pa
+  si.shear = 1.0e9;       // Pa
+  si.density = 1000.0;    // kg/m^3
+  si.g0 = 10.0;           // J/m^2
   // cgs: 1 Pa = 10 dyne/cm^2, 1 kg/m^3 = 1e-3 g/cm^3, 1 J/m^2 = 1e3 erg/cm^2
   const auto cgs = convert_material(si, "si", "cgs");
   EXPECT_DOUBLE_EQ(cgs.bulk, 2.0e10);
@@ -107,16 +110,20 @@ TEST(MaterialFile, RefusesUnitStylesWithoutAMechanicalConversion)
 {
   MaterialEntry entry;
   for (const char *style : {"metal", "real", "lj", "electron"}) {
-    const auto what = error_of([&] { convert_material(entry, "si", style); });
-    EXPECT_NE(what.find(std::string("cannot be converted to '") + style + "'"),
-              std::string::npos)
+    const auto what = error_of([&] {
+      convert_material(entry, "si", style);
+    });
+    EXPECT_NE(what.find(std::string("cannot be converted to '") + style + "'"), std::string::npos)
         << what;
     EXPECT_NE(what.find("si, cgs, micro, nano"), std::string::npos) << what;
   }
-  EXPECT_NE(error_of([&] { convert_material(entry, "", "si"); }).find("no UNITS: tag"),
+  EXPECT_NE(error_of([&] {
+              convert_material(entry, "", "si");
+            }).find("no UNITS: tag"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { convert_material(entry, "metal", "si"); })
-                .find("units 'metal' are not one of"),
+  EXPECT_NE(error_of([&] {
+              convert_material(entry, "metal", "si");
+            }).find("units 'metal' are not one of"),
             std::string::npos);
 }
 

@@ -1,7 +1,7 @@
 // Corotated linear model: energy against its matrix form, the implicit coefficient.
 
-#include "materials/material_linear.h"
 #include "linalg/signed_svd.h"
+#include "materials/material_linear.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
@@ -33,7 +33,7 @@ TEST(LinearMaterial, EnergyMatchesPolarForm)
 TEST(LinearMaterial, ImplicitCoefficientIsPWaveModulus)
 {
   std::mt19937_64 rng(37u);
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     const PeriSISSM::LinearMaterial m(c.mu, c.lambda);
     for (int i = 0; i < 100; ++i) {
       const Vector3d s(PeriSISSMTest::uniform(rng, 0.1, 3), PeriSISSMTest::uniform(rng, 0.1, 3),
@@ -52,4 +52,4 @@ TEST(LinearMaterial, ImplicitCoefficientIsPWaveModulus)
   }
 }
 
-}  // namespace
+}    // namespace

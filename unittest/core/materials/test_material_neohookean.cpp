@@ -1,8 +1,8 @@
 // Neo-Hookean: energy against its matrix form, and the continuation below J0 (C2 at J0,
 // finite, restoring).
 
-#include "materials/material_neohookean.h"
 #include "linalg/signed_svd.h"
+#include "materials/material_neohookean.h"
 #include "peri/particle.h"
 #include "test_helpers.h"
 
@@ -20,14 +20,14 @@ using PeriSISSM::NeoHookeanMaterial;
 // W = mu/2 (tr F^T F - 3) - mu ln J + lambda/2 (ln J)^2 wherever J >= J0.
 TEST(NeoHookeanMaterial, EnergyMatchesMatrixFormAboveThreshold)
 {
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     const NeoHookeanMaterial m(c.mu, c.lambda);
-    for (const auto& sample : PeriSISSMTest::random_samples(53u, 40)) {
-      const Matrix3d& F = sample.F;
+    for (const auto &sample : PeriSISSMTest::random_samples(53u, 40)) {
+      const Matrix3d &F = sample.F;
       const double J = F.determinant();
       if (J < m.continuation_threshold()) continue;
       const double W = 0.5 * c.mu * (F.squaredNorm() - 3.0) - c.mu * std::log(J) +
-                       0.5 * c.lambda * std::log(J) * std::log(J);
+          0.5 * c.lambda * std::log(J) * std::log(J);
       const double scale = (c.mu + std::abs(c.lambda)) * (1.0 + F.squaredNorm());
       EXPECT_NEAR(PeriSISSMTest::energy_of_F(m, F), W, 1e-13 * scale);
     }
@@ -44,7 +44,7 @@ TEST(NeoHookeanMaterial, EnergyMatchesMatrixFormAboveThreshold)
 // with E = diag(eps) (or any symmetric E with those eigenvalues): the small-strain quadratic
 // form plus its cubic correction, whose relative size ~2.5 e for unit |E|/e exceeds 1e-6 at
 // e = 1e-6 and must therefore be in the reference. The remainder is ~6 e^2 relative (measured).
-double neohookean_reference_near_rest(double mu, double lambda, const Matrix3d& E)
+double neohookean_reference_near_rest(double mu, double lambda, const Matrix3d &E)
 {
   const double tr = E.trace(), n2 = E.squaredNorm(), tr3 = (E * E * E).trace();
   return mu * n2 + 0.5 * lambda * tr * tr - mu / 3.0 * tr3 - 0.5 * lambda * tr * n2;
@@ -55,14 +55,14 @@ double neohookean_reference_near_rest(double mu, double lambda, const Matrix3d& 
 TEST(NeoHookeanMaterial, EnergyAccurateNearRestOnSingularValues)
 {
   std::mt19937_64 rng(89u);
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     SCOPED_TRACE(c.label);
     const NeoHookeanMaterial m(c.mu, c.lambda);
     for (double e : {1e-10, 1e-8, 1e-6}) {
       for (int trial = 0; trial < 40; ++trial) {
         const Vector3d dir = PeriSISSMTest::gaussian_matrix(rng).col(0).normalized();
         const Vector3d s = Vector3d::Ones() + e * dir;
-        const Matrix3d E = (s - Vector3d::Ones()).asDiagonal();  // exact: s_k - 1
+        const Matrix3d E = (s - Vector3d::Ones()).asDiagonal();    // exact: s_k - 1
         const double ref = neohookean_reference_near_rest(c.mu, c.lambda, E);
         EXPECT_NEAR(m.energy(s), ref, (1e-14 + 10.0 * e * e) * ref)
             << "e = " << e << ", trial " << trial;
@@ -81,7 +81,7 @@ TEST(NeoHookeanMaterial, EnergyAccurateNearRestOnSingularValues)
 TEST(NeoHookeanMaterial, EnergyAccurateNearRest)
 {
   std::mt19937_64 rng(97u);
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     SCOPED_TRACE(c.label);
     const NeoHookeanMaterial m(c.mu, c.lambda);
     for (double e : {1e-4, 1e-6, 1e-8}) {
@@ -99,8 +99,7 @@ TEST(NeoHookeanMaterial, EnergyAccurateNearRest)
     for (int trial = 0; trial < 40; ++trial) {
       const Matrix3d Q = PeriSISSMTest::random_rotation(rng);
       const Matrix3d eG = e * Q * Vector3d(1.0, -1.0, 0.0).asDiagonal() * Q.transpose();
-      const double quad =
-          c.mu * eG.squaredNorm() + 0.5 * c.lambda * eG.trace() * eG.trace();
+      const double quad = c.mu * eG.squaredNorm() + 0.5 * c.lambda * eG.trace() * eG.trace();
       const Matrix3d F = PeriSISSMTest::random_rotation(rng) * (Matrix3d::Identity() + eG);
       EXPECT_NEAR(PeriSISSMTest::energy_of_F(m, F), quad, 1e-6 * quad) << "trial " << trial;
     }
@@ -111,7 +110,7 @@ TEST(NeoHookeanMaterial, EnergyAccurateNearRest)
 // the defining form there (where that form has no cancellation to speak of).
 TEST(NeoHookeanMaterial, EnergyContinuousAtSeriesSwitch)
 {
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     SCOPED_TRACE(c.label);
     const NeoHookeanMaterial m(c.mu, c.lambda);
     for (double x0 : {0.25, -0.25}) {
@@ -134,7 +133,7 @@ TEST(NeoHookeanMaterial, ImplicitCoefficientIsTheTangentWhereCurvatureIsPositive
   const NeoHookeanMaterial m(2.5, 1.0);
   const Vector3d rest = m.implicit_coefficient(Vector3d(1, 1, 1));
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(rest(k), 2 * 2.5 + 1.0, 1e-14);
-  for (const Vector3d& s : {Vector3d(1.2, 0.9, 0.8), Vector3d(2.0, 1.5, 0.3),
+  for (const Vector3d &s : {Vector3d(1.2, 0.9, 0.8), Vector3d(2.0, 1.5, 0.3),
                             Vector3d(0.6, 0.5, 0.4), Vector3d(0.5, 0.4, 0.2)}) {
     const Vector3d c = m.implicit_coefficient(s);
     for (int k = 0; k < 3; ++k) {
@@ -147,7 +146,7 @@ TEST(NeoHookeanMaterial, ImplicitCoefficientIsTheTangentWhereCurvatureIsPositive
     }
   }
   // finite and at least mu for degenerate and inverted states
-  for (const Vector3d& s : {Vector3d(3, 2, -1), Vector3d(0, 0, 0), Vector3d(1e3, 1e3, 1e3)}) {
+  for (const Vector3d &s : {Vector3d(3, 2, -1), Vector3d(0, 0, 0), Vector3d(1e3, 1e3, 1e3)}) {
     const Vector3d c = m.implicit_coefficient(s);
     EXPECT_TRUE(c.allFinite());
     EXPECT_GE(c.minCoeff(), 2.5);
@@ -172,12 +171,12 @@ TEST(NeoHookeanContinuation, Threshold)
 // differences.
 TEST(NeoHookeanContinuation, ContinuousAtThreshold)
 {
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     SCOPED_TRACE(c.label);
     const NeoHookeanMaterial m(c.mu, c.lambda);
     const double j0 = m.continuation_threshold();
     const double modulus = c.mu + std::abs(c.lambda);
-    for (const Vector3d& shape : {Vector3d(1, 1, 1), Vector3d(2, 1, 0.5), Vector3d(3, 0.5, -1)}) {
+    for (const Vector3d &shape : {Vector3d(1, 1, 1), Vector3d(2, 1, 0.5), Vector3d(3, 0.5, -1)}) {
       const double J0shape = shape.prod();
       Vector3d sm = shape, sp = shape;
       sm(2) *= j0 * (1.0 - 1e-9) / J0shape;
@@ -207,7 +206,7 @@ TEST(NeoHookeanContinuation, ContinuousAtThreshold)
 // The volumetric term alone pushes J up everywhere below J0 (g' < 0), for every material.
 TEST(NeoHookeanContinuation, VolumetricTermRestoringBelowThreshold)
 {
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     const NeoHookeanMaterial m(c.mu, c.lambda);
     const double j0 = m.continuation_threshold();
     for (double J = j0 * (1 - 1e-9); J > -100.0; J -= 0.01 * (1.0 + std::abs(J)))
@@ -216,7 +215,7 @@ TEST(NeoHookeanContinuation, VolumetricTermRestoringBelowThreshold)
 }
 
 // dW/dJ along a path F(t) with J(t): dW/dt = P : dF/dt, divided by dJ/dt.
-double dW_dJ_uniform(const NeoHookeanMaterial& m, double t)
+double dW_dJ_uniform(const NeoHookeanMaterial &m, double t)
 {
   const Matrix3d P = PeriSISSM::first_piola(m, t * Matrix3d::Identity());
   return P.trace() / (3.0 * t * t);
@@ -228,8 +227,8 @@ double dW_dJ_uniform(const NeoHookeanMaterial& m, double t)
 // (material_neohookean.h).
 TEST(NeoHookeanContinuation, RestoringUnderUniformCompression)
 {
-  for (const auto& c : PeriSISSMTest::material_cases()) {
-    if (c.lambda < 0.0) continue;  // the model itself is not restoring here (header)
+  for (const auto &c : PeriSISSMTest::material_cases()) {
+    if (c.lambda < 0.0) continue;    // the model itself is not restoring here (header)
     const NeoHookeanMaterial m(c.mu, c.lambda);
     const double j0 = m.continuation_threshold();
     for (double J = j0 * (1 - 1e-9); J >= 1e-3; J *= 0.9)
@@ -243,7 +242,7 @@ TEST(NeoHookeanContinuation, RestoringUnderUniformCompression)
 // every material including lambda < 0.
 TEST(NeoHookeanContinuation, RestoringUnderUniaxialCollapseAndInversion)
 {
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     const NeoHookeanMaterial m(c.mu, c.lambda);
     const double j0 = m.continuation_threshold();
     for (double t = j0 * (1 - 1e-9); t > -100.0; t -= 0.01 * (0.1 + std::abs(t))) {
@@ -253,4 +252,4 @@ TEST(NeoHookeanContinuation, RestoringUnderUniaxialCollapseAndInversion)
   }
 }
 
-}  // namespace
+}    // namespace

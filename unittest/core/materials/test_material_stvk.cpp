@@ -1,7 +1,7 @@
 // St. Venant-Kirchhoff: energy against its matrix form, the implicit coefficient.
 
-#include "materials/material_stvk.h"
 #include "linalg/signed_svd.h"
+#include "materials/material_stvk.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
@@ -17,10 +17,10 @@ using Eigen::Vector3d;
 // W = mu E:E + lambda/2 tr(E)^2 with E = (F^T F - I)/2, for any F (inverted included).
 TEST(StVKMaterial, EnergyMatchesGreenLagrangeForm)
 {
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     const PeriSISSM::StVKMaterial m(c.mu, c.lambda);
-    for (const auto& sample : PeriSISSMTest::random_samples(43u, 20)) {
-      const Matrix3d& F = sample.F;
+    for (const auto &sample : PeriSISSMTest::random_samples(43u, 20)) {
+      const Matrix3d &F = sample.F;
       const Matrix3d E = 0.5 * (F.transpose() * F - Matrix3d::Identity());
       const double W = c.mu * E.squaredNorm() + 0.5 * c.lambda * E.trace() * E.trace();
       const double scale = (c.mu + std::abs(c.lambda)) * (1.0 + std::pow(F.squaredNorm(), 2));
@@ -34,7 +34,7 @@ TEST(StVKMaterial, EnergyMatchesGreenLagrangeForm)
 TEST(StVKMaterial, ImplicitCoefficientFormula)
 {
   std::mt19937_64 rng(47u);
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     const PeriSISSM::StVKMaterial m(c.mu, c.lambda);
     const double scale = c.mu + std::abs(c.lambda);
     for (int i = 0; i < 200; ++i) {
@@ -53,4 +53,4 @@ TEST(StVKMaterial, ImplicitCoefficientFormula)
   }
 }
 
-}  // namespace
+}    // namespace

@@ -19,12 +19,21 @@ using Eigen::Vector3d;
 using PeriSISSM::kXuThreshold;
 using PeriSISSM::XuMaterial;
 
-constexpr double kS0 = 8000.0;  // the s0 of the SISSM authors' tablecloth scene
+constexpr double kS0 = 8000.0;    // the s0 of the SISSM authors' tablecloth scene
 
 // g(s) = (s^4 - 1)/4 + (s^-2 - 1)/2 and its derivatives as defined (s > 0).
-double g_def(double s) { return 0.25 * (std::pow(s, 4) - 1.0) + 0.5 * (std::pow(s, -2) - 1.0); }
-double g1_def(double s) { return std::pow(s, 3) - std::pow(s, -3); }
-double g2_def(double s) { return 3.0 * s * s + 3.0 * std::pow(s, -4); }
+double g_def(double s)
+{
+  return 0.25 * (std::pow(s, 4) - 1.0) + 0.5 * (std::pow(s, -2) - 1.0);
+}
+double g1_def(double s)
+{
+  return std::pow(s, 3) - std::pow(s, -3);
+}
+double g2_def(double s)
+{
+  return 3.0 * s * s + 3.0 * std::pow(s, -4);
+}
 
 // Above s_c, W and Phat are the authors' formulas: relative 1e-14 of the terms' magnitude (the
 // defining form cancels near s = 1, the implemented one does not).
@@ -59,13 +68,12 @@ TEST(XuMaterial, EnergyAccurateNearRest)
 {
   for (double e : {1e-10, -1e-8, 1e-6, -1e-4, 1e-2}) {
     const double s = 1.0 + e;
-    const double ex = s - 1.0;  // exact
-    const double ref = ex * ex *
-                       (3.0 + ex * (5.0 + ex * (3.75 + ex * (1.5 + 0.25 * ex)))) /
-                       ((1.0 + ex) * (1.0 + ex));
+    const double ex = s - 1.0;    // exact
+    const double ref = ex * ex * (3.0 + ex * (5.0 + ex * (3.75 + ex * (1.5 + 0.25 * ex)))) /
+        ((1.0 + ex) * (1.0 + ex));
     EXPECT_NEAR(XuMaterial::stretch_energy(s), ref, 1e-14 * ref) << "e = " << e;
     // g'(1 + e) = 6 e + O(e^2), to round-off relative to itself
-    const double slope_ref = g1_def(s);  // s^3 - s^-3 has no harmful cancellation at |e| >= 1e-6
+    const double slope_ref = g1_def(s);    // s^3 - s^-3 has no harmful cancellation at |e| >= 1e-6
     if (std::abs(e) >= 1e-6) {
       EXPECT_NEAR(XuMaterial::stretch_slope(s), slope_ref, 1e-9 * std::abs(slope_ref));
     }
@@ -103,7 +111,9 @@ TEST(XuMaterial, ContinuationIsC2AtThreshold)
   // curvature just below s_c (second differences, exact for the quadratic h; g''' = 6 s adds
   // < 6 s h): the one-sided limits equal g''(s_c)
   const double h = 1e-4;
-  const auto slope = [](double s) { return XuMaterial::stretch_slope(s); };
+  const auto slope = [](double s) {
+    return XuMaterial::stretch_slope(s);
+  };
   const double below = (slope(sc - h) - slope(sc - 2.0 * h)) / h;
   const double above = (slope(sc + 2.0 * h) - slope(sc + h)) / h;
   EXPECT_NEAR(below, g2, 6.0 * sc * 2.0 * h + 1e-8 * g2);
@@ -117,8 +127,8 @@ TEST(XuMaterial, ContinuationIsC2AtThreshold)
 TEST(XuMaterial, StressIsEnergyGradientAcrossThreshold)
 {
   const XuMaterial m(kS0);
-  const std::vector<double> values = {-50.0, -3.0, -1.0, -0.31, -1e-3, 0.0, 1e-3, 0.1,
-                                      0.2999, 0.3, 0.3001, 0.31, 0.5, 1.0, 2.0, 7.0};
+  const std::vector<double> values = {-50.0,  -3.0, -1.0,   -0.31, -1e-3, 0.0, 1e-3, 0.1,
+                                      0.2999, 0.3,  0.3001, 0.31,  0.5,   1.0, 2.0,  7.0};
   for (double a : values) {
     for (int k = 0; k < 3; ++k) {
       Vector3d s(1.3, 0.7, 0.45);
@@ -142,7 +152,7 @@ TEST(XuMaterial, ContinuationIsRestoringAndConvex)
 {
   double prev_slope = -std::numeric_limits<double>::infinity();
   for (int i = -20000; i <= 20000; ++i) {
-    const double s = 1e-3 * i + 1e-4;  // avoids s = 1 exactly
+    const double s = 1e-3 * i + 1e-4;    // avoids s = 1 exactly
     const double g = XuMaterial::stretch_energy(s), dg = XuMaterial::stretch_slope(s);
     ASSERT_TRUE(std::isfinite(g) && std::isfinite(dg)) << s;
     EXPECT_GT(g, 0.0) << s;
@@ -209,8 +219,8 @@ TEST(XuMaterial, SmallStrainIsLinearWithMuS0LambdaZero)
 TEST(XuMaterial, FiniteEverywhere)
 {
   const XuMaterial m(kS0);
-  const std::vector<double> values = {0.0, -0.0, 1e-300, -1e-300, 1e-8, -1e-8, 0.3, -0.3,
-                                      1e8, -1e8, 1e50, -1e50};
+  const std::vector<double> values = {0.0, -0.0, 1e-300, -1e-300, 1e-8, -1e-8,
+                                      0.3, -0.3, 1e8,    -1e8,    1e50, -1e50};
   for (double a : values) {
     for (double b : values) {
       const Vector3d s(a, b, 1.0);
@@ -223,4 +233,4 @@ TEST(XuMaterial, FiniteEverywhere)
   }
 }
 
-}  // namespace
+}    // namespace

@@ -34,7 +34,7 @@ std::vector<std::pair<double, double>> in_plane_points()
   return out;
 }
 
-Vector3d phat(const Material& m, double s1, double s2, double s3)
+Vector3d phat(const Material &m, double s1, double s2, double s3)
 {
   return m.principal_stress(Vector3d(s1, s2, s3));
 }
@@ -48,15 +48,15 @@ struct Model {
 std::vector<Model> all_models()
 {
   std::vector<Model> out;
-  for (const std::string& name : PeriSISSM::material_names())
-    for (const auto& c : PeriSISSMTest::material_cases())
+  for (const std::string &name : PeriSISSM::material_names())
+    for (const auto &c : PeriSISSMTest::material_cases())
       out.push_back({name + " " + c.label, PeriSISSM::make_material(name, c.mu, c.lambda)});
   return out;
 }
 
 // The collapse of linear and stvk (material_linear.cpp, material_stvk.cpp): for lambda > 0 no
 // positive root where s1 + s2 (linear) or s1^2 + s2^2 (stvk) >= 3 + 2 mu / lambda.
-bool documented_collapse(const Material& m, double s1, double s2)
+bool documented_collapse(const Material &m, double s1, double s2)
 {
   const std::string name = m.name();
   if (m.lambda() <= 0.0 || (name != "linear" && name != "stvk")) return false;
@@ -68,11 +68,11 @@ bool documented_collapse(const Material& m, double s1, double s2)
 // in the documented collapse, where Phat_3 > 0 at every sampled s3 > 0 (W decreases to s3 = 0).
 TEST(PlaneStress, ThicknessStressVanishes)
 {
-  for (const Model& model : all_models()) {
+  for (const Model &model : all_models()) {
     SCOPED_TRACE(model.label);
-    const Material& m = *model.m;
+    const Material &m = *model.m;
     int roots = 0;
-    for (const auto& [s1, s2] : in_plane_points()) {
+    for (const auto &[s1, s2] : in_plane_points()) {
       const double s3 = m.plane_stress_stretch(s1, s2);
       ASSERT_TRUE(std::isfinite(s3)) << s1 << " " << s2;
       ASSERT_GE(s3, 0.0) << s1 << " " << s2;
@@ -88,7 +88,7 @@ TEST(PlaneStress, ThicknessStressVanishes)
       }
       if (HasFailure()) return;
     }
-    EXPECT_GE(roots, 50);  // both branches are exercised (stvk nu 0.49 collapses at q >= 3.04)
+    EXPECT_GE(roots, 50);    // both branches are exercised (stvk nu 0.49 collapses at q >= 3.04)
   }
 }
 
@@ -101,15 +101,15 @@ TEST(PlaneStress, ThicknessStressVanishes)
 // at most 1/14 of the total allowance over 2e5 random points per model and parameter set).
 TEST(PlaneStress, ModelSolversAgreeWithDefaultSolver)
 {
-  for (const Model& model : all_models()) {
+  for (const Model &model : all_models()) {
     SCOPED_TRACE(model.label);
-    const Material& m = *model.m;
-    for (const auto& [s1, s2] : in_plane_points()) {
+    const Material &m = *model.m;
+    for (const auto &[s1, s2] : in_plane_points()) {
       const double s3 = m.plane_stress_stretch(s1, s2);
       const double generic = m.Material::plane_stress_stretch(s1, s2);
-      const double floor =
-          s3 > 0.0 ? 4.0 * std::numeric_limits<double>::epsilon() * (1.0 + s1 * s1 + s2 * s2) / s3
-                   : 0.0;
+      const double floor = s3 > 0.0
+          ? 4.0 * std::numeric_limits<double>::epsilon() * (1.0 + s1 * s1 + s2 * s2) / s3
+          : 0.0;
       EXPECT_NEAR(generic, s3, 1e-12 * s3 + floor) << s1 << " " << s2;
       if (HasFailure()) return;
     }
@@ -119,10 +119,10 @@ TEST(PlaneStress, ModelSolversAgreeWithDefaultSolver)
 // W(s1, s2, s3) is smallest at s3 = s3* among s3* +- 1e-4 and s3* (1 +- 1/2), over s3 >= 0.
 TEST(PlaneStress, EnergyIsMinimalAtThicknessStretch)
 {
-  for (const Model& model : all_models()) {
+  for (const Model &model : all_models()) {
     SCOPED_TRACE(model.label);
-    const Material& m = *model.m;
-    for (const auto& [s1, s2] : in_plane_points()) {
+    const Material &m = *model.m;
+    for (const auto &[s1, s2] : in_plane_points()) {
       const double s3 = m.plane_stress_stretch(s1, s2);
       const double W = m.energy(Vector3d(s1, s2, s3));
       for (double t : {s3 - 1e-4, s3 + 1e-4, 0.5 * s3, 1.5 * s3, s3 + 1.0}) {
@@ -137,10 +137,10 @@ TEST(PlaneStress, EnergyIsMinimalAtThicknessStretch)
 // A free strip stretched by s1 = 1 + eps: s2 from Phat_2(s1, s2, s3(s1, s2)) = 0 by bisection
 // on [1 - eps, 1 + eps] (Phat_2 < 0 at the lower end, Poisson's ratio < 1, > 0 at the upper),
 // carried to adjacent doubles. Returns {Phat_1 / eps, -(s2 - 1) / eps}.
-std::pair<double, double> uniaxial_plane_stress(const Material& m, double eps)
+std::pair<double, double> uniaxial_plane_stress(const Material &m, double eps)
 {
   const double s1 = 1.0 + eps;
-  const double e = s1 - 1.0;  // exact
+  const double e = s1 - 1.0;    // exact
   const auto phat2 = [&m, s1](double s2) {
     return phat(m, s1, s2, m.plane_stress_stretch(s1, s2))(1);
   };
@@ -157,7 +157,7 @@ std::pair<double, double> uniaxial_plane_stress(const Material& m, double eps)
 }
 
 // K, G of a typical steel and of a rubber-like solid with nu = 0.45 (G = 1 MPa).
-const std::vector<std::pair<std::string, std::pair<double, double>>>& bulk_shear_cases()
+const std::vector<std::pair<std::string, std::pair<double, double>>> &bulk_shear_cases()
 {
   static const std::vector<std::pair<std::string, std::pair<double, double>>> cases = {
       {"steel", {160e9, 79e9}},
@@ -173,7 +173,7 @@ TEST(PlaneStress, UniaxialSmallStrainGivesYoungAndPoisson)
 {
   const double eps = 1e-7;
   for (const std::string name : {"linear", "stvk", "neohookean"}) {
-    for (const auto& [label, kg] : bulk_shear_cases()) {
+    for (const auto &[label, kg] : bulk_shear_cases()) {
       SCOPED_TRACE(name + " " + label);
       const auto [K, G] = kg;
       const PeriSISSM::LameParameters lame = PeriSISSM::lame_from_bulk_shear(K, G);
@@ -199,7 +199,7 @@ TEST(PlaneStress, EquibiaxialSmallStrainGivesBiaxialModulus)
 {
   const double eps = 1e-7;
   for (const std::string name : {"linear", "stvk", "neohookean"}) {
-    for (const auto& [label, kg] : bulk_shear_cases()) {
+    for (const auto &[label, kg] : bulk_shear_cases()) {
       SCOPED_TRACE(name + " " + label);
       const auto [K, G] = kg;
       const PeriSISSM::LameParameters lame = PeriSISSM::lame_from_bulk_shear(K, G);
@@ -225,21 +225,20 @@ TEST(PlaneStress, EquibiaxialSmallStrainGivesBiaxialModulus)
 TEST(PlaneStress, FiniteForExtremeInPlaneStretches)
 {
   const std::vector<double> values = {0.0, 1e-8, 1e-3, 0.4, 1.0, 2.5, 1e3, 1e8};
-  for (const Model& model : all_models()) {
+  for (const Model &model : all_models()) {
     SCOPED_TRACE(model.label);
-    const Material& m = *model.m;
+    const Material &m = *model.m;
     for (double s1 : values) {
       for (double s2 : values) {
-        for (const double s3 : {m.plane_stress_stretch(s1, s2),
-                                m.Material::plane_stress_stretch(s1, s2)}) {
+        for (const double s3 :
+             {m.plane_stress_stretch(s1, s2), m.Material::plane_stress_stretch(s1, s2)}) {
           ASSERT_TRUE(std::isfinite(s3)) << s1 << " " << s2;
           EXPECT_GE(s3, 0.0) << s1 << " " << s2;
           if (s3 > 0.0) {
             const Vector3d p = phat(m, s1, s2, s3);
-            const bool small =
-                std::abs(p(2)) <= 1e-10 * (std::abs(p(0)) + std::abs(p(1)) + m.mu());
+            const bool small = std::abs(p(2)) <= 1e-10 * (std::abs(p(0)) + std::abs(p(1)) + m.mu());
             const bool bracketed = phat(m, s1, s2, s3 * (1.0 - 1e-13))(2) <= 0.0 &&
-                                   phat(m, s1, s2, s3 * (1.0 + 1e-13))(2) >= 0.0;
+                phat(m, s1, s2, s3 * (1.0 + 1e-13))(2) >= 0.0;
             EXPECT_TRUE(small || bracketed)
                 << s1 << " " << s2 << " " << s3 << ": " << p.transpose();
           }
@@ -256,17 +255,17 @@ TEST(PlaneStress, FiniteForExtremeInPlaneStretches)
 class ShiftedRootMaterial : public Material {
  public:
   explicit ShiftedRootMaterial(double a) : Material(1.0, 0.0), a_(a) {}
-  const char* name() const override { return "shifted"; }
-  double energy(const Vector3d& s) const override
+  const char *name() const override { return "shifted"; }
+  double energy(const Vector3d &s) const override
   {
-    return 0.5 * ((s(0) - 1.0) * (s(0) - 1.0) + (s(1) - 1.0) * (s(1) - 1.0) +
-                  (s(2) - a_) * (s(2) - a_));
+    return 0.5 *
+        ((s(0) - 1.0) * (s(0) - 1.0) + (s(1) - 1.0) * (s(1) - 1.0) + (s(2) - a_) * (s(2) - a_));
   }
-  Vector3d principal_stress(const Vector3d& s) const override
+  Vector3d principal_stress(const Vector3d &s) const override
   {
     return Vector3d(s(0) - 1.0, s(1) - 1.0, s(2) - a_);
   }
-  Vector3d implicit_coefficient(const Vector3d&) const override { return Vector3d::Ones(); }
+  Vector3d implicit_coefficient(const Vector3d &) const override { return Vector3d::Ones(); }
 
  private:
   double a_;
@@ -283,8 +282,8 @@ TEST(PlaneStress, DefaultSolverFindsKnownRoots)
   }
   EXPECT_EQ(ShiftedRootMaterial(0.0).plane_stress_stretch(1.0, 1.0), 0.0);
   EXPECT_EQ(ShiftedRootMaterial(-2.0).plane_stress_stretch(1.0, 1.0), 0.0);
-  EXPECT_EQ(ShiftedRootMaterial(1e-310).plane_stress_stretch(1.0, 1.0), 0.0);  // below DBL_MIN
+  EXPECT_EQ(ShiftedRootMaterial(1e-310).plane_stress_stretch(1.0, 1.0), 0.0);    // below DBL_MIN
   EXPECT_NEAR(ShiftedRootMaterial(1e120).plane_stress_stretch(1.0, 1.0), 1e100, 1e87);
 }
 
-}  // namespace
+}    // namespace

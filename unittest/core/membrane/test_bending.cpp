@@ -237,8 +237,8 @@ TEST(Bending, ForcesAreMinusTheEnergyGradient)
   const Evaluation ev = evaluate(view, hinges, x);
   double sum = 0.0;
   for (const auto &h : hinges)
-    sum += PeriSISSM::hinge_energy(&x[3 * h.v[0]], &x[3 * h.v[1]], &x[3 * h.v[2]],
-                                   &x[3 * h.v[3]], h.theta0, h.c);
+    sum += PeriSISSM::hinge_energy(&x[3 * h.v[0]], &x[3 * h.v[1]], &x[3 * h.v[2]], &x[3 * h.v[3]],
+                                   h.theta0, h.c);
   EXPECT_NEAR(total_energy(view, hinges, x), sum, 1e-14 * sum);
   EXPECT_GT(sum, 1e-3);
   double fmax = 0.0;
@@ -398,13 +398,12 @@ TEST(Bending, MissingVertexIsReported)
   const Grid grid;
   std::vector<int> owned = {Grid::NX + 1};    // an interior vertex
   View view(grid, owned);
-  view.forget(grid.id[Grid::NX + 2]);          // its neighbor along x
+  view.forget(grid.id[Grid::NX + 2]);    // its neighbor along x
   std::vector<PeriSISSM::Hinge> hinges;
   EXPECT_EQ(PeriSISSM::build_hinges(view, view.x0.data(), PeriSISSM::ReferenceBox(), hinges),
             grid.id[Grid::NX + 1]);
   View whole(grid, owned);
-  EXPECT_EQ(PeriSISSM::build_hinges(whole, whole.x0.data(), PeriSISSM::ReferenceBox(), hinges),
-            0);
+  EXPECT_EQ(PeriSISSM::build_hinges(whole, whole.x0.data(), PeriSISSM::ReferenceBox(), hinges), 0);
 }
 
-}  // namespace
+}    // namespace

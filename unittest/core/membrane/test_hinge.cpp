@@ -9,9 +9,9 @@
 
 #include <Eigen/Dense>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
-#include <array>
 #include <map>
 #include <random>
 #include <utility>
@@ -153,13 +153,12 @@ double cylinder_ratio(const std::vector<Vec> &X, const std::vector<std::array<in
     const auto other = third.find({edge.second, edge.first});
     if (other == third.end()) continue;
     const Vec *x = X.data();
-    const double c =
-        PeriSISSM::hinge_stiffness(1.0, x[edge.first].data(), x[edge.second].data(),
-                                   x[x2].data(), x[other->second].data());
+    const double c = PeriSISSM::hinge_stiffness(1.0, x[edge.first].data(), x[edge.second].data(),
+                                                x[x2].data(), x[other->second].data());
     // each interior edge once
     if (edge.first > edge.second) continue;
-    energy += PeriSISSM::hinge_energy(Y[edge.first].data(), Y[edge.second].data(),
-                                      Y[x2].data(), Y[other->second].data(), 0.0, c);
+    energy += PeriSISSM::hinge_energy(Y[edge.first].data(), Y[edge.second].data(), Y[x2].data(),
+                                      Y[other->second].data(), 0.0, c);
     (void) area;
   }
   // the area the interior edges represent: each triangle counts once per interior edge / 3
@@ -178,7 +177,9 @@ void equilateral(int n, std::vector<Vec> &X, std::vector<std::array<int, 3>> &tr
   const double h = std::sqrt(3.0) / 2.0;
   for (int j = 0; j <= n; j++)
     for (int i = 0; i <= n; i++) X.emplace_back(i + 0.5 * (j % 2), j * h, 0.0);
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  auto id = [n](int i, int j) {
+    return j * (n + 1) + i;
+  };
   for (int j = 0; j < n; j++)
     for (int i = 0; i < n; i++) {
       if (j % 2 == 0) {
@@ -196,7 +197,9 @@ void alternate(int n, std::vector<Vec> &X, std::vector<std::array<int, 3>> &tri)
 {
   for (int j = 0; j <= n; j++)
     for (int i = 0; i <= n; i++) X.emplace_back(i, j, 0.0);
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  auto id = [n](int i, int j) {
+    return j * (n + 1) + i;
+  };
   for (int j = 0; j < n; j++)
     for (int i = 0; i < n; i++) {
       const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
@@ -234,4 +237,4 @@ TEST(Hinge, CylinderCalibration)
   }
 }
 
-}  // namespace
+}    // namespace

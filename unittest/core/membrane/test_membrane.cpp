@@ -39,8 +39,16 @@ PeriSISSM::Model make_model(const std::string &name, double cs)
   m.set_membrane(1, true);
   m.set_pair(1, 1, 2.2, false, 0.0);
   m.breaking().configure(
-      1, [](int, int) { return false; }, [](int, int) { return 0.0; },
-      [](int, int) { return 0.0; });
+      1,
+      [](int, int) {
+        return false;
+      },
+      [](int, int) {
+        return 0.0;
+      },
+      [](int, int) {
+        return 0.0;
+      });
   return m;
 }
 
@@ -98,8 +106,7 @@ TEST(Membrane, TangentFrameIsRightHandedAndOrthonormal)
 {
   std::mt19937_64 rng(3);
   std::normal_distribution<double> g;
-  std::vector<Eigen::Vector3d> normals = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1},
-                                          {1, 1, 1}};
+  std::vector<Eigen::Vector3d> normals = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {1, 1, 1}};
   for (int k = 0; k < 20; k++) normals.emplace_back(g(rng), g(rng), g(rng));
   for (Eigen::Vector3d n : normals) {
     n.normalize();
@@ -185,8 +192,8 @@ TEST(Membrane, AffineMapsAreExact)
         EXPECT_LE((F * n0 - s3 * n).norm(), 1e-12);
       }
       // stress through the thickness vanishes: P n0 = phat3 n = 0
-      const Eigen::Matrix3d F0 = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
-          r.g.data());
+      const Eigen::Matrix3d F0 =
+          Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(r.g.data());
       const Eigen::Matrix3d P = PeriSISSM::first_piola(material, F0);
       EXPECT_LE((P * n0).norm(), 1e-9 * std::max(1.0, P.norm()));
     }
@@ -309,4 +316,4 @@ TEST(Membrane, StabilizationIgnoresBendingAtSecondOrder)
   EXPECT_NEAR(e2 / e1, 16.0, 0.16);
 }
 
-}  // namespace
+}    // namespace

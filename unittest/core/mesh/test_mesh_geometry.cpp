@@ -70,10 +70,10 @@ TEST(MeshGeometry, VertexAreasOfAGridAreCornerEdgeAndInteriorShares)
   double sum = 0.0;
   for (double a : area) sum += a;
   EXPECT_NEAR(sum, (nx - 1) * (ny - 1) * cell, 1e-15);
-  EXPECT_NEAR(area[0], 2 * tri / 3, 1e-16);                 // two triangles at (0,0)
-  EXPECT_NEAR(area[nx - 1], 1 * tri / 3, 1e-16);            // one at (4,0)
-  EXPECT_NEAR(area[2], 3 * tri / 3, 1e-16);                 // bottom edge: three
-  EXPECT_NEAR(area[1 * nx + 2], 6 * tri / 3, 1e-16);        // interior: six
+  EXPECT_NEAR(area[0], 2 * tri / 3, 1e-16);             // two triangles at (0,0)
+  EXPECT_NEAR(area[nx - 1], 1 * tri / 3, 1e-16);        // one at (4,0)
+  EXPECT_NEAR(area[2], 3 * tri / 3, 1e-16);             // bottom edge: three
+  EXPECT_NEAR(area[1 * nx + 2], 6 * tri / 3, 1e-16);    // interior: six
   EXPECT_NEAR(area[(ny - 1) * nx + nx - 1], 2 * tri / 3, 1e-16);
 }
 

@@ -24,7 +24,9 @@ template <class F> std::string error_of(F f)
 
 std::string parse_error(const std::string &text)
 {
-  return error_of([&] { parse_obj(text, "bad.obj"); });
+  return error_of([&] {
+    parse_obj(text, "bad.obj");
+  });
 }
 
 }    // namespace
@@ -35,8 +37,8 @@ TEST(ObjFile, ReadsVerticesFacesAndTheirLines)
                               "mtllib square.mtl\n"
                               "o square\n"
                               "v 0 0 0\n"
-                              "v 1.5 0 0 1.0\n"             // w ignored
-                              "v 1.5 2 0 0.1 0.2 0.3\n"     // colour ignored
+                              "v 1.5 0 0 1.0\n"            // w ignored
+                              "v 1.5 2 0 0.1 0.2 0.3\n"    // colour ignored
                               "vt 0 0\n"
                               "vn 0 0 1\n"
                               "\n"
@@ -58,8 +60,8 @@ TEST(ObjFile, ReadsVerticesFacesAndTheirLines)
 
 TEST(ObjFile, PolygonsBecomeFansInTheirOrientation)
 {
-  const auto mesh = parse_obj("v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3 4 5\n",
-                              "pentagon.obj");
+  const auto mesh =
+      parse_obj("v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3 4 5\n", "pentagon.obj");
   ASSERT_EQ(mesh.triangles.size(), 3u);
   EXPECT_EQ(mesh.triangles[0], (std::array<int, 3>{0, 1, 2}));
   EXPECT_EQ(mesh.triangles[1], (std::array<int, 3>{0, 2, 3}));

@@ -53,7 +53,9 @@ void add_triangle(TriangleMesh &mesh, int a, int b, int c, int line)
 void expect_error(const TriangleMesh &mesh, const std::vector<std::string> &parts,
                   int maxtri = kMaxVertexTriangles)
 {
-  const std::string message = error_of([&] { check_mesh(mesh, "m.obj", maxtri); });
+  const std::string message = error_of([&] {
+    check_mesh(mesh, "m.obj", maxtri);
+  });
   ASSERT_FALSE(message.empty());
   for (const auto &part : parts)
     EXPECT_NE(message.find(part), std::string::npos) << message << " lacks " << part;
@@ -106,8 +108,9 @@ TEST(TriangleMesh, EdgeOfThreeTrianglesIsNotAManifold)
   mesh.vertices.push_back({0.5, 0.5, 1.0});
   mesh.vertex_line.push_back(8);
   add_triangle(mesh, 3, 0, 4, 9);    // a fin on the diagonal
-  expect_error(mesh, {"m.obj line 9", "vertices 1 and 4", "more than two triangles",
-                      "lines 5, 6 and 9", "not a manifold"});
+  expect_error(mesh,
+               {"m.obj line 9", "vertices 1 and 4", "more than two triangles", "lines 5, 6 and 9",
+                "not a manifold"});
 }
 
 TEST(TriangleMesh, InconsistentOrientationIsRefused)
@@ -115,8 +118,9 @@ TEST(TriangleMesh, InconsistentOrientationIsRefused)
   auto mesh = grid(3, 2);
   std::swap(mesh.triangles[1][1], mesh.triangles[1][2]);    // (0 4 3) -> (0 3 4)
   // the error names the later of the two faces, the earlier one's line and the edge
-  expect_error(mesh, {"m.obj line 8: this face and the face of line 7",
-                      "from vertex 5 to vertex 1", "inconsistent orientation"});
+  expect_error(mesh,
+               {"m.obj line 8: this face and the face of line 7", "from vertex 5 to vertex 1",
+                "inconsistent orientation"});
 }
 
 TEST(TriangleMesh, UnusedVertexIsNamed)

@@ -23,8 +23,8 @@ constexpr int kMaxTri = 16;
 // nrows rows of the per-atom arrays, as the fix allocates them
 template <class Id> struct Storage {
   explicit Storage(int nrows) :
-      mesh(nrows, 0), thickness(nrows, 0.0), owntag(nrows, 0), normal_rows(nrows),
-      normal(nrows), ntri(nrows, 0), tri_rows(nrows), tri_ptrs(nrows * kMaxTri), tri(nrows)
+      mesh(nrows, 0), thickness(nrows, 0.0), owntag(nrows, 0), normal_rows(nrows), normal(nrows),
+      ntri(nrows, 0), tri_rows(nrows), tri_ptrs(nrows * kMaxTri), tri(nrows)
   {
     for (int i = 0; i < nrows; i++) {
       normal[i] = normal_rows[i].data();
@@ -68,9 +68,7 @@ template <class Id> void expect_same_row(Storage<Id> &s, int i, int j, bool with
 {
   EXPECT_EQ(s.mesh[j], s.mesh[i]);
   EXPECT_EQ(s.thickness[j], s.thickness[i]);
-  if (with_owntag) {
-    EXPECT_EQ(s.owntag[j], s.owntag[i]);
-  }
+  if (with_owntag) { EXPECT_EQ(s.owntag[j], s.owntag[i]); }
   for (int d = 0; d < 3; d++) EXPECT_EQ(s.normal[j][d], s.normal[i][d]);
   ASSERT_EQ(s.ntri[j], s.ntri[i]);
   for (int k = 0; k < s.ntri[i]; k++) {

@@ -6,7 +6,7 @@
 
 namespace PeriSISSM {
 
-std::vector<double> iterate(const ScalarMap& g, double x0, int n)
+std::vector<double> iterate(const ScalarMap &g, double x0, int n)
 {
   std::vector<double> xs;
   xs.reserve(n > 0 ? n + 1 : 1);
@@ -18,7 +18,9 @@ std::vector<double> iterate(const ScalarMap& g, double x0, int n)
 // x_{k+1} (1 + a) = g(x_k) + a x_k  (header).
 ScalarMap split_map(ScalarMap g, double a)
 {
-  return [g = std::move(g), a](double x) { return (g(x) + a * x) / (1.0 + a); };
+  return [g = std::move(g), a](double x) {
+    return (g(x) + a * x) / (1.0 + a);
+  };
 }
 
 double talk_example_map(double x)
@@ -26,4 +28,4 @@ double talk_example_map(double x)
   return (x - 2.0) * (x - 2.0);
 }
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM

@@ -15,7 +15,7 @@ using ScalarMap = std::function<double(double)>;
 //
 // Inputs:  g the map, x0 start value, n number of iterations (>= 0).
 // Outputs: the n + 1 iterates x_0 .. x_n.
-std::vector<double> iterate(const ScalarMap& g, double x0, int n);
+std::vector<double> iterate(const ScalarMap &g, double x0, int n);
 
 // The split map of x = g(x) with implicit coefficient a >= 0.
 //
@@ -37,6 +37,6 @@ double talk_example_map(double x);
 // to the left-hand side, a = 4, and the split map is (x^2 + 4)/5.
 constexpr double kTalkExampleImplicit = 4.0;
 
-}  // namespace PeriSISSM
+}    // namespace PeriSISSM
 
-#endif  // PERISISSM_SCALAR_SUBSTITUTION_H
+#endif    // PERISISSM_SCALAR_SUBSTITUTION_H

@@ -15,7 +15,11 @@ using PeriSISSM::talk_example_map;
 
 TEST(ScalarSubstitution, IterateRecordsAllIterates)
 {
-  const auto xs = iterate([](double x) { return 2.0 * x; }, 1.0, 4);
+  const auto xs = iterate(
+      [](double x) {
+        return 2.0 * x;
+      },
+      1.0, 4);
   ASSERT_EQ(xs.size(), 5u);
   EXPECT_EQ(xs[4], 16.0);
   EXPECT_EQ(iterate(talk_example_map, 0.5, 0).size(), 1u);
@@ -28,7 +32,7 @@ TEST(ScalarSubstitution, PlainSubstitutionDoesNotConverge)
   const auto xs = iterate(talk_example_map, 0.5, 100);
   EXPECT_DOUBLE_EQ(xs[1], 2.25);
   EXPECT_DOUBLE_EQ(xs[2], 0.0625);
-  EXPECT_GT(xs[1], 1.0);  // leaves [0, 1]
+  EXPECT_GT(xs[1], 1.0);    // leaves [0, 1]
   double late_step = 0.0;
   for (int k = 90; k < 100; ++k) late_step = std::max(late_step, std::abs(xs[k + 1] - xs[k]));
   EXPECT_GT(late_step, 1e-3);
@@ -60,4 +64,4 @@ TEST(ScalarSubstitution, SplitKeepsFixedPointsAndNeedsEnoughImplicitPart)
   EXPECT_GT(std::abs(weak.back() - 1.0), 1e-6);
 }
 
-}  // namespace
+}    // namespace

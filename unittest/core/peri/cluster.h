@@ -23,8 +23,8 @@ class Cluster : public PeriSISSM::Halo {
   // n owned particles on a simple cubic lattice of spacing 1 (nx x ny x nz), jittered by up to
   // jitter and with volumes in [1 - spread, 1 + spread], horizon delta; periodic in x with box
   // length nx when periodic is set.
-  Cluster(int nx, int ny, int nz, double delta, bool periodic, unsigned seed,
-          double jitter = 0.12, double spread = 0.4) :
+  Cluster(int nx, int ny, int nz, double delta, bool periodic, unsigned seed, double jitter = 0.12,
+          double spread = 0.4) :
       delta_(delta)
   {
     std::mt19937_64 rng(seed);
@@ -75,8 +75,8 @@ class Cluster : public PeriSISSM::Halo {
   {
     std::vector<double> out(own.begin(), own.begin() + 3 * nlocal);
     for (size_t g = 0; g < owner.size(); g++)
-      out.insert(out.end(), {own[3 * owner[g]] + shift[g], own[3 * owner[g] + 1],
-                             own[3 * owner[g] + 2]});
+      out.insert(out.end(),
+                 {own[3 * owner[g]] + shift[g], own[3 * owner[g] + 1], own[3 * owner[g] + 2]});
     return out;
   }
   std::vector<double> reference_of(const std::vector<double> &own) const
@@ -155,12 +155,12 @@ class Cluster : public PeriSISSM::Halo {
   }
 
   struct Result {
-    double energy = 0.0;            // sum_i V_i w_i
-    std::vector<double> f;          // force densities of the owned rows
-    std::vector<double> k;          // implicit stiffness rows (all rows)
-    std::vector<double> g;          // F, C, regular (all rows)
-    std::vector<double> h;          // H (all rows)
-    std::vector<double> blocks;     // SISSM diagonal blocks of the owned rows (6 each)
+    double energy = 0.0;           // sum_i V_i w_i
+    std::vector<double> f;         // force densities of the owned rows
+    std::vector<double> k;         // implicit stiffness rows (all rows)
+    std::vector<double> g;         // F, C, regular (all rows)
+    std::vector<double> h;         // H (all rows)
+    std::vector<double> blocks;    // SISSM diagonal blocks of the owned rows (6 each)
     double virial[6] = {0, 0, 0, 0, 0, 0};
   };
 
@@ -233,6 +233,6 @@ class Cluster : public PeriSISSM::Halo {
   double delta_;
 };
 
-}  // namespace PeriSISSMTest
+}    // namespace PeriSISSMTest
 
-#endif  // PERISISSM_TEST_CLUSTER_H
+#endif    // PERISISSM_TEST_CLUSTER_H

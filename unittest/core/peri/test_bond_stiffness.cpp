@@ -28,8 +28,16 @@ PeriSISSM::Model linear_model(double bulk, double shear, double horizon)
   m.set_type(1, PeriSISSM::make_material("linear", lame.mu, lame.lambda), 0.0, bulk);
   m.set_pair(1, 1, horizon, false, 0.0);
   m.breaking().configure(
-      1, [](int, int) { return false; }, [](int, int) { return 0.0; },
-      [](int, int) { return 0.0; });
+      1,
+      [](int, int) {
+        return false;
+      },
+      [](int, int) {
+        return 0.0;
+      },
+      [](int, int) {
+        return 0.0;
+      });
   return m;
 }
 
@@ -47,8 +55,8 @@ PeriSISSM::BondSprings springs_of(Cluster &cl, const Cluster::Result &r)
 // a jittered cluster with unequal volumes, deformed by a rotation and a stretch
 std::vector<double> deformed(const Cluster &cl)
 {
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized())
-                                .toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
   S(0, 0) = 1.2;
   S(1, 2) = 0.1;
@@ -129,9 +137,9 @@ TEST(BondStiffness, CalibratedToThePWaveModulus)
   const int centre = (4 * 9 + 4) * 9 + 4;
   const auto lame = PeriSISSM::lame_from_bulk_shear(bulk, shear);
   const double c = 2.0 * lame.mu + lame.lambda;
-  for (const Eigen::Vector3d &n : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0).normalized(),
-                                  Eigen::Vector3d(1, 1, 1).normalized(),
-                                  Eigen::Vector3d(0.3, -0.5, 0.8).normalized()}) {
+  for (const Eigen::Vector3d &n :
+       {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0).normalized(),
+        Eigen::Vector3d(1, 1, 1).normalized(), Eigen::Vector3d(0.3, -0.5, 0.8).normalized()}) {
     double w = 0.0;
     for (int a = s.first[centre]; a < s.first[centre + 1]; a++) {
       const int j = s.partner[a];
@@ -146,4 +154,4 @@ TEST(BondStiffness, CalibratedToThePWaveModulus)
   }
 }
 
-}  // namespace
+}    // namespace

@@ -38,8 +38,16 @@ PeriSISSM::Model make_model(const std::string &name, double cs, int ntypes, doub
     for (int u = t; u <= ntypes; u++) m.set_pair(t, u, delta, false, 0.0);
   }
   m.breaking().configure(
-      ntypes, [&](int, int) { return breaking; }, [](int i, int j) { return 0.01 * (i + j); },
-      [](int, int) { return 0.25; });
+      ntypes,
+      [&](int, int) {
+        return breaking;
+      },
+      [](int i, int j) {
+        return 0.01 * (i + j);
+      },
+      [](int, int) {
+        return 0.25;
+      });
   return m;
 }
 
@@ -71,7 +79,7 @@ void expect_same(const Cluster::Result &a, const Cluster::Result &b)
   EXPECT_EQ(std::memcmp(a.virial, b.virial, sizeof a.virial), 0);
 }
 
-}  // namespace
+}    // namespace
 
 // Whole evaluations (state, stabilization, force and SISSM blocks) of volume clusters.
 TEST(FourWidePasses, EvaluationHasTheBitsOfTheScalarCode)
@@ -137,8 +145,8 @@ TEST(FourWidePasses, BreakingCheckHasTheBitsOfTheScalarCode)
   for (int ntypes : {1, 2})
     for (bool periodic : {false, true})
       for (int mode : {(int) BreakingRule::BREAK, (int) BreakingRule::S0ONLY}) {
-        SCOPED_TRACE("ntypes " + std::to_string(ntypes) + (periodic ? " periodic" : "") +
-                     " mode " + std::to_string(mode));
+        SCOPED_TRACE("ntypes " + std::to_string(ntypes) + (periodic ? " periodic" : "") + " mode " +
+                     std::to_string(mode));
         const PeriSISSM::Model model = make_model("linear", 1.0, ntypes, 1.8, false, true);
         ASSERT_EQ(model.breaking().uniform(), ntypes == 1);
         struct Run {
@@ -154,8 +162,8 @@ TEST(FourWidePasses, BreakingCheckHasTheBitsOfTheScalarCode)
           for (int i = 0; i < cl.nlocal; i += 3)
             for (int b = i % 5; b < cl.npartner[i]; b += 7) cl.jl[i][b] = -1;
           cl.x = cl.positions_of(moved(cl, 9u, 0.02, 0.03));
-          std::vector<double> f(3 * cl.nall), g(ParticleFields::NG * cl.nall),
-              h(9 * cl.nall), w(cl.nall), sn(cl.nall), cols(ParticleFields::NCOLS * cl.nall);
+          std::vector<double> f(3 * cl.nall), g(ParticleFields::NG * cl.nall), h(9 * cl.nall),
+              w(cl.nall), sn(cl.nall), cols(ParticleFields::NCOLS * cl.nall);
           const PeriSISSM::Particles p = cl.particles(f.data());
           ParticleFields fields;
           fields.g = g.data();
@@ -172,8 +180,10 @@ TEST(FourWidePasses, BreakingCheckHasTheBitsOfTheScalarCode)
           run[v].h = h;
           run[v].w = w;
         }
-        if (mode == BreakingRule::BREAK) EXPECT_GT(run[0].broke.size(), 3u);
-        else EXPECT_TRUE(run[0].broke.empty());
+        if (mode == BreakingRule::BREAK)
+          EXPECT_GT(run[0].broke.size(), 3u);
+        else
+          EXPECT_TRUE(run[0].broke.empty());
         EXPECT_EQ(run[0].broke, run[1].broke);
         EXPECT_EQ(run[0].jl, run[1].jl);
         EXPECT_TRUE(same_bits(run[0].smin, run[1].smin));

@@ -40,10 +40,7 @@ PeriSISSM::Model make_model()
 class Pairs : public PeriSISSM::ContactPairs {
  public:
   explicit Pairs(const std::vector<double> &volume) : volume_(volume) {}
-  bool bonded(int i, int j) const override
-  {
-    return (i == 0 && j == 1) || (i == 1 && j == 0);
-  }
+  bool bonded(int i, int j) const override { return (i == 0 && j == 1) || (i == 1 && j == 0); }
   void acting(int i, int j) override { acting_pairs.insert({i, j}); }
   void tally(int i, int j, double energy, double, double, double, double) override
   {
@@ -135,7 +132,8 @@ std::vector<double> away_from_kinks(const Cluster &c, unsigned seed)
     for (int i = 0; i < N && ok; i++)
       for (int j = i + 1; j < N && ok; j++) {
         double r2 = 0.0;
-        for (int k = 0; k < 3; k++) r2 += (x[3 * i + k] - x[3 * j + k]) * (x[3 * i + k] - x[3 * j + k]);
+        for (int k = 0; k < 3; k++)
+          r2 += (x[3 * i + k] - x[3 * j + k]) * (x[3 * i + k] - x[3 * j + k]);
         const double d = PeriSISSM::contact_distance(2.0, c.volume[i], c.volume[j]);
         if (std::fabs(std::sqrt(r2) - d) < 1e-4) ok = false;
       }
@@ -201,10 +199,11 @@ TEST(ContactPass, WhichPairsAct)
   for (int i = 0; i < N; i++)
     for (int j = i + 1; j < N; j++) {
       double r2 = 0.0;
-      for (int k = 0; k < 3; k++) r2 += (x[3 * i + k] - x[3 * j + k]) * (x[3 * i + k] - x[3 * j + k]);
+      for (int k = 0; k < 3; k++)
+        r2 += (x[3 * i + k] - x[3 * j + k]) * (x[3 * i + k] - x[3 * j + k]);
       const double d = PeriSISSM::contact_distance(2.0, c.volume[i], c.volume[j]);
-      const bool expect = std::sqrt(r2) < d && !(i == 0 && j == 1) &&
-          !(c.type[i] == 2 && c.type[j] == 2);
+      const bool expect =
+          std::sqrt(r2) < d && !(i == 0 && j == 1) && !(c.type[i] == 2 && c.type[j] == 2);
       EXPECT_EQ(r.acting.count({i, j}), expect ? 1u : 0u) << i << " " << j;
       acting += expect;
     }
@@ -243,4 +242,4 @@ TEST(ContactPass, GhostRowsFollowNewton)
   }
 }
 
-}  // namespace
+}    // namespace

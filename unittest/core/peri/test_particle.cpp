@@ -2,11 +2,10 @@
 // singularity test, the partial-volume factor, the stabilization modulus, the per-particle
 // state F, A = P K^-1, W, and the Cauchy and von Mises stresses.
 
+#include "materials/material.h"
 #include "peri/family.h"
 #include "peri/particle.h"
 #include "peri/stabilization.h"
-#include "materials/material.h"
-#include "peri/particle.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
@@ -31,14 +30,14 @@ using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 constexpr double kPi = 3.14159265358979323846;
 
 // Row-major double[9] <-> Eigen.
-std::array<double, 9> to_array(const Matrix3d& A)
+std::array<double, 9> to_array(const Matrix3d &A)
 {
   std::array<double, 9> out;
   Eigen::Map<RowMatrix3d>(out.data()) = A;
   return out;
 }
 
-Matrix3d to_matrix(const double* a)
+Matrix3d to_matrix(const double *a)
 {
   return Eigen::Map<const RowMatrix3d>(a);
 }
@@ -55,7 +54,7 @@ struct Bond {
 // lattice sites that exist (a surface cuts the family). cutoff = delta is what the pair builds;
 // cutoff = delta + a/2 keeps the whole ramp of beta.
 std::vector<Bond> lattice_family(double a, double delta, double cutoff,
-                                 const std::function<bool(const Vector3d&)>& keep)
+                                 const std::function<bool(const Vector3d &)> &keep)
 {
   std::vector<Bond> bonds;
   const int n = static_cast<int>(std::ceil(cutoff / a)) + 1;
@@ -73,21 +72,23 @@ std::vector<Bond> lattice_family(double a, double delta, double cutoff,
 
 std::vector<Bond> bulk_family(double a, double delta)
 {
-  return lattice_family(a, delta, delta, [](const Vector3d&) { return true; });
+  return lattice_family(a, delta, delta, [](const Vector3d &) {
+    return true;
+  });
 }
 
-Matrix3d shape_tensor(const std::vector<Bond>& bonds)
+Matrix3d shape_tensor(const std::vector<Bond> &bonds)
 {
   Matrix3d K = Matrix3d::Zero();
-  for (const Bond& b : bonds) K += b.omega * b.xi * b.xi.transpose();
+  for (const Bond &b : bonds) K += b.omega * b.xi * b.xi.transpose();
   return K;
 }
 
 // M = sum omega eta (x) xi for the current bonds eta = F xi (affine deformation).
-Matrix3d affine_moment(const std::vector<Bond>& bonds, const Matrix3d& F)
+Matrix3d affine_moment(const std::vector<Bond> &bonds, const Matrix3d &F)
 {
   Matrix3d M = Matrix3d::Zero();
-  for (const Bond& b : bonds) M += b.omega * (F * b.xi) * b.xi.transpose();
+  for (const Bond &b : bonds) M += b.omega * (F * b.xi) * b.xi.transpose();
   return M;
 }
 
@@ -100,14 +101,14 @@ Matrix3d sigma_matrix(const double s[6])
 }
 
 // lambda_min / lambda_max of K.
-double conditioning(const Matrix3d& K)
+double conditioning(const Matrix3d &K)
 {
   const Vector3d lam = Eigen::SelfAdjointEigenSolver<Matrix3d>(K).eigenvalues();
   return lam(0) / lam(2);
 }
 
 // Invert through the function under test; expects success.
-Matrix3d inverse_of(const Matrix3d& K, double lambda_ref = 0.0)
+Matrix3d inverse_of(const Matrix3d &K, double lambda_ref = 0.0)
 {
   const auto k = to_array(K);
   std::array<double, 9> kinv;
@@ -122,7 +123,7 @@ Matrix3d inverse_of(const Matrix3d& K, double lambda_ref = 0.0)
 // round-off (K is nearly isotropic, condition number ~1), lambda_max reported.
 TEST(InvertShapeTensor, FullSphereIsRegular)
 {
-  const double a = 0.5e-3;  // the impact example's spacing: K ~ 1e-21 in SI units
+  const double a = 0.5e-3;    // the impact example's spacing: K ~ 1e-21 in SI units
   const Matrix3d K = shape_tensor(bulk_family(a, 3.0002 * a));
   const auto k = to_array(K);
   std::array<double, 9> kinv;
@@ -143,20 +144,38 @@ TEST(InvertShapeTensor, SurfaceParticlesOfAnIntactBody)
 {
   const double a = 1.0, delta = 3.0002;
   struct Case {
-    const char* name;
-    std::function<bool(const Vector3d&)> keep;
+    const char *name;
+    std::function<bool(const Vector3d &)> keep;
     double ratio;
   };
   const std::vector<Case> cases = {
-      {"interior", [](const Vector3d&) { return true; }, 1.0},
-      {"face", [](const Vector3d& x) { return x(2) >= 0.0; }, 0.77},
-      {"edge", [](const Vector3d& x) { return x(1) >= 0.0 && x(2) >= 0.0; }, 0.36},
-      {"corner", [](const Vector3d& x) { return (x.array() >= 0.0).all(); }, 0.28},
+      {"interior",
+       [](const Vector3d &) {
+         return true;
+       },
+       1.0},
+      {"face",
+       [](const Vector3d &x) {
+         return x(2) >= 0.0;
+       },
+       0.77},
+      {"edge",
+       [](const Vector3d &x) {
+         return x(1) >= 0.0 && x(2) >= 0.0;
+       },
+       0.36},
+      {"corner",
+       [](const Vector3d &x) {
+         return (x.array() >= 0.0).all();
+       },
+       0.28},
       {"corner of a two-layer plate",
-       [](const Vector3d& x) { return x(0) >= 0.0 && x(1) >= 0.0 && x(2) >= 0.0 && x(2) <= 1.0; },
+       [](const Vector3d &x) {
+         return x(0) >= 0.0 && x(1) >= 0.0 && x(2) >= 0.0 && x(2) <= 1.0;
+       },
        0.11},
   };
-  for (const Case& c : cases) {
+  for (const Case &c : cases) {
     SCOPED_TRACE(c.name);
     const Matrix3d K = shape_tensor(lattice_family(a, delta, delta, c.keep));
     const double ratio = conditioning(K);
@@ -165,8 +184,9 @@ TEST(InvertShapeTensor, SurfaceParticlesOfAnIntactBody)
     const Matrix3d Kinv = inverse_of(K);
     EXPECT_LE(max_abs(K * Kinv - Matrix3d::Identity()), 1e-14 / ratio);
   }
-  const Matrix3d plate = shape_tensor(
-      lattice_family(a, delta, delta, [](const Vector3d& x) { return x(2) == 0.0; }));
+  const Matrix3d plate = shape_tensor(lattice_family(a, delta, delta, [](const Vector3d &x) {
+    return x(2) == 0.0;
+  }));
   const auto k = to_array(plate);
   std::array<double, 9> kinv;
   EXPECT_FALSE(PeriSISSM::invert_shape_tensor(k.data(), 0.0, kinv.data()));
@@ -186,14 +206,14 @@ TEST(InvertShapeTensor, PlanarCollinearAndEmptyFamiliesAreSingular)
   two.push_back({Vector3d(1, 0, 0), 1.0});
   two.push_back({Vector3d(0, 1, 0), 1.0});
   struct Case {
-    const char* name;
+    const char *name;
     Matrix3d K;
   };
-  for (const Case& c : {Case{"planar", shape_tensor(planar)},
-                        Case{"collinear", shape_tensor(collinear)},
-                        Case{"two partners", shape_tensor(two)},
-                        Case{"one partner", shape_tensor({{Vector3d(1, 2, 3), 1.0}})},
-                        Case{"empty", Matrix3d::Zero()}}) {
+  for (const Case &c :
+       {Case{"planar", shape_tensor(planar)}, Case{"collinear", shape_tensor(collinear)},
+        Case{"two partners", shape_tensor(two)},
+        Case{"one partner", shape_tensor({{Vector3d(1, 2, 3), 1.0}})},
+        Case{"empty", Matrix3d::Zero()}}) {
     SCOPED_TRACE(c.name);
     const auto k = to_array(c.K);
     std::array<double, 9> kinv;
@@ -293,11 +313,11 @@ TEST(PartialVolumeFactor, InsideRampBeyond)
   const double delta = 3.0, h = 1.0;
   EXPECT_EQ(PeriSISSM::partial_volume_factor(0.0, delta, h), 1.0);
   EXPECT_EQ(PeriSISSM::partial_volume_factor(1.0, delta, h), 1.0);
-  EXPECT_EQ(PeriSISSM::partial_volume_factor(2.5, delta, h), 1.0);  // delta - h/2
+  EXPECT_EQ(PeriSISSM::partial_volume_factor(2.5, delta, h), 1.0);    // delta - h/2
   EXPECT_EQ(PeriSISSM::partial_volume_factor(2.75, delta, h), 0.75);
-  EXPECT_EQ(PeriSISSM::partial_volume_factor(3.0, delta, h), 0.5);  // delta: half
+  EXPECT_EQ(PeriSISSM::partial_volume_factor(3.0, delta, h), 0.5);    // delta: half
   EXPECT_EQ(PeriSISSM::partial_volume_factor(3.25, delta, h), 0.25);
-  EXPECT_EQ(PeriSISSM::partial_volume_factor(3.5, delta, h), 0.0);  // delta + h/2
+  EXPECT_EQ(PeriSISSM::partial_volume_factor(3.5, delta, h), 0.0);    // delta + h/2
   EXPECT_EQ(PeriSISSM::partial_volume_factor(3.6, delta, h), 0.0);
   EXPECT_EQ(PeriSISSM::partial_volume_factor(1e300, delta, h), 0.0);
 }
@@ -319,10 +339,9 @@ TEST(PartialVolumeFactor, LinearMonotoneAndContinuous)
       if (r > delta - 0.5 * h && r < delta + 0.5 * h) {
         const double dr = 1e-3 * h;
         const double slope = (PeriSISSM::partial_volume_factor(r + dr, delta, h) -
-                              PeriSISSM::partial_volume_factor(r, delta, h)) / dr;
-        if (r + dr < delta + 0.5 * h) {
-          EXPECT_NEAR(slope, -1.0 / h, 1e-9 / h) << "r = " << r;
-        }
+                              PeriSISSM::partial_volume_factor(r, delta, h)) /
+            dr;
+        if (r + dr < delta + 0.5 * h) { EXPECT_NEAR(slope, -1.0 / h, 1e-9 / h) << "r = " << r; }
       }
     }
     for (double edge : {delta - 0.5 * h, delta + 0.5 * h}) {
@@ -370,11 +389,13 @@ TEST(StabilizationModulus, LatticeBulkValue)
   const double a = 1.0, bulk = 1.0, Cs = 2.0;
   auto ratio = [&](double m, bool whole_ramp) {
     const double delta = m * a;
-    const auto bonds = lattice_family(a, delta, whole_ramp ? delta + 0.5 * a : delta,
-                                      [](const Vector3d&) { return true; });
+    const auto bonds =
+        lattice_family(a, delta, whole_ramp ? delta + 0.5 * a : delta, [](const Vector3d &) {
+          return true;
+        });
     const Matrix3d Kinv = inverse_of(shape_tensor(bonds));
     return PeriSISSM::stabilization_modulus(Cs, bulk, to_array(Kinv).data()) /
-           (Cs * 18.0 * bulk / (kPi * std::pow(delta, 5)));
+        (Cs * 18.0 * bulk / (kPi * std::pow(delta, 5)));
   };
   for (double m : {3.0, 3.0002, 4.0, 6.0, 10.0, 20.0}) {
     const double whole = ratio(m, true) - 1.0;
@@ -392,12 +413,18 @@ TEST(StabilizationModulus, LatticeBulkValue)
 TEST(StabilizationModulus, ScalesWithFamily)
 {
   const double a = 1.0, delta = 3.0002;
-  const auto kinv_of = [&](const std::function<bool(const Vector3d&)>& keep) {
+  const auto kinv_of = [&](const std::function<bool(const Vector3d &)> &keep) {
     return to_array(inverse_of(shape_tensor(lattice_family(a, delta, delta, keep))));
   };
-  const auto interior = kinv_of([](const Vector3d&) { return true; });
-  const auto face = kinv_of([](const Vector3d& x) { return x(2) >= 0.0; });
-  const auto corner = kinv_of([](const Vector3d& x) { return (x.array() >= 0.0).all(); });
+  const auto interior = kinv_of([](const Vector3d &) {
+    return true;
+  });
+  const auto face = kinv_of([](const Vector3d &x) {
+    return x(2) >= 0.0;
+  });
+  const auto corner = kinv_of([](const Vector3d &x) {
+    return (x.array() >= 0.0).all();
+  });
   const double ci = PeriSISSM::stabilization_modulus(1.0, 1.0, interior.data());
   EXPECT_DOUBLE_EQ(PeriSISSM::stabilization_modulus(2.0, 3.0, interior.data()), 6.0 * ci);
   EXPECT_EQ(PeriSISSM::stabilization_modulus(0.0, 3.0, interior.data()), 0.0);
@@ -418,13 +445,13 @@ std::vector<Matrix3d> affine_gradients()
   shear(0, 1) = 0.3;
   return {
       Matrix3d::Identity(),
-      Vector3d(1.01, 1.0, 1.0).asDiagonal(),                // uniaxial stretch
-      Vector3d(1.2, 0.9, 1.05).asDiagonal(),                // triaxial
-      shear,                                               // simple shear
-      0.6 * Matrix3d::Identity(),                          // compression
-      R,                                                   // rotation
-      R * Matrix3d(Vector3d(1.3, 0.8, 1.1).asDiagonal()),  // rotation + stretch
-      R * Matrix3d(Vector3d(1.0, 1.0, -0.4).asDiagonal()),  // inverted
+      Vector3d(1.01, 1.0, 1.0).asDiagonal(),                  // uniaxial stretch
+      Vector3d(1.2, 0.9, 1.05).asDiagonal(),                  // triaxial
+      shear,                                                  // simple shear
+      0.6 * Matrix3d::Identity(),                             // compression
+      R,                                                      // rotation
+      R * Matrix3d(Vector3d(1.3, 0.8, 1.1).asDiagonal()),     // rotation + stretch
+      R * Matrix3d(Vector3d(1.0, 1.0, -0.4).asDiagonal()),    // inverted
   };
 }
 
@@ -435,24 +462,30 @@ std::vector<Matrix3d> affine_gradients()
 TEST(CorrespondenceState, AffineDeformationGivesBackF)
 {
   const double a = 0.5e-3, delta = 3.0002 * a;
-  const std::vector<std::function<bool(const Vector3d&)>> keeps = {
-      [](const Vector3d&) { return true; },
-      [](const Vector3d& x) { return x(2) >= 0.0; },
-      [](const Vector3d& x) { return (x.array() >= 0.0).all(); },
+  const std::vector<std::function<bool(const Vector3d &)>> keeps = {
+      [](const Vector3d &) {
+        return true;
+      },
+      [](const Vector3d &x) {
+        return x(2) >= 0.0;
+      },
+      [](const Vector3d &x) {
+        return (x.array() >= 0.0).all();
+      },
   };
-  for (const std::string& name : PeriSISSM::material_names()) {
+  for (const std::string &name : PeriSISSM::material_names()) {
     const auto m = PeriSISSM::make_material(name, 6.0e9, 5.0e9);
     for (size_t f = 0; f < keeps.size(); ++f) {
       const auto bonds = lattice_family(a, delta, delta, keeps[f]);
       const Matrix3d K = shape_tensor(bonds);
       const auto kinv = to_array(inverse_of(K));
       const double cond = 1.0 / conditioning(K);
-      for (const Matrix3d& F : affine_gradients()) {
+      for (const Matrix3d &F : affine_gradients()) {
         SCOPED_TRACE(name + " family " + std::to_string(f));
         const auto M = to_array(affine_moment(bonds, F));
         std::array<double, 9> fout, aout;
-        const double W = PeriSISSM::correspondence_state(*m, M.data(), kinv.data(), fout.data(),
-                                                         aout.data());
+        const double W =
+            PeriSISSM::correspondence_state(*m, M.data(), kinv.data(), fout.data(), aout.data());
         const Matrix3d Fo = to_matrix(fout.data()), A = to_matrix(aout.data());
         EXPECT_LE(max_abs(Fo - F), 1e-14 * cond * max_abs(F));
         // errors relative to the modulus: P at F = I or a rotation is zero, and F itself
@@ -464,7 +497,7 @@ TEST(CorrespondenceState, AffineDeformationGivesBackF)
         EXPECT_LE(max_abs(A - P * to_matrix(kinv.data())),
                   1e-12 * cond * pscale * max_abs(to_matrix(kinv.data())));
         Matrix3d T = Matrix3d::Zero();
-        for (const Bond& b : bonds) T += b.omega * (A * b.xi) * b.xi.transpose();
+        for (const Bond &b : bonds) T += b.omega * (A * b.xi) * b.xi.transpose();
         EXPECT_LE(max_abs(T - P), 1e-12 * cond * pscale);
         const double W0 = PeriSISSMTest::energy_of_F(*m, F);
         EXPECT_NEAR(W, W0, 1e-13 * cond * (std::abs(W0) + max_abs(P) + 1e-3 * modulus));
@@ -483,7 +516,7 @@ TEST(CorrespondenceState, RestState)
   const Matrix3d K = shape_tensor(bonds);
   const auto kinv = to_array(inverse_of(K));
   const auto M = to_array(K);
-  for (const std::string& name : PeriSISSM::material_names()) {
+  for (const std::string &name : PeriSISSM::material_names()) {
     const auto m = PeriSISSM::make_material(name, 1.0, 1.5);
     std::array<double, 9> fout, aout;
     const double W =
@@ -500,24 +533,25 @@ TEST(CorrespondenceState, RestState)
 TEST(CorrespondenceState, ImplicitStiffnessOverload)
 {
   const double a = 1.0;
-  const auto bonds =
-      lattice_family(a, 3.0002 * a, 3.0002 * a, [](const Vector3d& x) { return x(2) >= 0.0; });
+  const auto bonds = lattice_family(a, 3.0002 * a, 3.0002 * a, [](const Vector3d &x) {
+    return x(2) >= 0.0;
+  });
   const Matrix3d K = shape_tensor(bonds);
   const auto kinv = to_array(inverse_of(K));
   const double kappa = (kinv[0] + kinv[4] + kinv[8]) / 3.0;
-  for (const std::string& name : PeriSISSM::material_names()) {
-    for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const std::string &name : PeriSISSM::material_names()) {
+    for (const auto &c : PeriSISSMTest::material_cases()) {
       SCOPED_TRACE(name + " " + c.label);
       const auto m = PeriSISSM::make_material(name, c.mu, c.lambda);
       const double modulus = c.mu + std::abs(c.lambda);
-      for (const auto& sample : PeriSISSMTest::random_samples(41u, 10)) {
+      for (const auto &sample : PeriSISSMTest::random_samples(41u, 10)) {
         const auto M = to_array(affine_moment(bonds, sample.F));
         std::array<double, 9> f1, a1, f2, a2;
         double h[6];
-        const double W1 = PeriSISSM::correspondence_state(*m, M.data(), kinv.data(), f1.data(),
-                                                          a1.data());
-        const double W2 = PeriSISSM::correspondence_state(*m, M.data(), kinv.data(), f2.data(),
-                                                          a2.data(), h);
+        const double W1 =
+            PeriSISSM::correspondence_state(*m, M.data(), kinv.data(), f1.data(), a1.data());
+        const double W2 =
+            PeriSISSM::correspondence_state(*m, M.data(), kinv.data(), f2.data(), a2.data(), h);
         EXPECT_EQ(W1, W2);
         EXPECT_EQ(f1, f2);
         EXPECT_EQ(a1, a2);
@@ -526,7 +560,8 @@ TEST(CorrespondenceState, ImplicitStiffnessOverload)
         PeriSISSM::particle_stress(*m, to_matrix(f1.data()), ps, true);
         // round-off relative to the largest stiffness entry (the neo-Hookean c grows with the
         // volumetric curvature far from rest, beyond mu + |lambda|)
-        const double scale = std::max(modulus, PeriSISSM::implicit_direction(ps).cwiseAbs().maxCoeff());
+        const double scale =
+            std::max(modulus, PeriSISSM::implicit_direction(ps).cwiseAbs().maxCoeff());
         EXPECT_LE(max_abs(H - kappa * PeriSISSM::implicit_direction(ps)), 1e-13 * kappa * scale);
         EXPECT_GE(Eigen::SelfAdjointEigenSolver<Matrix3d>(H).eigenvalues().minCoeff(),
                   -1e-13 * kappa * scale);
@@ -546,12 +581,12 @@ TEST(CorrespondenceState, ImplicitStiffnessOverload)
 // isotropic models, and the function returns its components divided by J, J = det F and W(F).
 TEST(CauchyStress, EqualsPFTOverJ)
 {
-  for (const std::string& name : PeriSISSM::material_names()) {
-    for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const std::string &name : PeriSISSM::material_names()) {
+    for (const auto &c : PeriSISSMTest::material_cases()) {
       SCOPED_TRACE(name + " " + c.label);
       const auto m = PeriSISSM::make_material(name, c.mu, c.lambda);
-      for (const auto& sample : PeriSISSMTest::random_samples(31u, 20)) {
-        const Matrix3d& F = sample.F;
+      for (const auto &sample : PeriSISSMTest::random_samples(31u, 20)) {
+        const Matrix3d &F = sample.F;
         const auto f = to_array(F);
         double s[6], J = 0.0;
         const double W = PeriSISSM::cauchy_stress(*m, f.data(), s, J);
@@ -580,8 +615,8 @@ TEST(CauchyStress, EqualsPFTOverJ)
 TEST(CauchyStress, FiniteAndContinuousAtThreshold)
 {
   const double j0 = PeriSISSM::kCauchyMinJ;
-  for (const std::string& name : PeriSISSM::material_names()) {
-    for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const std::string &name : PeriSISSM::material_names()) {
+    for (const auto &c : PeriSISSMTest::material_cases()) {
       SCOPED_TRACE(name + " " + c.label);
       const auto m = PeriSISSM::make_material(name, c.mu, c.lambda);
       const double modulus = c.mu + std::abs(c.lambda);
@@ -604,10 +639,10 @@ TEST(CauchyStress, FiniteAndContinuousAtThreshold)
           EXPECT_NEAR(at[k], hi[k], 1e-5 * modulus / j0) << "path " << path << " k " << k;
         }
       }
-      const std::vector<Matrix3d> collapsed = {
-          Vector3d(1.0, 1.0, -0.5).asDiagonal(), Matrix3d::Zero(), -Matrix3d::Identity(),
-          Vector3d(2.0, 1.0, 0.0).asDiagonal()};
-      for (const Matrix3d& F : collapsed) {
+      const std::vector<Matrix3d> collapsed = {Vector3d(1.0, 1.0, -0.5).asDiagonal(),
+                                               Matrix3d::Zero(), -Matrix3d::Identity(),
+                                               Vector3d(2.0, 1.0, 0.0).asDiagonal()};
+      for (const Matrix3d &F : collapsed) {
         double s[6], J;
         PeriSISSM::cauchy_stress(*m, to_array(F).data(), s, J);
         EXPECT_LE(J, j0);
@@ -647,7 +682,7 @@ TEST(VonMises, HydrostaticUniaxialShear)
 // Cauchy stress: von Mises zero up to round-off relative to the pressure.
 TEST(VonMises, OfHydrostaticCauchyStress)
 {
-  for (const std::string& name : PeriSISSM::material_names()) {
+  for (const std::string &name : PeriSISSM::material_names()) {
     const auto m = PeriSISSM::make_material(name, 1.0, 1.5);
     for (double t : {0.5, 0.9, 1.1, 2.0}) {
       double s[6], J;
@@ -658,7 +693,7 @@ TEST(VonMises, OfHydrostaticCauchyStress)
   }
 }
 
-}  // namespace
+}    // namespace
 
 // ---------------------------------------------------------------------------------------------
 // particle_stress, first_piola: consistency of the per-particle quantities and the small-strain
@@ -672,12 +707,12 @@ using PeriSISSMTest::max_abs;
 
 TEST(ParticleStress, ConsistentWithFirstPiolaAndSplit)
 {
-  for (const std::string& name : PeriSISSM::material_names()) {
-    for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const std::string &name : PeriSISSM::material_names()) {
+    for (const auto &c : PeriSISSMTest::material_cases()) {
       SCOPED_TRACE(name + " " + c.label);
       const auto m = PeriSISSM::make_material(name, c.mu, c.lambda);
-      for (const auto& sample : PeriSISSMTest::random_samples(61u, 30)) {
-        const Matrix3d& F = sample.F;
+      for (const auto &sample : PeriSISSMTest::random_samples(61u, 30)) {
+        const Matrix3d &F = sample.F;
         PeriSISSM::ParticleStress ps;
         PeriSISSM::particle_stress(*m, F, ps, true);
         const PeriSISSM::PrincipalSplit sp = m->split(ps.svd.s);
@@ -691,9 +726,9 @@ TEST(ParticleStress, ConsistentWithFirstPiolaAndSplit)
         // Stiffness direction: symmetric, PSD, and D F = P^+.
         EXPECT_EQ(PeriSISSM::implicit_direction(ps), PeriSISSM::implicit_direction(ps).transpose());
         const double dscale = sp.c.maxCoeff() + 1e-300;
-        const Vector3d ev =
-            Eigen::SelfAdjointEigenSolver<Matrix3d>(PeriSISSM::implicit_direction(ps), Eigen::EigenvaluesOnly)
-                .eigenvalues();
+        const Vector3d ev = Eigen::SelfAdjointEigenSolver<Matrix3d>(
+                                PeriSISSM::implicit_direction(ps), Eigen::EigenvaluesOnly)
+                                .eigenvalues();
         EXPECT_GE(ev.minCoeff(), -1e-14 * dscale);
         EXPECT_LE(max_abs(PeriSISSM::implicit_direction(ps) * F - PeriSISSM::implicit_part(ps)),
                   1e-13 * (max_abs(PeriSISSM::implicit_part(ps)) + dscale * max_abs(F)));
@@ -720,11 +755,11 @@ TEST(ParticleStress, LinearStiffnessIsIsotropic)
 // between models and to sigma are O(e): they shrink ~10x when e does.
 TEST(FirstPiola, SmallStrainLimitIsLinearElasticity)
 {
-  const auto& names = PeriSISSM::material_names();
+  const auto &names = PeriSISSM::material_names();
   std::mt19937_64 rng(71u);
-  for (const auto& c : PeriSISSMTest::material_cases()) {
+  for (const auto &c : PeriSISSMTest::material_cases()) {
     std::vector<std::unique_ptr<PeriSISSM::Material>> models;
-    for (const std::string& name : names)
+    for (const std::string &name : names)
       models.push_back(PeriSISSM::make_material(name, c.mu, c.lambda));
     for (int trial = 0; trial < 20; ++trial) {
       const Matrix3d G = PeriSISSMTest::gaussian_matrix(rng);
@@ -758,4 +793,4 @@ TEST(FirstPiola, SmallStrainLimitIsLinearElasticity)
   }
 }
 
-}  // namespace
+}    // namespace

@@ -36,8 +36,16 @@ PeriSISSM::Model make_model(const std::string &name, double cs)
   m.set_type(1, PeriSISSM::make_material(name, lame.mu, lame.lambda), cs, 1.0);
   m.set_pair(1, 1, 1.6, false, 0.0);
   m.breaking().configure(
-      1, [](int, int) { return false; }, [](int, int) { return 0.0; },
-      [](int, int) { return 0.0; });
+      1,
+      [](int, int) {
+        return false;
+      },
+      [](int, int) {
+        return 0.0;
+      },
+      [](int, int) {
+        return 0.0;
+      });
   return m;
 }
 
@@ -112,8 +120,8 @@ TEST(BondTerms, ForcesAreEnergyGradients)
         std::vector<double> yp = y, ym = y;
         yp[3 * i + k] += step;
         ym[3 * i + k] -= step;
-        const double dE = (cl.evaluate(model, yp).energy - cl.evaluate(model, ym).energy) /
-            (2.0 * step);
+        const double dE =
+            (cl.evaluate(model, yp).energy - cl.evaluate(model, ym).energy) / (2.0 * step);
         worst = std::max(worst, std::fabs(cl.volume[i] * r.f[3 * i + k] + dE));
       }
     EXPECT_LE(worst, 1e-7 * fmax);
@@ -176,7 +184,8 @@ TEST(BondTerms, BlocksAreTheImplicitStiffness)
       const std::vector<Eigen::Matrix3d> blocks = assembled_blocks(r);
       for (int i = 0; i < cl.nlocal; i++) {
         const Eigen::Matrix3d &D = blocks[i];
-        const double lo = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(D).eigenvalues().minCoeff();
+        const double lo =
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(D).eigenvalues().minCoeff();
         EXPECT_GE(lo, -1e-12 * D.norm()) << "particle " << i;
       }
     }
@@ -188,7 +197,8 @@ TEST(BondTerms, BlocksAreTheImplicitStiffness)
       A << 1.02, 0.01, -0.005, 0.004, 0.985, 0.012, -0.007, 0.003, 1.01;
       std::vector<double> y(3 * cl.nlocal);
       for (int i = 0; i < cl.nlocal; i++) {
-        const Eigen::Vector3d Y = A * Eigen::Vector3d(cl.x0[3 * i], cl.x0[3 * i + 1], cl.x0[3 * i + 2]);
+        const Eigen::Vector3d Y =
+            A * Eigen::Vector3d(cl.x0[3 * i], cl.x0[3 * i + 1], cl.x0[3 * i + 2]);
         for (int k = 0; k < 3; k++) y[3 * i + k] = Y(k);
       }
       const Cluster::Result r = cl.evaluate(model, y);
@@ -222,8 +232,8 @@ TEST(BondTerms, BlocksAreTheImplicitStiffness)
         fsplit += w * (aplus(c) + aplus(j)) * xi;
       }
       const double scale = (hplus(c).norm() * 1.6) * 10.0;
-      EXPECT_LE((fblock - fsplit).norm(), 1e-12 * scale) << fblock.transpose() << " vs "
-                                                         << fsplit.transpose();
+      EXPECT_LE((fblock - fsplit).norm(), 1e-12 * scale)
+          << fblock.transpose() << " vs " << fsplit.transpose();
       // and the assembled block is minus the derivative of that force with respect to y_c,
       // plus the stabilization's (C_c + C_j)/2 omega I per bond (the stiffness of its direct
       // force with F held)
@@ -231,8 +241,9 @@ TEST(BondTerms, BlocksAreTheImplicitStiffness)
       for (int b = 0; b < cl.npartner[c]; b++) {
         const int j = cl.jl[c][b];
         const double w = cl.om[c][b];
-        const double cbar = 0.5 * (r.g[NG * c + PeriSISSM::ParticleFields::G_C] +
-                                   r.g[NG * j + PeriSISSM::ParticleFields::G_C]);
+        const double cbar = 0.5 *
+            (r.g[NG * c + PeriSISSM::ParticleFields::G_C] +
+             r.g[NG * j + PeriSISSM::ParticleFields::G_C]);
         expect += w * (hplus(c) + hplus(j)) + w * cbar * Eigen::Matrix3d::Identity();
       }
       const std::vector<Eigen::Matrix3d> blocks = assembled_blocks(r);
@@ -279,12 +290,12 @@ TEST(BondTerms, BlocksOfEveryParticleSumTheUnbrokenBonds)
         for (int b = 0; b < cl.npartner[i]; b++) {
           const int j = cl.jl[i][b];
           if (j < 0) continue;
-          const double cbar = 0.5 * (r.g[NG * i + PeriSISSM::ParticleFields::G_C] +
-                                     r.g[NG * j + PeriSISSM::ParticleFields::G_C]);
+          const double cbar = 0.5 *
+              (r.g[NG * i + PeriSISSM::ParticleFields::G_C] +
+               r.g[NG * j + PeriSISSM::ParticleFields::G_C]);
           expect += cl.om[i][b] * (hplus(i) + hplus(j) + cbar * Eigen::Matrix3d::Identity());
         }
-        EXPECT_LE((blocks[i] - expect).norm(), 1e-13 * expect.norm() + 1e-300)
-            << "particle " << i;
+        EXPECT_LE((blocks[i] - expect).norm(), 1e-13 * expect.norm() + 1e-300) << "particle " << i;
       }
     }
 }
@@ -321,7 +332,7 @@ TEST(Contact, PairForceAndBlockAreDerivatives)
       dp(k) += step;
       dm(k) -= step;
       const double dEi = (energy(dp) - energy(dm)) / (2.0 * step);    // dE/dy_i
-      const double dEj = -dEi;                                         // dE/dy_j (del = y_i - y_j)
+      const double dEj = -dEi;                                        // dE/dy_j (del = y_i - y_j)
       EXPECT_NEAR(fi(k), -dEi / vi, 1e-6 * fi.norm());
       EXPECT_NEAR(-vi * fi(k) / vj, -dEj / vj, 1e-6 * fi.norm());    // f_j = -V_i f_i / V_j
       const Eigen::Vector3d col = -(force_i(dp) - force_i(dm)) / (2.0 * step);
@@ -331,4 +342,4 @@ TEST(Contact, PairForceAndBlockAreDerivatives)
   }
 }
 
-}  // namespace
+}    // namespace

@@ -11,8 +11,8 @@
 #include "solvers/system.h"
 #include "solvers/time_scheme.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -40,10 +40,10 @@ struct Table {
 // takes it).
 class Springs : public NonlinearSystem {
  public:
-  Springs(int n, double h, std::unique_ptr<TimeScheme> scheme = nullptr)
-      : n_(n), h_(h), y(n), v(n), yn(n), vn(n), yhat(n), res(n), fstart(n),
-        hist(n, scheme ? std::max(scheme->history_columns(), 1) : 1), red_(n),
-        scheme_(scheme ? std::move(scheme) : std::make_unique<BackwardEuler>())
+  Springs(int n, double h, std::unique_ptr<TimeScheme> scheme = nullptr) :
+      n_(n), h_(h), y(n), v(n), yn(n), vn(n), yhat(n), res(n), fstart(n),
+      hist(n, scheme ? std::max(scheme->history_columns(), 1) : 1), red_(n),
+      scheme_(scheme ? std::move(scheme) : std::make_unique<BackwardEuler>())
   {
     mask_.assign(n, 1);
     rho_.assign(n, 1.0);
@@ -88,9 +88,7 @@ class Springs : public NonlinearSystem {
   void begin()
   {
     scheme_->set_step(h_);
-    if (scheme_->history_columns() > 0) {
-      forces(fstart);
-    }
+    if (scheme_->history_columns() > 0) { forces(fstart); }
     scheme_->begin(rows_, arrays());
     evals_ = 0;
   }
@@ -242,6 +240,6 @@ struct KrylovTables {
   std::vector<double> term;
 };
 
-}  // namespace PeriSISSMTest
+}    // namespace PeriSISSMTest
 
-#endif  // PERISISSM_TEST_SPRINGS_H
+#endif    // PERISISSM_TEST_SPRINGS_H

@@ -81,7 +81,9 @@ TEST(Solvers, LatticeStepIsAFixedPointOfTheSweep)
   Springs s(n, h);
   std::mt19937_64 rng(5u);
   std::uniform_real_distribution<double> u(0.7, 1.3);
-  auto id = [&](int i, int j, int k) { return (i * ny + j) * nz + k; };
+  auto id = [&](int i, int j, int k) {
+    return (i * ny + j) * nz + k;
+  };
   for (int i = 0; i < nx; i++)
     for (int j = 0; j < ny; j++)
       for (int k = 0; k < nz; k++) {
@@ -174,7 +176,8 @@ TEST(Momentum, TruncatedSolveKeepsMomentumAfterTheBalance)
   }
   Table moment(n, kMomentumColumns);
   SerialReductions red(n);
-  balance_momentum(s.rows(), red, {h, h * h, true}, s.y.ptr(), s.yn.ptr(), s.yhat.ptr(), nullptr, moment.ptr());
+  balance_momentum(s.rows(), red, {h, h * h, true}, s.y.ptr(), s.yn.ptr(), s.yhat.ptr(), nullptr,
+                   moment.ptr());
   s.finish();
   // P^{n+1} = sum m v^{n+1}; L^{n+1} = (1/h) sum m q^n x r = sum m q^n x v^{n+1} (about the
   // centre of mass at the start: sum m q^n = 0)
@@ -238,4 +241,4 @@ TEST(Momentum, RowsOutsideTheGroupAreIgnored)
   }
 }
 
-}  // namespace
+}    // namespace

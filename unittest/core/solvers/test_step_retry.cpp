@@ -81,10 +81,8 @@ TEST(StepRetry, WarnKeepsTheUnconvergedStep)
   const RetryOutcome out = run_retry_ladder(step, policy(Unconverged::warn));
   EXPECT_EQ(step.log, "S1.0 F ");
   EXPECT_FALSE(out.result.converged());
-  EXPECT_EQ(step_verdict(policy(Unconverged::warn), out.result.measure, 1e-6),
-            StepVerdict::warn);
-  EXPECT_EQ(step_verdict(policy(Unconverged::error), out.result.measure, 1e-6),
-            StepVerdict::error);
+  EXPECT_EQ(step_verdict(policy(Unconverged::warn), out.result.measure, 1e-6), StepVerdict::warn);
+  EXPECT_EQ(step_verdict(policy(Unconverged::error), out.result.measure, 1e-6), StepVerdict::error);
   EXPECT_EQ(step_verdict(policy(Unconverged::error), 1e-6, 1e-6), StepVerdict::converged);
 }
 

@@ -42,8 +42,8 @@ struct Variant {
   const char *name;
   double rho_inf;
 };
-const Variant kSchemes[] = {{"euler", 1.0}, {"bdf2", 1.0}, {"genalpha", 1.0},
-                            {"genalpha", 0.5}, {"genalpha", 0.0}};
+const Variant kSchemes[] = {
+    {"euler", 1.0}, {"bdf2", 1.0}, {"genalpha", 1.0}, {"genalpha", 0.5}, {"genalpha", 0.0}};
 
 TEST(TimeSchemes, ByName)
 {
@@ -85,8 +85,7 @@ TEST(TimeSchemes, FreeFallIsExact)
     for (int k = 0; k < 3; k++) {
       const double a = s.g[k] / 2.0;
       const double drop = euler ? 0.5 * a * h * h * 40 * 41 : 0.5 * a * t * t;
-      EXPECT_NEAR(s.y.rows[0][k], y0[k] + v0[k] * t + drop, 1e-12)
-          << sv.name << " " << sv.rho_inf;
+      EXPECT_NEAR(s.y.rows[0][k], y0[k] + v0[k] * t + drop, 1e-12) << sv.name << " " << sv.rho_inf;
       EXPECT_NEAR(s.v.rows[0][k], v0[k] + a * t, 1e-11) << sv.name << " " << sv.rho_inf;
     }
   }
@@ -205,11 +204,11 @@ TEST(TimeSchemes, LinearOscillatorAmplitudeAndPeriod)
       }
       const Eigen::Vector2d pq = A.ldlt().solve(rhs);
       const double amp = std::sqrt(pq(1)), phase = std::acos(pq(0) / (2.0 * amp));
-      const std::complex<double> z =
-          std::string(sv.name) == "bdf2" ? bdf2_root(x) : genalpha_root(sv.rho_inf, x);
+      const std::complex<double> z = std::string(sv.name) == "bdf2" ? bdf2_root(x)
+                                                                    : genalpha_root(sv.rho_inf, x);
       EXPECT_NEAR(amp, std::abs(z), 1e-9) << sv.name << " " << sv.rho_inf << " x " << x;
-      EXPECT_NEAR(phase, std::fabs(std::arg(z)), 1e-9) << sv.name << " " << sv.rho_inf << " x "
-                                                        << x;
+      EXPECT_NEAR(phase, std::fabs(std::arg(z)), 1e-9)
+          << sv.name << " " << sv.rho_inf << " x " << x;
       // both second order: the period error is O(x^2) (relative, below x^2 / 2 here) and
       // the amplitude loss per period O(x^3) at most
       const double period_error = x / std::fabs(std::arg(z)) - 1.0;
@@ -274,21 +273,21 @@ TEST(TimeSchemes, GeneralizedAlphaIsChungHulbert)
 {
   const double omega = 2.5;
   for (double rho_inf : {0.0, 0.3, 0.9, 1.0})
-  for (double x : {0.7, 1000.0}) {
-    const double h = x / omega;
-    Oscillator o({"genalpha", rho_inf}, h, omega);
-    o.s.v.rows[0][0] = 0.2;
-    o.s.hist.rows[0][0] = 0.05;    // a^n
-    o.s.hist.rows[0][3] = 1.0;     // valid
-    const Eigen::Vector3d s0(o.u(), h * 0.2, h * h * 0.05);
-    step(o.s);
-    const Eigen::Vector3d s1 = genalpha_matrix(rho_inf, x) * s0;
-    // the solve is exact to its tolerance in u, and a^{n+1} divides it by beta
-    const double tol = 50.0 * o.s.tol + 1e-14 * s0.norm();
-    EXPECT_NEAR(o.u(), s1(0), tol) << rho_inf << " " << x;
-    EXPECT_NEAR(h * o.s.v.rows[0][0], s1(1), tol) << rho_inf << " " << x;
-    EXPECT_NEAR(h * h * o.s.hist.rows[0][0], s1(2), tol) << rho_inf << " " << x;
-  }
+    for (double x : {0.7, 1000.0}) {
+      const double h = x / omega;
+      Oscillator o({"genalpha", rho_inf}, h, omega);
+      o.s.v.rows[0][0] = 0.2;
+      o.s.hist.rows[0][0] = 0.05;    // a^n
+      o.s.hist.rows[0][3] = 1.0;     // valid
+      const Eigen::Vector3d s0(o.u(), h * 0.2, h * h * 0.05);
+      step(o.s);
+      const Eigen::Vector3d s1 = genalpha_matrix(rho_inf, x) * s0;
+      // the solve is exact to its tolerance in u, and a^{n+1} divides it by beta
+      const double tol = 50.0 * o.s.tol + 1e-14 * s0.norm();
+      EXPECT_NEAR(o.u(), s1(0), tol) << rho_inf << " " << x;
+      EXPECT_NEAR(h * o.s.v.rows[0][0], s1(1), tol) << rho_inf << " " << x;
+      EXPECT_NEAR(h * h * o.s.hist.rows[0][0], s1(2), tol) << rho_inf << " " << x;
+    }
 }
 
 // BDF2 at variable steps (alternating h and h/2, w = 1/2 and 2) stays second order on the
@@ -347,8 +346,7 @@ TEST(TimeSchemes, MomentumBalanceOfTruncatedSteps)
     Table moment(n, kMomentumColumns);
     SerialReductions red(n);
     const MomentumBalance mb{h, s.scheme().force_factor(), false};
-    balance_momentum(s.rows(), red, mb, s.y.ptr(), s.yn.ptr(), s.yhat.ptr(), nullptr,
-                     moment.ptr());
+    balance_momentum(s.rows(), red, mb, s.y.ptr(), s.yn.ptr(), s.yhat.ptr(), nullptr, moment.ptr());
     Eigen::Vector3d P = Eigen::Vector3d::Zero(), L = Eigen::Vector3d::Zero(),
                     c = Eigen::Vector3d::Zero(), scale = Eigen::Vector3d::Zero();
     double mass = 0.0;
@@ -377,4 +375,4 @@ TEST(TimeSchemes, MomentumBalanceOfTruncatedSteps)
   }
 }
 
-}  // namespace
+}    // namespace
