@@ -50,7 +50,9 @@ void FixSissm::choose_external()
       what.integrator = f->time_integrate != 0;
       what.dynamic_group = dynamic_group;
       what.reservoir = f->ecouple_flag != 0;
-      what.keeps_state = f->restart_global != 0;
+      // a contact of fix sissm's steps (collision_limit.h) keeps its stiffness in restart
+      // files but changes it only where fix sissm tells it to: it is no state of a step
+      what.keeps_state = f->restart_global != 0 && !dynamic_cast<CollisionLimit *>(f);
       what.potential = f->energy_global_flag != 0 || f->virial_global_flag != 0;
       what.named_lagged =
           std::find(lagged_ids.begin(), lagged_ids.end(), f->id) != lagged_ids.end();

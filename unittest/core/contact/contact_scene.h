@@ -107,6 +107,20 @@ struct Scene {
   }
 };
 
+// two 4 x 4 sheets of unit spacing, the second at height gap shifted by (0.4, 0.3), and two
+// particles between them at height z (the second at (1.6, y2)); the list within cutoff, the IDs
+// shuffled by seed
+inline Scene facing_sheets(double gap, double z, double y2, double cutoff, unsigned seed)
+{
+  Scene s;
+  s.sheet(4, 1.0, 0.0, 0.0, 0.0);
+  s.sheet(4, 1.0, gap, 0.4, 0.3);
+  s.add(1.5, 1.5, z, PeriSISSM::ContactRole::kParticle);
+  s.add(1.6, y2, z, PeriSISSM::ContactRole::kParticle);
+  s.finish(cutoff, seed);
+  return s;
+}
+
 }    // namespace PeriSISSMContactTest
 
 #endif

@@ -20,13 +20,7 @@ namespace {
 
 Scene scene()
 {
-  Scene s;
-  s.sheet(4, 1.0, 0.0, 0.0, 0.0);
-  s.sheet(4, 1.0, 0.3, 0.4, 0.3);
-  s.add(1.5, 1.5, 0.15, ContactRole::kParticle);
-  s.add(1.6, 1.6, 0.15, ContactRole::kParticle);
-  s.finish(1.0 + 1.5 * std::sqrt(2.0), 7);
-  return s;
+  return PeriSISSMContactTest::facing_sheets(0.3, 0.15, 1.6, 1.0 + 1.5 * std::sqrt(2.0), 7);
 }
 
 double exact_distance(const Candidate &c, const Scene &s)

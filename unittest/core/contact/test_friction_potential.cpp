@@ -21,13 +21,7 @@ namespace {
 
 Scene scene()
 {
-  Scene s;
-  s.sheet(4, 1.0, 0.0, 0.0, 0.0);
-  s.sheet(4, 1.0, 0.2, 0.4, 0.3);
-  s.add(1.5, 1.5, 0.1, ContactRole::kParticle);
-  s.add(1.6, 1.55, 0.1, ContactRole::kParticle);
-  s.finish(0.5 + 1.5 * std::sqrt(2.0), 6);
-  return s;
+  return PeriSISSMContactTest::facing_sheets(0.2, 0.1, 1.55, 0.5 + 1.5 * std::sqrt(2.0), 6);
 }
 
 std::vector<double *> rows_of(std::vector<std::array<double, 3>> &p)
