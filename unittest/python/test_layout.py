@@ -71,3 +71,55 @@ def test_core_builds_and_passes_alone(tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stdout[-3000:]
     assert re.search(r"\[  PASSED  \] \d+ tests", run.stdout), run.stdout[-2000:]
+
+
+GLUE = REPO / "src" / "lammps"
+
+
+def glue_includes():
+    """{file name: the project's own headers it includes} for src/lammps."""
+    own = {p.name for p in GLUE.glob("*.h")}
+    out = {}
+    for path in sorted(GLUE.glob("*.[ch]*")):
+        incs = re.findall(r'^\s*#\s*include\s*"([^"]+)"', path.read_text(), re.MULTILINE)
+        out[path.name] = {i for i in incs if i in own}
+    return out
+
+
+def test_no_source_file_above_800_lines():
+    """Each file holds one concept: none of src/ is longer than 800 lines."""
+    long = []
+    for path in sorted((REPO / "src").rglob("*")):
+        if path.suffix in (".h", ".cpp"):
+            n = len(path.read_text().splitlines())
+            if n > 800:
+                long.append(f"{path.relative_to(REPO)}: {n} lines")
+    assert not long, "\n".join(long)
+
+
+def test_style_headers_form_no_include_cycle():
+    """Following the #include lines among src/lammps's headers never comes back to where it
+    started."""
+    incs = glue_includes()
+    headers = {k: v for k, v in incs.items() if k.endswith(".h")}
+
+    def reach(start):
+        seen, todo = set(), list(headers.get(start, ()))
+        while todo:
+            h = todo.pop()
+            if h not in seen:
+                seen.add(h)
+                todo.extend(headers.get(h, ()))
+        return seen
+
+    cycles = [h for h in headers if h in reach(h)]
+    assert not cycles, cycles
+
+
+def test_contact_fix_sees_the_pair_through_an_interface_only():
+    """fix nosb/contact reaches pair peri/nosb's bond partners through bond_partners.h, never
+    through the pair's or the family fix's class."""
+    incs = glue_includes()
+    for name in ("fix_nosb_contact.h", "fix_nosb_contact.cpp", "fix_nosb_contact_sissm.cpp"):
+        assert not incs[name] & {"pair_peri_nosb.h", "fix_nosb_family.h"}, name
+        assert "PairPeriNosb" not in (GLUE / name).read_text(), name
