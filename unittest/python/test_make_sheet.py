@@ -560,7 +560,8 @@ def test_read_obj_names_the_bad_entry(tmp_path, text, words):
 
 
 def run_tool(*args):
-    return subprocess.run([str(TOOL), *args], capture_output=True, text=True, timeout=600)  # a hang guard only
+    # the timeout guards against a hang only
+    return subprocess.run([str(TOOL), *args], capture_output=True, text=True, timeout=600)
 
 
 def test_command_line_writes_the_sheet(tmp_path):
