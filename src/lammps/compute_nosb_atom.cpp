@@ -69,11 +69,9 @@ void ComputeNosbAtom::compute_peratom()
   invoked_peratom = update->ntimestep;
 
   if (atom->nmax > nmax) {
-    memory->destroy(values);
-    memory->destroy(dtstable);
     nmax = atom->nmax;
-    memory->create(values, nmax, NCOLUMNS, "nosb/atom:values");
-    memory->create(dtstable, nmax, "nosb/atom:dtstable");
+    memory->grow(values, nmax, NCOLUMNS, "nosb/atom:values");
+    memory->grow(dtstable, nmax, "nosb/atom:dtstable");
     array_atom = values;
   }
 

@@ -11,26 +11,11 @@
    densities f_k = -(1/V_k) dE/dy_k; pe tallies sum_i (W_i + stabilization energy density), as
    the built-in PERI styles tally densities.
 
-   Choices (for the documentation):
-   - influence function w = 1; partial volume beta = 1 up to delta - h/2, then linear down
-     to 1/2 at r = delta, h = mean of the two particles' V^(1/3) (as the built-ins, with h
-     from the volumes instead of the lattice); weights fixed when the families are built.
-   - a particle whose K is singular (kMinShapeConditioning, peri/family.h) has no F: no
-     force state of its own, W = 0; its bonds carry the partners' force states, and their
-     stabilization uses the partner's F alone (a bond between two such particles is inert).
-   - breaking: every force evaluation of a run checks every bond once, before F is formed,
-     against the critical stretch of its type pair, s00_IJ - alpha_IJ max(s_min,i, s_min,j),
-     with the smallest bond stretches s_min of the previous evaluation (kept in atom->s0, which
-     atom_style peri communicates to ghosts, migrates and writes to restart files); a broken
-     bond already counts as broken in that evaluation. The setup evaluation at the start of a
-     run breaks nothing (refreshes s_min); nothing breaks during a minimization.
-   - short-range contact as the built-ins, but only between particles that are not bonded.
-   - per-atom virial: each bond's force is equal and opposite at its two ends; each end
-     tallies half of (x_i - x_j) (x) (force on i), as pair peri/lps does; sum over atoms of
-     the virial equals sum_i V_i tau_i (Kirchhoff stress) for affine deformations.
-   - mixed types: each particle uses the material and Cs of its own type (pair_coeff I I);
-     horizon, s00, alpha, break, contact of a bond come from pair_coeff I J, or, if not
-     given, from the mixing rule of peri/coefficients.h (mix_coefficients).
+   The model's choices (influence function and partial volumes, singular shape tensors, when
+   bonds break, contact only between particles not bonded, the per-atom virial, several types)
+   are stated in doc/pair_peri_nosb.rst, sections "Bond families and reference configuration",
+   "Singular shape tensors", "Bond breaking", "Contact", "Energy and virial" and "Several atom
+   types".
 ------------------------------------------------------------------------- */
 
 #include "pair_peri_nosb.h"
@@ -45,6 +30,7 @@
 #include "peri/breaking.h"
 #include "peri/coefficients.h"
 #include "peri/contact.h"
+#include "peri/family.h"
 #include "peri/forces.h"
 #include "peri/model.h"
 
@@ -73,14 +59,14 @@ using namespace LAMMPS_NS;
 
 PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     Pair(lmp), family(nullptr), cut(nullptr), contactflag(nullptr),
-    coeffs(new PeriSISSM::CoefficientTable), model_(new PeriSISSM::Model), any_break(0),
-    any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
-    contact_crossings(0), hmax(0.0), contact_first(nullptr), contact_neigh(nullptr),
-    contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
-    track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
-    state_nlocal(-1), nmax(0), gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr),
-    s0_new(nullptr), cnormal(nullptr), cols(nullptr), any_bend(0), meshfix(nullptr),
-    hinges_stale(1), comm_fields(nullptr), comm_nfields(0)
+    coeffs(new PeriSISSM::CoefficientTable), model_(new PeriSISSM::Model), any_bend(0),
+    meshfix(nullptr), hinges_stale(1), any_break(0), any_contact(0), external_breaking(0),
+    block_rows(nullptr), contact_groupbit(0), contact_crossings(0), hmax(0.0),
+    contact_first(nullptr), contact_neigh(nullptr), contact_maxfirst(0), contact_maxneigh(0),
+    contact_inum(-1), contact_margin(0.0), track_motion(0), follow_explicit(0), nmotion(0),
+    xneigh(nullptr), xcontact(nullptr), state_nlocal(-1), nmax(0), gstate(nullptr), hstate(nullptr),
+    kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), cols(nullptr),
+    comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;    // forces are densities: f.r is not the virial
@@ -166,15 +152,13 @@ void PairPeriNosb::init_style()
   double cutmax = 0.0;
   for (int i = 1; i <= n; i++)
     for (int j = 1; j <= n; j++) cutmax = std::max(cutmax, cut[i][j]);
-  const double xprd = domain->xprd, yprd = domain->yprd, zprd = domain->zprd;
-  const double xy = domain->triclinic ? domain->xy : 0.0;
-  const double xz = domain->triclinic ? domain->xz : 0.0;
-  const double yz = domain->triclinic ? domain->yz : 0.0;
-  // distances between opposite faces of the (restricted triclinic) box
-  const double bxc = sqrt(yprd * zprd * yprd * zprd + xy * zprd * xy * zprd +
-                          (xy * yz - yprd * xz) * (xy * yz - yprd * xz));
-  const double width[3] = {xprd * yprd * zprd / bxc, yprd * zprd / sqrt(zprd * zprd + yz * yz),
-                           zprd};
+  const bool tri = domain->triclinic;
+  const PeriSISSM::ReferenceBox now{{0, 0, 0},
+                                    {domain->xprd, domain->yprd, domain->zprd,
+                                     tri ? domain->yz : 0.0, tri ? domain->xz : 0.0,
+                                     tri ? domain->xy : 0.0}};
+  double width[3];
+  now.face_distances(width);
   const int periodicity[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
   for (int d = 0; d < 3; d++)
     if (periodicity[d] && width[d] < 2.0 * cutmax)
@@ -290,19 +274,13 @@ void PairPeriNosb::grow_peratom()
   if (atom->nmax <= nmax) return;
   using PeriSISSM::ParticleFields;
   nmax = atom->nmax;
-  memory->destroy(gstate);
-  memory->destroy(hstate);
-  memory->destroy(kstate);
-  memory->destroy(cols);
-  memory->destroy(wdens);
-  memory->destroy(s0_new);
+  memory->grow(kstate, nmax * ParticleFields::NK, "pair:kstate");
+  memory->grow(gstate, nmax * ParticleFields::NG, "pair:gstate");
+  memory->grow(hstate, nmax * 9, "pair:hstate");
+  memory->grow(cols, nmax * ParticleFields::NCOLS, "pair:cols");
+  memory->grow(wdens, nmax, "pair:wdens");
+  memory->grow(s0_new, nmax, "pair:s0_new");
   memory->destroy(cnormal);
-  memory->create(kstate, nmax * ParticleFields::NK, "pair:kstate");
-  memory->create(gstate, nmax * ParticleFields::NG, "pair:gstate");
-  memory->create(hstate, nmax * 9, "pair:hstate");
-  memory->create(cols, nmax * ParticleFields::NCOLS, "pair:cols");
-  memory->create(wdens, nmax, "pair:wdens");
-  memory->create(s0_new, nmax, "pair:s0_new");
   if (model_->any_membrane()) memory->create(cnormal, 3 * nmax, "pair:cnormal");
 }
 
@@ -461,20 +439,11 @@ bool PairPeriNosb::ghost_forces() const
 
 bool PairPeriNosb::group_coupled(int groupbit)
 {
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  int coupled = contact_crossings > 0;
   // group all: every atom is in it, no bond leaves it (and no pass over the bonds is needed)
   const bool every_atom = groupbit == group->bitmask[0];
-  for (int i = 0; i < nlocal && !coupled && !every_atom; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const int *jl = family->jlocal[i];
-    for (int b = 0; b < family->npartner[i]; b++)
-      if (jl[b] >= 0 && !(mask[jl[b]] & groupbit)) {
-        coupled = 1;
-        break;
-      }
-  }
+  int coupled = contact_crossings > 0 ||
+      (!every_atom &&
+       PeriSISSM::bonds_leave_group(family->view(), atom->nlocal, atom->mask, groupbit));
   int any;
   MPI_Allreduce(&coupled, &any, 1, MPI_INT, MPI_MAX, world);
   return any != 0;
@@ -489,28 +458,12 @@ void PairPeriNosb::check_motion(int converged)
 
 int PairPeriNosb::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
-  int m = 0;
-  for (int ii = 0; ii < n; ii++)
-    for (int q = 0; q < comm_nfields; q++) {
-      const int width = comm_fields[q].width;
-      const double *row = comm_fields[q].rows + (bigint) width * list[ii];
-      for (int k = 0; k < width; k++) buf[m++] = row[k];
-    }
-  return m;
+  return PeriSISSM::pack_halo_rows(comm_fields, comm_nfields, n, list, buf);
 }
-
-/* ---------------------------------------------------------------------- */
 
 void PairPeriNosb::unpack_forward_comm(int n, int first, double *buf)
 {
-  int m = 0;
-  const int last = first + n;
-  for (int i = first; i < last; i++)
-    for (int q = 0; q < comm_nfields; q++) {
-      const int width = comm_fields[q].width;
-      double *row = comm_fields[q].rows + (bigint) width * i;
-      for (int k = 0; k < width; k++) row[k] = buf[m++];
-    }
+  PeriSISSM::unpack_halo_rows(comm_fields, comm_nfields, n, first, buf);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -132,7 +132,6 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   bool contact_reachable(double moved) const;
   double contact_horizon() const;
   int state_nlocal;    // nlocal when compute() last filled the per-atom state
-  enum { RESTART_VERSION = 3 };
 
   // per-atom results of the last compute() (owned atoms; ghosts as communicated), rows of
   // PeriSISSM::ParticleFields

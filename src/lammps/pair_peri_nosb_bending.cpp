@@ -119,9 +119,7 @@ void PairPeriNosb::compute_bending()
 void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gradients)
 {
   if (!any_bend || !meshfix) {
-    couplings.vertex.clear();
-    couplings.row.clear();
-    couplings.grad.clear();
+    couplings = PeriSISSM::HingeCouplings();
     return;
   }
   if (hinges_stale) build_hinges();

@@ -17,89 +17,61 @@
 
 using namespace LAMMPS_NS;
 
-static Pair *peri_nosb_creator(LAMMPS *lmp)
+namespace {
+
+// the creators LAMMPS calls (as its own plugins' creators: the new style as its base class)
+template <class Base, class T> void *create(void *lmp)
 {
-  return new PairPeriNosb(lmp);
+  return static_cast<Base *>(new T((LAMMPS *) lmp));
 }
 
-static Fix *nosb_family_creator(LAMMPS *lmp, int argc, char **argv)
+template <class Base, class T> void *create_with_args(void *lmp, int argc, char **argv)
 {
-  return new FixNosbFamily(lmp, argc, argv);
+  return static_cast<Base *>(new T((LAMMPS *) lmp, argc, argv));
 }
 
-static Fix *sissm_creator(LAMMPS *lmp, int argc, char **argv)
-{
-  return new FixSissm(lmp, argc, argv);
-}
+// one style: kind, name, description, and its creator (v1: lmp only; v2: lmp and arguments)
+struct Style {
+  const char *style, *name, *info;
+  lammpsplugin_factory1 *v1;
+  lammpsplugin_factory2 *v2;
+};
 
-static Fix *nosb_mesh_creator(LAMMPS *lmp, int argc, char **argv)
-{
-  return new FixNosbMesh(lmp, argc, argv);
-}
-
-static Fix *nosb_contact_creator(LAMMPS *lmp, int argc, char **argv)
-{
-  return new FixNosbContact(lmp, argc, argv);
-}
-
-static Command *read_mesh_creator(LAMMPS *lmp)
-{
-  return new ReadMesh(lmp);
-}
-
-static Compute *nosb_atom_creator(LAMMPS *lmp, int argc, char **argv)
-{
-  return new ComputeNosbAtom(lmp, argc, argv);
-}
+}    // namespace
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
-  lammpsplugin_t plugin;
+  const Style styles[] = {
+      {"pair", "peri/nosb",
+       "PERI-SISSM correspondence peridynamics (SVD-split hyperelastic stresses)",
+       &create<Pair, PairPeriNosb>, nullptr},
+      {"fix", "nosb/family", "PERI-SISSM bond families of pair_style peri/nosb", nullptr,
+       &create_with_args<Fix, FixNosbFamily>},
+      {"fix", "sissm", "PERI-SISSM semi-implicit successive substitution integrator", nullptr,
+       &create_with_args<Fix, FixSissm>},
+      {"fix", "nosb/mesh", "PERI-SISSM triangles of the meshes read by read_mesh", nullptr,
+       &create_with_args<Fix, FixNosbMesh>},
+      {"fix", "nosb/contact", "PERI-SISSM barrier contact between mesh primitives", nullptr,
+       &create_with_args<Fix, FixNosbContact>},
+      {"command", "read_mesh",
+       "PERI-SISSM one peri particle per vertex of a triangle mesh (Wavefront OBJ)",
+       &create<Command, ReadMesh>, nullptr},
+      {"compute", "nosb/atom", "PERI-SISSM per-atom damage, energy density, J and Cauchy stress",
+       nullptr, &create_with_args<Compute, ComputeNosbAtom>},
+  };
   auto register_plugin = (lammpsplugin_regfunc) regfunc;
-
-  plugin.version = LAMMPS_VERSION;
-  plugin.author = "PERI-SISSM developers";
-  plugin.handle = handle;
-
-  plugin.style = "pair";
-  plugin.name = "peri/nosb";
-  plugin.info = "PERI-SISSM correspondence peridynamics (SVD-split hyperelastic stresses)";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &peri_nosb_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "fix";
-  plugin.name = "nosb/family";
-  plugin.info = "PERI-SISSM bond families of pair_style peri/nosb";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &nosb_family_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "fix";
-  plugin.name = "sissm";
-  plugin.info = "PERI-SISSM semi-implicit successive substitution integrator";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &sissm_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "fix";
-  plugin.name = "nosb/mesh";
-  plugin.info = "PERI-SISSM triangles of the meshes read by read_mesh";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &nosb_mesh_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "fix";
-  plugin.name = "nosb/contact";
-  plugin.info = "PERI-SISSM barrier contact between mesh primitives";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &nosb_contact_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "command";
-  plugin.name = "read_mesh";
-  plugin.info = "PERI-SISSM one peri particle per vertex of a triangle mesh (Wavefront OBJ)";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &read_mesh_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "compute";
-  plugin.name = "nosb/atom";
-  plugin.info = "PERI-SISSM per-atom damage, energy density, J and Cauchy stress";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &nosb_atom_creator;
-  (*register_plugin)(&plugin, lmp);
+  for (const Style &s : styles) {
+    lammpsplugin_t plugin;
+    plugin.version = LAMMPS_VERSION;
+    plugin.author = "PERI-SISSM developers";
+    plugin.handle = handle;
+    plugin.style = s.style;
+    plugin.name = s.name;
+    plugin.info = s.info;
+    if (s.v1)
+      plugin.creator.v1 = s.v1;
+    else
+      plugin.creator.v2 = s.v2;
+    (*register_plugin)(&plugin, lmp);
+  }
 }

@@ -179,6 +179,43 @@ inline Matrix3d fd_gradient(const std::function<double(const Matrix3d &)> &W, co
   return g;
 }
 
+// Central difference (f(x + h d) - f(x - h d)) / (2 h) of a function of the coordinates x along
+// the direction d (as many entries as x); for a vector-valued f, entry by entry.
+inline double central_difference(const std::function<double(const std::vector<double> &)> &f,
+                                 const std::vector<double> &x, const std::vector<double> &d,
+                                 double h)
+{
+  std::vector<double> xp = x, xm = x;
+  for (size_t k = 0; k < x.size(); ++k) {
+    xp[k] += h * d[k];
+    xm[k] -= h * d[k];
+  }
+  return (f(xp) - f(xm)) / (2.0 * h);
+}
+
+inline std::vector<double>
+central_differences(const std::function<std::vector<double>(const std::vector<double> &)> &f,
+                    const std::vector<double> &x, const std::vector<double> &d, double h)
+{
+  std::vector<double> xp = x, xm = x;
+  for (size_t k = 0; k < x.size(); ++k) {
+    xp[k] += h * d[k];
+    xm[k] -= h * d[k];
+  }
+  std::vector<double> df = f(xp);
+  const std::vector<double> fm = f(xm);
+  for (size_t k = 0; k < df.size(); ++k) df[k] = (df[k] - fm[k]) / (2.0 * h);
+  return df;
+}
+
+// The direction of coordinate k among n.
+inline std::vector<double> unit_direction(size_t n, size_t k)
+{
+  std::vector<double> d(n, 0.0);
+  d[k] = 1.0;
+  return d;
+}
+
 // Material parameter sets: Poisson's ratio 0.3, 0 (lambda = 0), 0.49 (nearly incompressible),
 // -0.3 (lambda < 0), and steel-like magnitudes (K = 160 GPa, G = 79 GPa).
 struct MaterialCase {

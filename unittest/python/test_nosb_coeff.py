@@ -1,24 +1,15 @@
 """pair_coeff of peri/nosb with type labels (labelmap): the types of a line may be given by
-label, and the run is the run with the types given by number, bit for bit (the coefficients
-parsed by LAMMPS's utils, src/lammps/pair_peri_nosb_coeff.cpp)."""
+label, and the run is the run with the types given by number, bit for bit (the types
+parsed by LAMMPS's utils::bounds_typelabel, src/lammps/pair_peri_nosb_coeff.cpp)."""
 import numpy as np
 
 from lammps_run import run_deck
+from nosb_block import TWO_TYPE_BLOCK
 
-DECK = """
-units           si
-boundary        s s s
-atom_style      peri
-atom_modify     map array
-lattice         sc 0.001
-region          block block -0.5 5.5 -0.5 5.5 -0.5 5.5
-create_box      2 block
+DECK = TWO_TYPE_BLOCK + """
 region          upper block INF INF INF INF 2.5 INF
 labelmap        atom 1 soft 2 stiff
-create_atoms    1 region block
 set             region upper type 2
-set             group all density 1000
-set             group all volume 1.0e-9
 velocity        all set 0.0 0.0 0.0
 velocity        all ramp vz -2.0 2.0 z -0.5 5.5 units box
 pair_style      peri/nosb

@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from lammps_run import LMP, REPO, run_deck
+from nosb_block import TWO_TYPE_BLOCK
 
 _spec = importlib.util.spec_from_file_location(
     "fracture_energy_run", REPO / "examples" / "fracture-energy" / "run.py")
@@ -76,18 +77,7 @@ def test_g0_keyword_gives_the_measured_fracture_energy(tmp_path, model, nu, cs, 
     assert 1.0 - 5.1 * s00 - 2e-4 <= ratio <= 1.0 - 2.2 * s00 + 2e-4, (ratio, s00)
 
 
-BLOCK = """
-units           si
-boundary        s s s
-atom_style      peri
-atom_modify     map array
-lattice         sc 0.001
-region          block block -0.5 5.5 -0.5 5.5 -0.5 5.5
-create_box      2 block
-create_atoms    1 region block
-set             group all density 1000
-set             group all volume 1.0e-9
-set             type 1 type/fraction 2 0.5 1234
+BLOCK = TWO_TYPE_BLOCK + """set             type 1 type/fraction 2 0.5 1234
 pair_style      peri/nosb
 {coeff}
 run             0

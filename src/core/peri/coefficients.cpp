@@ -3,8 +3,10 @@
 #include "peri/coefficients.h"
 
 #include "linalg/constants.h"
+#include "materials/material.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace PeriSISSM {
 
@@ -48,6 +50,17 @@ bool pair_spacing(const std::vector<double> &sums, int i, int j, double &h)
   return true;
 }
 
+void add_spacing_sums(int n, const double *volume, const int *type, std::vector<double> &sums)
+{
+  for (int k = 0; k < n; k++) {
+    const double hk = std::cbrt(volume[k]);
+    sums[2 * type[k]] += hk;
+    sums[2 * type[k] + 1] += 1.0;
+    sums[0] += hk;
+    sums[1] += 1.0;
+  }
+}
+
 void CoefficientTable::resize(int ntypes)
 {
   n_ = ntypes + 1;
@@ -75,6 +88,14 @@ bool CoefficientTable::any_break() const
   for (int i = 1; i < n_; i++)
     for (int j = i; j < n_; j++)
       if (at(i, j).breaks) return true;
+  return false;
+}
+
+bool CoefficientTable::any_g0() const
+{
+  for (int i = 1; i < n_; i++)
+    for (int j = i; j < n_; j++)
+      if (given(i, j) && at(i, j).g0 > 0.0) return true;
   return false;
 }
 
@@ -110,6 +131,92 @@ void CoefficientTable::configure(Model &model) const
       [this](int i, int j) {
         return at(i, j).alpha;
       });
+}
+
+namespace {
+
+  template <class T> void append(std::string &bytes, const T *values, int n)
+  {
+    bytes.append(reinterpret_cast<const char *>(values), sizeof(T) * n);
+  }
+
+}    // namespace
+
+std::string coefficients_restart_bytes(const CoefficientTable &table,
+                                       const std::vector<double> &bend)
+{
+  std::string bytes;
+  const int n = table.ntypes();
+  append(bytes, &kCoefficientsRestartVersion, 1);
+  for (int i = 1; i <= n; i++) {
+    for (int j = i; j <= n; j++) {
+      const int given = table.given(i, j) ? 1 : 0;
+      append(bytes, &given, 1);
+      if (!given) continue;
+      const PairCoefficients &c = table.at(i, j);
+      const int len = (int) c.moduli.model.size() + 1;
+      append(bytes, &len, 1);
+      append(bytes, c.moduli.model.c_str(), len);
+      const int flags[3] = {c.breaks ? 1 : 0, c.contact ? 1 : 0, c.membrane ? 1 : 0};
+      const double values[6] = {c.moduli.k, c.moduli.g, c.horizon, c.s00, c.alpha, c.cs};
+      append(bytes, flags, 3);
+      append(bytes, values, 6);
+    }
+  }
+  std::vector<double> types(bend.begin(), bend.end());
+  types.resize(n + 1, 0.0);
+  append(bytes, types.data() + 1, n);
+  return bytes;
+}
+
+std::string read_coefficients_restart(const std::function<void(void *, std::size_t)> &read,
+                                      CoefficientTable &table, std::vector<double> &bend)
+{
+  const int n = table.ntypes();
+  int version = 0;
+  read(&version, sizeof(int));
+  if (version != kCoefficientsRestartVersion)
+    return "Pair peri/nosb: the restart file holds pair data of format version " +
+        std::to_string(version) + ", this build reads version " +
+        std::to_string(kCoefficientsRestartVersion) +
+        ": write the restart file again with this build (or use the build that wrote it)";
+  for (int i = 1; i <= n; i++) {
+    for (int j = i; j <= n; j++) {
+      int given = 0, len = 0;
+      read(&given, sizeof(int));
+      if (!given) continue;
+      read(&len, sizeof(int));
+      if (len < 1 || len > 256)
+        return "Pair peri/nosb: restart file is corrupt (model name of " + std::to_string(len) +
+            " chars)";
+      std::vector<char> name(len);
+      int flags[3];
+      double values[6];
+      read(name.data(), len);
+      read(flags, sizeof(flags));
+      read(values, sizeof(values));
+      name[len - 1] = '\0';
+      const auto &names = material_names();
+      if (std::find(names.begin(), names.end(), std::string(name.data())) == names.end())
+        return "Pair peri/nosb: restart file names model '" + std::string(name.data()) +
+            "', which this build does not have (allowed: " + material_names_joined() + ")";
+      PairCoefficients c;
+      c.moduli.model = name.data();
+      c.breaks = flags[0] != 0;
+      c.contact = flags[1] != 0;
+      c.membrane = flags[2] != 0;
+      c.moduli.k = values[0];
+      c.moduli.g = values[1];
+      c.horizon = values[2];
+      c.s00 = values[3];
+      c.alpha = values[4];
+      c.cs = values[5];
+      table.set(i, j, c);
+    }
+  }
+  bend.assign(n + 1, 0.0);
+  read(bend.data() + 1, sizeof(double) * n);
+  return "";
 }
 
 }    // namespace PeriSISSM

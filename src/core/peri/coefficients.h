@@ -11,6 +11,9 @@
 #include "materials/moduli.h"
 #include "peri/model.h"
 
+#include <cstddef>
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace PeriSISSM {
@@ -54,6 +57,10 @@ double contact_stiffness(double bulk, double horizon);
 // Outputs: h; false when there are no particles at all (h untouched).
 bool pair_spacing(const std::vector<double> &sums, int i, int j, double &h);
 
+// The sums pair_spacing() takes, of n particles: volumes, types (1 .. ntypes).
+// Outputs: sums (2 (ntypes + 1) entries) += those of these particles.
+void add_spacing_sums(int n, const double *volume, const int *type, std::vector<double> &sums);
+
 // The coefficients of all type pairs, 1 <= i, j <= ntypes.
 class CoefficientTable {
  public:
@@ -72,6 +79,7 @@ class CoefficientTable {
   void complete();
 
   bool any_break() const;
+  bool any_g0() const;    // a given pair sets its s00 from G0
   bool any_contact() const;
 
   // the model of the completed table: per type the material (make_material(moduli)), Cs,
@@ -84,6 +92,22 @@ class CoefficientTable {
   std::vector<PairCoefficients> c_;
   std::vector<char> given_;
 };
+
+// The coefficients in a restart file (pair peri/nosb's section), format version
+// kCoefficientsRestartVersion: the version; per type pair i <= j whether its line was given and,
+// if so, the model's name with its terminating NUL (an int length first), the flags break,
+// contact and membrane (3 ints) and K, G, horizon, s00, alpha, Cs (6 doubles); then the bending
+// moduli of the types 1 .. ntypes (bend[1 .. ntypes]). Native sizes and byte order.
+constexpr int kCoefficientsRestartVersion = 3;
+std::string coefficients_restart_bytes(const CoefficientTable &table,
+                                       const std::vector<double> &bend);
+
+// Reads such a section through read(destination, nbytes), which gives the next nbytes of it, into
+// table (the lines given, for a table resized to ntypes) and bend (resized to ntypes + 1).
+// Returns "" or what is wrong with it (another format version, a corrupt model name, a model this
+// build does not have), as an error message; reading stops there.
+std::string read_coefficients_restart(const std::function<void(void *, std::size_t)> &read,
+                                      CoefficientTable &table, std::vector<double> &bend);
 
 }    // namespace PeriSISSM
 

@@ -44,6 +44,28 @@ bool invert_shape_tensor(const double K[9], double lambda_ref, double Kinv[9], d
   return true;
 }
 
+void ReferenceBox::face_distances(double width[3]) const
+{
+  const double xprd = box[0], yprd = box[1], zprd = box[2];
+  const double yz = box[3], xz = box[4], xy = box[5];
+  const double bxc = std::sqrt(yprd * zprd * yprd * zprd + xy * zprd * xy * zprd +
+                               (xy * yz - yprd * xz) * (xy * yz - yprd * xz));
+  width[0] = xprd * yprd * zprd / bxc;
+  width[1] = yprd * zprd / std::sqrt(zprd * zprd + yz * yz);
+  width[2] = zprd;
+}
+
+bool bonds_leave_group(const Families &fam, int nlocal, const int *mask, int groupbit)
+{
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const int *jl = fam.jlocal[i];
+    for (int b = 0; b < fam.npartner[i]; b++)
+      if (jl[b] >= 0 && !(mask[jl[b]] & groupbit)) return true;
+  }
+  return false;
+}
+
 double partial_volume_factor(double r, double delta, double h)
 {
   const double half = 0.5 * h;

@@ -22,6 +22,10 @@ struct ReferenceBox {
   double box[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // xprd yprd zprd yz xz xy
   bool any() const { return periodic[0] || periodic[1] || periodic[2]; }
 
+  // distances between the box's opposite faces: width[0] between the two faces normal to x
+  // (the yz faces), width[1], width[2] likewise
+  void face_distances(double width[3]) const;
+
   // minimum image of a difference of reference positions (restricted triclinic box)
   inline void image(double &dx, double &dy, double &dz) const
   {
@@ -65,6 +69,10 @@ struct Families {
   double **normal = nullptr;    // reference unit normal of each membrane particle (rows of the
                                 //   others unused); null when no particle is a membrane
 };
+
+// Whether an unbroken bond joins an owned particle of a group (mask & groupbit, masks of owned
+// and ghost rows) with a particle outside it.
+bool bonds_leave_group(const Families &fam, int nlocal, const int *mask, int groupbit);
 
 // Smallest accepted ratio lambda_min(K) / lambda_ref for a shape tensor K, where lambda_ref is
 // the larger of lambda_max(K) and a reference value (the largest eigenvalue of the particle's

@@ -63,6 +63,33 @@ class Halo {
   }
 };
 
+// A halo's message: the rows of nfields fields of the particles list[0 .. n-1], field after
+// field for each particle, into buf (as many doubles as the return value).
+inline int pack_halo_rows(const HaloField *fields, int nfields, int n, const int *list, double *buf)
+{
+  int m = 0;
+  for (int ii = 0; ii < n; ii++)
+    for (int q = 0; q < nfields; q++) {
+      const int width = fields[q].width;
+      const double *row = fields[q].rows + (long long) width * list[ii];
+      for (int k = 0; k < width; k++) buf[m++] = row[k];
+    }
+  return m;
+}
+
+// The message of pack_halo_rows() into the rows of the particles first .. first + n - 1.
+inline void unpack_halo_rows(const HaloField *fields, int nfields, int n, int first,
+                             const double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++)
+    for (int q = 0; q < nfields; q++) {
+      const int width = fields[q].width;
+      double *row = fields[q].rows + (long long) width * i;
+      for (int k = 0; k < width; k++) row[k] = buf[m++];
+    }
+}
+
 // Where virial contributions go (either may be null).
 struct Virial {
   double *global = nullptr;      // 6 doubles: xx yy zz xy xz yz

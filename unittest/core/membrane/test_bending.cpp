@@ -9,6 +9,8 @@
 #include "membrane/hinge.h"
 #include "peri/bond_stiffness.h"
 
+#include "test_helpers.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -21,6 +23,10 @@
 #include <set>
 #include <utility>
 #include <vector>
+
+using PeriSISSMTest::central_difference;
+using PeriSISSMTest::central_differences;
+using PeriSISSMTest::unit_direction;
 
 namespace {
 
@@ -235,6 +241,9 @@ TEST(Bending, ForcesAreMinusTheEnergyGradient)
   PeriSISSM::build_hinges(view, view.x0.data(), PeriSISSM::ReferenceBox(), hinges);
   const std::vector<double> x = perturbed(view.x0, 0.15, 5u);
   const Evaluation ev = evaluate(view, hinges, x);
+  const auto energy = [&](const std::vector<double> &y) {
+    return total_energy(view, hinges, y);
+  };
   double sum = 0.0;
   for (const auto &h : hinges)
     sum += PeriSISSM::hinge_energy(&x[3 * h.v[0]], &x[3 * h.v[1]], &x[3 * h.v[2]], &x[3 * h.v[3]],
@@ -244,10 +253,7 @@ TEST(Bending, ForcesAreMinusTheEnergyGradient)
   double fmax = 0.0;
   for (int i = 0; i < Grid::N; i++)
     for (int k = 0; k < 3; k++) {
-      std::vector<double> xp = x, xm = x;
-      xp[3 * i + k] += 1e-6;
-      xm[3 * i + k] -= 1e-6;
-      const double dE = (total_energy(view, hinges, xp) - total_energy(view, hinges, xm)) / 2e-6;
+      const double dE = central_difference(energy, x, unit_direction(x.size(), 3 * i + k), 1e-6);
       EXPECT_NEAR(view.volume[i] * ev.f[3 * i + k], -dE, 1e-7) << i << " " << k;
       fmax = std::max(fmax, std::fabs(dE));
     }
@@ -273,6 +279,9 @@ TEST(Bending, BlocksAreTheHessianAtRest)
     for (int k = 0; k < 3; k++) x[3 * i + k] = y(k);
   }
   const Evaluation ev = evaluate(view, hinges, x);
+  const auto forces = [&](const std::vector<double> &y) {
+    return evaluate(view, hinges, y).f;
+  };
   double bmax = 0.0;
   for (int i = 0; i < Grid::N; i++) {
     const double *b = ev.block.data() + 6 * i;
@@ -280,13 +289,10 @@ TEST(Bending, BlocksAreTheHessianAtRest)
     B << b[0], b[3], b[4], b[3], b[1], b[5], b[4], b[5], b[2];
     bmax = std::max(bmax, B.norm());
     for (int k = 0; k < 3; k++) {
-      std::vector<double> xp = x, xm = x;
-      xp[3 * i + k] += 1e-6;
-      xm[3 * i + k] -= 1e-6;
-      const Evaluation ep = evaluate(view, hinges, xp), em = evaluate(view, hinges, xm);
+      const std::vector<double> df =
+          central_differences(forces, x, unit_direction(x.size(), 3 * i + k), 1e-6);
       for (int a = 0; a < 3; a++)
-        EXPECT_NEAR(B(a, k), -(ep.f[3 * i + a] - em.f[3 * i + a]) / 2e-6, 1e-6)
-            << i << " " << a << " " << k;
+        EXPECT_NEAR(B(a, k), -df[3 * i + a], 1e-6) << i << " " << a << " " << k;
     }
   }
   EXPECT_GT(bmax, 0.1);
@@ -303,16 +309,16 @@ TEST(Bending, VirialIsTheStrainDerivative)
   PeriSISSM::build_hinges(view, view.x0.data(), PeriSISSM::ReferenceBox(), hinges);
   const std::vector<double> x = perturbed(view.x0, 0.15, 9u);
   const Evaluation ev = evaluate(view, hinges, x);
+  const auto energy = [&](const std::vector<double> &y) {
+    return total_energy(view, hinges, y);
+  };
   const int comp[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
   double wmax = 0.0;
   for (int m = 0; m < 6; m++) {
     const int a = comp[m][0], b = comp[m][1];
-    std::vector<double> xp = x, xm = x;
-    for (int i = 0; i < Grid::N; i++) {
-      xp[3 * i + b] += 1e-6 * x[3 * i + a];
-      xm[3 * i + b] -= 1e-6 * x[3 * i + a];
-    }
-    const double dE = (total_energy(view, hinges, xp) - total_energy(view, hinges, xm)) / 2e-6;
+    std::vector<double> strain(x.size(), 0.0);
+    for (int i = 0; i < Grid::N; i++) strain[3 * i + b] = x[3 * i + a];
+    const double dE = central_difference(energy, x, strain, 1e-6);
     EXPECT_NEAR(ev.virial[m], -dE, 1e-7) << m;
     wmax = std::max(wmax, std::fabs(dE));
   }

@@ -1,10 +1,15 @@
 // Coefficients of type pairs: the mixing rule, the contact stiffness, the particle spacing of
-// the G0 keyword, and the model a completed table configures.
+// the G0 keyword, the model a completed table configures, and the restart section.
 #include "peri/coefficients.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 using namespace PeriSISSM;
@@ -96,6 +101,18 @@ TEST(Coefficients, PairSpacing)
   EXPECT_EQ(h, -1.0);
 }
 
+// the sums of V^(1/3) and counts per type and of all particles, added to what is there
+TEST(Coefficients, SpacingSumsPerTypeAndOfAll)
+{
+  const double volume[3] = {8.0, 27.0, 1.0};
+  const int type[3] = {2, 1, 2};
+  std::vector<double> sums(6, 0.0);
+  sums[0] = 1.0;
+  add_spacing_sums(3, volume, type, sums);
+  const std::vector<double> expected = {7.0, 3.0, 3.0, 1.0, 3.0, 2.0};
+  for (int k = 0; k < 6; k++) EXPECT_NEAR(sums[k], expected[k], 1e-15 * expected[k]) << k;
+}
+
 TEST(Coefficients, TableMixesThePairsNotGivenAndMirrors)
 {
   CoefficientTable t;
@@ -116,6 +133,11 @@ TEST(Coefficients, TableMixesThePairsNotGivenAndMirrors)
   EXPECT_EQ(t.at(3, 2).s00, 0.02);
   EXPECT_TRUE(t.any_break());
   EXPECT_TRUE(t.any_contact());
+  EXPECT_FALSE(t.any_g0());
+  PairCoefficients g = line("linear", 2.0, 1.0, 0.3, 0.0, 0.25);
+  g.g0 = 3.0;
+  t.set(2, 3, g);
+  EXPECT_TRUE(t.any_g0());
 }
 
 TEST(Coefficients, TableConfiguresTheModel)
@@ -166,4 +188,97 @@ TEST(Coefficients, TableConfiguresTheModel)
   EXPECT_FALSE(breaks(0.5, 2, 2));
   EXPECT_TRUE(breaks(0.011, 2, 1));
   EXPECT_FALSE(breaks(0.009, 1, 2));
+}
+
+namespace {
+
+// a reader of bytes from the start of a string (past its end: throws)
+std::function<void(void *, std::size_t)> reader(const std::string &bytes, std::size_t &at)
+{
+  return [&bytes, &at](void *dst, std::size_t n) {
+    if (at + n > bytes.size()) throw std::out_of_range("read past the section");
+    bytes.copy(static_cast<char *>(dst), n, at);
+    at += n;
+  };
+}
+
+}    // namespace
+
+// the given lines and the bending moduli come back field by field, the lines not given stay
+// not given, and the section is read to its last byte
+TEST(Coefficients, RestartSectionKeepsTheGivenLines)
+{
+  CoefficientTable table;
+  table.resize(3);
+  PairCoefficients a = line("neohookean", 3.0, 2.0, 0.4, 0.02, 0.3);
+  a.cs = 1.5;
+  a.breaks = false;
+  a.membrane = true;
+  PairCoefficients b = line("xu", 6.0, 0.0, 0.5, 0.01, 0.0);
+  b.contact = false;
+  table.set(1, 1, a);
+  table.set(2, 3, b);
+  const std::vector<double> bend = {0.0, 2.5, 0.0, -1.0};
+  const std::string bytes = coefficients_restart_bytes(table, bend);
+  EXPECT_EQ(bytes.size(),
+            7 * sizeof(int) + 2 * (4 * sizeof(int) + 6 * sizeof(double)) + sizeof("neohookean") +
+                sizeof("xu") + 3 * sizeof(double));
+
+  CoefficientTable back;
+  back.resize(3);
+  std::vector<double> bend_back;
+  std::size_t at = 0;
+  EXPECT_EQ(read_coefficients_restart(reader(bytes, at), back, bend_back), "");
+  EXPECT_EQ(at, bytes.size());
+  EXPECT_EQ(bend_back, bend);
+  for (int i = 1; i <= 3; i++)
+    for (int j = i; j <= 3; j++) EXPECT_EQ(back.given(i, j), table.given(i, j)) << i << j;
+  for (const auto &ij : {std::make_pair(1, 1), std::make_pair(2, 3)}) {
+    const PairCoefficients &c = table.at(ij.first, ij.second);
+    const PairCoefficients &r = back.at(ij.first, ij.second);
+    EXPECT_EQ(r.moduli.model, c.moduli.model);
+    EXPECT_EQ(r.moduli.k, c.moduli.k);
+    EXPECT_EQ(r.moduli.g, c.moduli.g);
+    EXPECT_EQ(r.horizon, c.horizon);
+    EXPECT_EQ(r.s00, c.s00);
+    EXPECT_EQ(r.alpha, c.alpha);
+    EXPECT_EQ(r.cs, c.cs);
+    EXPECT_EQ(r.breaks, c.breaks);
+    EXPECT_EQ(r.contact, c.contact);
+    EXPECT_EQ(r.membrane, c.membrane);
+  }
+}
+
+// another format version, a corrupt name length and an unknown model stop the reading there
+TEST(Coefficients, RestartSectionProblemsAreNamed)
+{
+  CoefficientTable table;
+  table.resize(1);
+  table.set(1, 1, line("linear", 2.0, 1.0, 0.3, 0.01, 0.25));
+  const std::string good = coefficients_restart_bytes(table, {0.0, 0.0});
+  std::vector<double> bend;
+  std::size_t at = 0;
+
+  std::string old = good;
+  const int two = 2;
+  old.replace(0, sizeof(int), reinterpret_cast<const char *>(&two), sizeof(int));
+  EXPECT_NE(read_coefficients_restart(reader(old, at), table, bend)
+                .find("format version 2, this build reads version 3"),
+            std::string::npos);
+  EXPECT_EQ(at, sizeof(int));
+
+  std::string corrupt = good;
+  const int huge = 100000;
+  corrupt.replace(2 * sizeof(int), sizeof(int), reinterpret_cast<const char *>(&huge), sizeof(int));
+  at = 0;
+  EXPECT_NE(read_coefficients_restart(reader(corrupt, at), table, bend)
+                .find("corrupt (model name of 100000 chars)"),
+            std::string::npos);
+
+  std::string unknown = good;
+  unknown.replace(3 * sizeof(int), 6, "lineax");
+  at = 0;
+  EXPECT_NE(read_coefficients_restart(reader(unknown, at), table, bend)
+                .find("names model 'lineax', which this build does not have"),
+            std::string::npos);
 }

@@ -8,6 +8,8 @@
 #include "peri/contact.h"
 #include "peri/model.h"
 
+#include "test_helpers.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -17,6 +19,10 @@
 #include <set>
 #include <utility>
 #include <vector>
+
+using PeriSISSMTest::central_difference;
+using PeriSISSMTest::central_differences;
+using PeriSISSMTest::unit_direction;
 
 namespace {
 
@@ -149,13 +155,13 @@ TEST(ContactPass, ForcesAreMinusTheEnergyGradient)
   const std::vector<double> x = away_from_kinks(c, 1u);
   const auto r = c.evaluate(x, N, true);
   EXPECT_GE(r.acting.size(), 6u);
+  const auto energy = [&](const std::vector<double> &y) {
+    return c.evaluate(y, N, true).energy;
+  };
   double fmax = 0.0;
   for (int i = 0; i < N; i++)
     for (int k = 0; k < 3; k++) {
-      std::vector<double> xp = x, xm = x;
-      xp[3 * i + k] += 1e-7;
-      xm[3 * i + k] -= 1e-7;
-      const double dE = (c.evaluate(xp, N, true).energy - c.evaluate(xm, N, true).energy) / 2e-7;
+      const double dE = central_difference(energy, x, unit_direction(x.size(), 3 * i + k), 1e-7);
       EXPECT_NEAR(c.volume[i] * r.f[3 * i + k], -dE, 1e-6) << i << " " << k;
       fmax = std::max(fmax, std::fabs(dE));
     }
@@ -169,6 +175,9 @@ TEST(ContactPass, BlocksAreTheDiagonalStiffness)
   const Cluster c;
   const std::vector<double> x = away_from_kinks(c, 2u);
   const auto r = c.evaluate(x, N, true);
+  const auto forces = [&](const std::vector<double> &y) {
+    return c.evaluate(y, N, true).f;
+  };
   double bmax = 0.0;
   for (int i = 0; i < N; i++) {
     const double *b = r.block.data() + 6 * i;
@@ -176,13 +185,10 @@ TEST(ContactPass, BlocksAreTheDiagonalStiffness)
     B << b[0], b[3], b[4], b[3], b[1], b[5], b[4], b[5], b[2];
     bmax = std::max(bmax, B.norm());
     for (int k = 0; k < 3; k++) {
-      std::vector<double> xp = x, xm = x;
-      xp[3 * i + k] += 1e-7;
-      xm[3 * i + k] -= 1e-7;
-      const auto rp = c.evaluate(xp, N, true), rm = c.evaluate(xm, N, true);
+      const std::vector<double> df =
+          central_differences(forces, x, unit_direction(x.size(), 3 * i + k), 1e-7);
       for (int a = 0; a < 3; a++)
-        EXPECT_NEAR(B(a, k), -(rp.f[3 * i + a] - rm.f[3 * i + a]) / 2e-7, 1e-5)
-            << i << " " << a << " " << k;
+        EXPECT_NEAR(B(a, k), -df[3 * i + a], 1e-5) << i << " " << a << " " << k;
     }
   }
   EXPECT_GT(bmax, 1.0);
