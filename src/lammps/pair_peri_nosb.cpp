@@ -75,9 +75,7 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     Pair(lmp), family(nullptr), cut(nullptr), contactflag(nullptr),
     coeffs(new PeriSISSM::CoefficientTable), model_(new PeriSISSM::Model), any_break(0),
     any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
-    contact_crossings(0), hmax(0.0), contact_first(nullptr), contact_neigh(nullptr),
-    contact_maxfirst(0), contact_maxneigh(0), contact_inum(-1), contact_margin(0.0),
-    track_motion(0), follow_explicit(0), nmotion(0), xneigh(nullptr), xcontact(nullptr),
+    contact_crossings(0), hmax(0.0), contact_margin(0.0), track_motion(0), follow_explicit(0),
     state_nlocal(-1), nmax(0), gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr),
     s0_new(nullptr), cnormal(nullptr), cols(nullptr), any_bend(0), meshfix(nullptr),
     hinges_stale(1), comm_fields(nullptr), comm_nfields(0)
@@ -103,10 +101,6 @@ PairPeriNosb::~PairPeriNosb()
   memory->destroy(wdens);
   memory->destroy(s0_new);
   memory->destroy(cnormal);
-  memory->destroy(contact_first);
-  memory->destroy(contact_neigh);
-  memory->destroy(xneigh);
-  memory->destroy(xcontact);
 
   if (allocated) {
     memory->destroy(setflag);
@@ -520,7 +514,7 @@ double PairPeriNosb::memory_usage()
   using PeriSISSM::ParticleFields;
   double bytes = (double) nmax *
       (ParticleFields::NG + ParticleFields::NK + 9 + 2 + ParticleFields::NCOLS) * sizeof(double);
-  bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
+  bytes += (double) (shortlist.first.capacity() + shortlist.neigh.capacity()) * sizeof(int);
   bytes += (double) hinges.capacity() * sizeof(Hinge);
   const double n = atom->ntypes + 1;
   bytes += n * n * (sizeof(PeriSISSM::PairCoefficients) + sizeof(double) + 2.0 * sizeof(int));
