@@ -19,13 +19,14 @@
 
    Candidates: a full occasional neighbor list of cutoff r + 1.5 Lmax + skin (r = dmin + dhat,
    Lmax the larger of 1.5 x the longest edge at the run's start and that edge + 2 skin, 0
-   without mesh edges), built at every neighbor list build of LAMMPS, gives the pairs closer than
-   r + skin. They stay complete while no atom moves skin/2 (motion_tracker.h: an error beyond,
-   checked at every evaluation; a build asked for at skin/4) and no edge grows beyond Lmax
-   (checked at each build). The other vertices of a candidate lie within r + skin + 2.5 Lmax of
-   an owned atom: the ghost cutoff must cover that (checked at init). Each rank evaluates its
-   candidates (each pair with an owned vertex, once) and gives only its owned vertices their
-   shares: no reverse communication, and 1 and N ranks agree to the last bit.
+   without mesh edges; CandidateRange in candidates.h), built at every neighbor list build of
+   LAMMPS, gives the pairs closer than r + skin. They stay complete while no atom moves skin/2
+   (motion_tracker.h: an error beyond, checked at every evaluation; a build asked for at skin/4)
+   and no edge grows beyond Lmax (checked at each build). The other vertices of a candidate lie
+   within r + skin + 2.5 Lmax of an owned atom: the ghost cutoff must cover that (checked at
+   init). Each rank evaluates its candidates (each pair with an owned vertex, once) and gives
+   only its owned vertices their shares: no reverse communication, and 1 and N ranks agree to
+   the last bit.
 
    Output: the global scalar is the sum of the vertices' energy densities (fix_modify energy yes
    adds it to pe); the vector (compute_vector()) counts the pairs and gives the energy itself,
@@ -85,12 +86,6 @@ using PeriSISSM::Candidate;
 using PeriSISSM::MotionTracker;
 
 static constexpr int NVECTOR = 9;
-// default slip speed below which friction is smoothed: IPC's 1e-3 m/s, in the units' velocity
-static constexpr double EPSV_DEFAULT_SI = 1.0e-3;
-// Lmax = EDGE_FACTOR x the longest edge at the start of a run (or that edge + 2 skin when the skin
-// is large): edges may stretch by 50% less the skin (by a skin) before the candidates could be
-// incomplete (an error then)
-static constexpr double EDGE_FACTOR = 1.5;
 
 /* ---------------------------------------------------------------------- */
 
@@ -108,12 +103,12 @@ static double positive_number(const char *str, const char *what, bool zero_ok, E
 
 FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dhat(-1.0), dmin(0.0), kappa(-1.0), kappa_auto(0), inertia_c(0.0),
-    iterate_pending(0), mu(0.0), epsv(-1.0), edge_factor(EDGE_FACTOR), longest_edge(0.0),
-    list_cutoff(0.0), list(nullptr), meshfix(nullptr), partners(nullptr), nparticles(0), stale(1),
-    warned_sissm(0), warned_families(0), ccd(1), xref(nullptr), nxref(0), reach_bound(0),
-    reach_moved(0.0), reach_atom(0), in_step(0), step_h(0.0), generation(0), lagged_generation(-1),
-    energy_density(0.0), energy_pairs(0.0), mindist(0.0), nactive{0, 0, 0}, ncandidates(0),
-    nfriction(0), friction_work(0.0), reduced(0), all_energy_density(0.0), all_vector{}
+    iterate_pending(0), mu(0.0), epsv(-1.0), list(nullptr), meshfix(nullptr), partners(nullptr),
+    nparticles(0), stale(1), warned_sissm(0), warned_families(0), ccd(1), xref(nullptr), nxref(0),
+    reach_bound(0), reach_moved(0.0), reach_atom(0), in_step(0), step_h(0.0), generation(0),
+    lagged_generation(-1), energy_density(0.0), energy_pairs(0.0), mindist(0.0), nactive{0, 0, 0},
+    ncandidates(0), nfriction(0), friction_work(0.0), reduced(0),
+    all_energy_density(0.0), all_vector{}
 {
   const char *usage = "fix ID group nosb/contact dhat D [dmin d] [kappa k|auto] [friction mu] "
                       "[epsv v] [ccd yes|no]";
@@ -147,13 +142,13 @@ FixNosbContact::FixNosbContact(LAMMPS *lmp, int narg, char **arg) :
   if (dhat < 0.0)
     error->all(FLERR, "Illegal fix nosb/contact command: keyword dhat is required ({})", usage);
   // epsv: IPC's 1e-3 m/s in the deck's units (force->angstrom and force->femtosecond are 1 A and
-  // 1 fs in them: 1 m/s = 1e10 A / 1e15 fs); lj units have no metre: it must be given there
+  // 1 fs in them); lj units have no metre: it must be given there
   if (epsv < 0.0) {
     if (mu > 0.0 && strcmp(update->unit_style, "lj") == 0)
       error->all(FLERR,
                  "Illegal fix nosb/contact command: with friction in lj units give the slip speed "
                  "epsv (velocity units; IPC's default is 1e-3 m/s, which lj units cannot convert)");
-    epsv = EPSV_DEFAULT_SI * 1.0e10 * force->angstrom / (1.0e15 * force->femtosecond);
+    epsv = PeriSISSM::default_slip_speed(force->angstrom, force->femtosecond);
   }
   if (kappa < 0.0 && !kappa_auto)
     error->all(FLERR,
@@ -228,13 +223,11 @@ void FixNosbContact::init()
   if (all[0] && !nparticles && !(L > 0.0))
     error->all(FLERR, "Fix nosb/contact {}: group {} holds no mesh edge and no volumetric particle",
                id, group->names[igroup]);
-  longest_edge = L > 0.0 ? std::max(edge_factor * L, L + 2.0 * neighbor->skin) : 0.0;
-  list_cutoff = dmin + dhat + 1.5 * longest_edge;
-
   const double skin = neighbor->skin;
-  const double needed = list_cutoff + skin + longest_edge;
+  range = PeriSISSM::CandidateRange(dmin, dhat, L, skin);
+  const double needed = range.ghost_cutoff(skin);
   const double have = predicted_comm_cutoff();
-  if (have < needed && longest_edge == 0.0)
+  if (have < needed && range.longest_edge == 0.0)
     error->all(FLERR,
                "Fix nosb/contact {}: the ghost cutoff {:.6g} is shorter than a contact pair "
                "needs: dmin + dhat + skin = {:.6g} (the other particle of a pair with an owned "
@@ -246,7 +239,7 @@ void FixNosbContact::init()
                "needs: dmin + dhat + skin + 2.5 x max({} x the longest edge ({:.6g}), that edge + "
                "2 skin) = {:.6g} (the other vertices of a pair with an owned vertex must be ghost "
                "atoms); set comm_modify cutoff {:.6g} or more",
-               id, have, edge_factor, L, needed, needed);
+               id, have, PeriSISSM::CandidateRange::kEdgeFactor, L, needed, needed);
 
   // ccd no: fix sissm's steps are not collision-free; say so once (doc/fix_nosb_contact.rst)
   if (!ccd && !warned_sissm && !modify->get_fix_by_style("^sissm$").empty()) {
@@ -276,7 +269,7 @@ void FixNosbContact::init()
   // cutoff (NPairTrim with cutoff_custom 0): empty families, no bonds. Occasional lists are not
   // copied from. The skin is added here (LAMMPS adds it to perpetual lists only).
   auto req = neighbor->add_request(this, NeighConst::REQ_FULL | NeighConst::REQ_OCCASIONAL);
-  req->set_cutoff(list_cutoff + neighbor->skin);
+  req->set_cutoff(range.list_cutoff + skin);
   stale = 1;
   // the explicit friction recipe until fix sissm starts a step (begin_step())
   in_step = 0;
@@ -377,26 +370,13 @@ void FixNosbContact::setup(int vflag)
 
 void FixNosbContact::measure_scene()
 {
-  double **x = atom->x;
-  const int nlocal = atom->nlocal;
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  double mass[2] = {0.0, 0.0};
-  for (int i = 0; i < nlocal; i++) {
-    if (!(atom->mask[i] & groupbit)) continue;
-    for (int d = 0; d < 3; d++) {
-      lo[d] = std::min(lo[d], x[i][d]);
-      hi[d] = std::max(hi[d], x[i][d]);
-    }
-    mass[0] += atom->rmass[i] * atom->vfrac[i];
-    mass[1] += 1.0;
-  }
-  double alllo[3], allhi[3], allmass[2];
-  MPI_Allreduce(lo, alllo, 3, MPI_DOUBLE, MPI_MIN, world);
-  MPI_Allreduce(hi, allhi, 3, MPI_DOUBLE, MPI_MAX, world);
-  MPI_Allreduce(mass, allmass, 2, MPI_DOUBLE, MPI_SUM, world);
-  double diag2 = 0.0;
-  for (int d = 0; d < 3; d++) diag2 += (allhi[d] - alllo[d]) * (allhi[d] - alllo[d]);
-  const double diagonal = std::sqrt(diag2), mean_mass = allmass[0] / allmass[1];
+  PeriSISSM::SceneExtent mine, all;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) mine.add(atom->x[i], atom->rmass[i] * atom->vfrac[i]);
+  MPI_Allreduce(mine.lo, all.lo, 3, MPI_DOUBLE, MPI_MIN, world);
+  MPI_Allreduce(mine.hi, all.hi, 3, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(mine.mass, all.mass, 2, MPI_DOUBLE, MPI_SUM, world);
+  const double diagonal = all.diagonal(), mean_mass = all.mean_mass();
   if (!(diagonal > 0.0) || !(mean_mass > 0.0))
     error->all(FLERR,
                "Fix nosb/contact {}: kappa auto needs a group of atoms with mass that spans a "
@@ -429,14 +409,15 @@ void FixNosbContact::build_candidates()
   neighbor->build_one(list);
 
   // no edge may have grown past what the list's cutoff assumes (the file's header)
-  const double L = longest_edge > 0.0 ? measure_longest_edge(false) : 0.0;
-  if (longest_edge > 0.0 && L + neighbor->skin > longest_edge)
+  const double L = range.longest_edge > 0.0 ? measure_longest_edge(false) : 0.0;
+  if (range.longest_edge > 0.0 && !range.covers(L, neighbor->skin))
     error->all(FLERR,
                "Fix nosb/contact {}: at step {} a mesh edge is {:.6g} long, more than the "
                "contact candidates of this run allow (the longest edge at the run's start, the "
                "larger of {} x it and it + 2 skin, less the neighbor skin: {:.6g}): start a new "
                "run (which measures the edges again) or use a smaller neighbor skin",
-               id, update->ntimestep, L, edge_factor, longest_edge - neighbor->skin);
+               id, update->ntimestep, L, PeriSISSM::CandidateRange::kEdgeFactor,
+               range.longest_edge - neighbor->skin);
 
   // the atoms as the core's broad phase sees them: IDs, roles, the triangles at each vertex
   std::vector<std::int64_t> tags(tag, tag + nall);

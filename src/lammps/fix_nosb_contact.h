@@ -73,9 +73,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double inertia_c;       // c of the step being solved (set_force_factor() before the first)
   int iterate_pending;    // the next evaluation is an iterate of fix sissm (next_iterate())
   double mu, epsv;        // friction coefficient (0: none) and slip speed
-  double edge_factor;     // assumed longest edge = edge_factor x the longest at init
-  double longest_edge;    // that assumption (this run)
-  double list_cutoff;     // dmin + dhat + 1.5 longest_edge (neighbor skin added by LAMMPS)
+  PeriSISSM::CandidateRange range;    // the assumed longest edge and the list's cutoff (this run)
   class NeighList *list;
   class FixNosbMesh *meshfix;      // nullptr without meshes
   class BondPartners *partners;    // pair peri/nosb's bond partners; nullptr if none

@@ -147,10 +147,7 @@ double FixNosbContact::limit_move(int groupbit)
     const double mine_far = (mine_who == reach_atom) ? r.from : 0.0;
     MPI_Allreduce(&mine_far, &reach_moved, 1, MPI_DOUBLE, MPI_MAX, world);
   }
-  if (t < 1.0)
-    for (int i = 0; i < nlocal; i++)
-      if (atom->mask[i] & groupbit)
-        for (int k = 0; k < 3; k++) x[i][k] = xref[i][k] + t * (x[i][k] - xref[i][k]);
+  if (t < 1.0) PeriSISSM::scale_move(xref, x, nlocal, atom->mask, groupbit, t);
   return t;
 }
 

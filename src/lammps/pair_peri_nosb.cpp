@@ -62,11 +62,9 @@ PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     coeffs(new PeriSISSM::CoefficientTable), model_(new PeriSISSM::Model), any_bend(0),
     meshfix(nullptr), hinges_stale(1), any_break(0), any_contact(0), external_breaking(0),
     block_rows(nullptr), contact_groupbit(0), contact_crossings(0), hmax(0.0),
-    contact_first(nullptr), contact_neigh(nullptr), contact_maxfirst(0), contact_maxneigh(0),
-    contact_inum(-1), contact_margin(0.0), track_motion(0), follow_explicit(0), nmotion(0),
-    xneigh(nullptr), xcontact(nullptr), state_nlocal(-1), nmax(0), gstate(nullptr), hstate(nullptr),
-    kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), cols(nullptr),
-    comm_fields(nullptr), comm_nfields(0)
+    contact_margin(0.0), track_motion(0), follow_explicit(0), state_nlocal(-1), nmax(0),
+    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr),
+    cnormal(nullptr), cols(nullptr), comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;    // forces are densities: f.r is not the virial
@@ -89,10 +87,6 @@ PairPeriNosb::~PairPeriNosb()
   memory->destroy(wdens);
   memory->destroy(s0_new);
   memory->destroy(cnormal);
-  memory->destroy(contact_first);
-  memory->destroy(contact_neigh);
-  memory->destroy(xneigh);
-  memory->destroy(xcontact);
 
   if (allocated) {
     memory->destroy(setflag);
@@ -473,7 +467,9 @@ double PairPeriNosb::memory_usage()
   using PeriSISSM::ParticleFields;
   double bytes = (double) nmax *
       (ParticleFields::NG + ParticleFields::NK + 9 + 2 + ParticleFields::NCOLS) * sizeof(double);
-  bytes += (double) (contact_maxfirst + contact_maxneigh) * sizeof(int);
+  bytes += (double) (shortlist.first.capacity() + shortlist.neigh.capacity()) * sizeof(int);
+  bytes += (double) contact_blocks.capacity() * sizeof(double);
+  bytes += 3.0 * (double) (at_build.size() + at_choice.size()) * sizeof(double);
   bytes += (double) hinges.capacity() * sizeof(Hinge);
   const double n = atom->ntypes + 1;
   bytes += n * n * (sizeof(PeriSISSM::PairCoefficients) + sizeof(double) + 2.0 * sizeof(int));

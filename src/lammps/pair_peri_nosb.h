@@ -20,6 +20,9 @@ PairStyle(peri/nosb,PairPeriNosb);
 #include "bond_partners.h"
 #include "implicit_forces.h"
 
+#include "contact/motion_tracker.h"
+#include "peri/contact_candidates.h"
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -111,9 +114,9 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   double **block_rows;        // not null: compute() also sums the SISSM blocks into these rows
   int contact_groupbit;       // contact pairs crossing this group's boundary are counted
   bigint contact_crossings;
-  double hmax;                           // largest particle size V^(1/3) (contact range)
-  int *contact_first, *contact_neigh;    // short list of contact candidates
-  int contact_maxfirst, contact_maxneigh, contact_inum;
+  double hmax;    // largest particle size V^(1/3) (contact range)
+  PeriSISSM::ContactShortList
+      shortlist;                   // the contact candidates (core peri/contact_candidates.h)
   bigint contact_lastcall = -1;    // neighbor->lastcall when the candidates were chosen
   bool contact_list_current() const;
   std::vector<double> contact_blocks;    // SISSM blocks of the contact pairs, 6 per owned and
@@ -122,13 +125,12 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   double contact_margin;    // the candidates hold the pairs within contact_reach() + this
   int track_motion;         // keep the positions below (fix sissm)
   int follow_explicit;      // explicit runs: narrow candidates, chosen again as atoms move
-  int nmotion;              // their allocated length
-  double **xneigh;          // positions of owned and ghost atoms at the last neighbor list build
-  double **xcontact;        // positions of owned and ghost atoms when the candidates were chosen
+  // positions of owned and ghost atoms at the last neighbor list build and when the candidates
+  // were chosen (core contact/motion_tracker.h)
+  PeriSISSM::MotionTracker at_build, at_choice;
   double contact_reach() const;    // largest contact range, 1.35 hmax
-  void grow_motion();
   void follow_motion_explicit();
-  double motion_since(double **ref, double *moved, tagint *worst);
+  double motion_since(const PeriSISSM::MotionTracker &since, double *moved, tagint *worst);
   bool contact_reachable(double moved) const;
   double contact_horizon() const;
   int state_nlocal;    // nlocal when compute() last filled the per-atom state

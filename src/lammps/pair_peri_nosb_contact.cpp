@@ -2,10 +2,11 @@
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
    pair_style peri/nosb, short-range contact: the candidate pairs from the neighbor list (the
-   pairs that can come within contact range before the next neighbor list build), the contact
-   pass of the core (peri/contact.h) with what only LAMMPS knows (bonds by atom ID, energy and
-   virial tallies), and, for implicit steps that move the atoms many times between neighbor
-   list builds, the motion tracking that keeps the candidates complete.
+   pairs that can come within contact range before the next neighbor list build; core
+   peri/contact_candidates.h), the contact pass of the core (peri/contact.h) with what only
+   LAMMPS knows (bonds by atom ID, energy and virial tallies), and, for steps that move the
+   atoms many times between neighbor list builds, when the candidates are chosen again (the
+   core's motion tracker, contact/motion_tracker.h, as fix nosb/contact uses it).
 ------------------------------------------------------------------------- */
 
 #include "pair_peri_nosb.h"
@@ -13,13 +14,13 @@
 #include "fix_nosb_family.h"
 
 #include "peri/contact.h"
+#include "peri/contact_candidates.h"
 #include "peri/model.h"
 
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
 #include "force.h"
-#include "memory.h"
 #include "neigh_list.h"
 #include "neighbor.h"
 #include "update.h"
@@ -30,6 +31,7 @@
 #include <string>
 
 using namespace LAMMPS_NS;
+using PeriSISSM::MotionTracker;
 
 /* ----------------------------------------------------------------------
    is tag jtag an unbroken bond partner of owned atom i
@@ -93,10 +95,10 @@ void PairPeriNosb::compute_contact(int /*eflag*/, int /*vflag*/)
   }
   const PeriSISSM::Particles p = particles();
   PeriSISSM::ContactCandidates cand;
-  cand.inum = contact_inum;
+  cand.inum = shortlist.inum;
   cand.ilist = list->ilist;
-  cand.first = contact_first;
-  cand.neigh = contact_neigh;
+  cand.first = shortlist.first.data();
+  cand.neigh = shortlist.neigh.data();
   NosbContactPairs pairs(this);
   PeriSISSM::contact_pass(*model_, p, family->box, contact_reach(), cand, force->newton_pair != 0,
                           evflag != 0, pairs, rows);
@@ -138,7 +140,7 @@ void PairPeriNosb::unpack_reverse_comm(int n, int *list, double *buf)
 
 bool PairPeriNosb::contact_list_current() const
 {
-  return contact_first && contact_lastcall == neighbor->lastcall;
+  return shortlist.chosen() && contact_lastcall == neighbor->lastcall;
 }
 
 /* ----------------------------------------------------------------------
@@ -151,52 +153,33 @@ void PairPeriNosb::neighbor_rebuilt()
   hinges_stale = 1;
   if (!any_contact || !list) return;
   const double skin = neighbor->skin;
-  follow_explicit = !track_motion && contact_reach() + 0.25 * skin <= contact_horizon();
-  if (track_motion || follow_explicit) {
-    grow_motion();
-    double **x = atom->x;
-    const int nall = atom->nlocal + atom->nghost;
-    for (int i = 0; i < nall; i++)
-      for (int k = 0; k < 3; k++) xneigh[i][k] = x[i][k];
-  }
+  follow_explicit =
+      !track_motion && MotionTracker::followable(contact_reach(), contact_horizon(), skin);
+  if (track_motion || follow_explicit) at_build.record(atom->x, atom->nlocal + atom->nghost);
   // followed (fix sissm's iterates, or explicit runs): the narrow margin, chosen again as the
   // atoms move; otherwise the whole skin, which covers all motion until the next build
-  build_contact_list(track_motion || follow_explicit ? 0.25 * skin : skin);
+  build_contact_list(track_motion || follow_explicit ? MotionTracker::follow_margin(skin) : skin);
 }
 
 /* ----------------------------------------------------------------------
    explicit runs: the candidates, chosen with the margin m = skin/4 instead of the skin, stay
-   complete while no atom has moved m/2 from where they were chosen (pairs close by at most
-   twice that); beyond, they are chosen again from the neighbor list, whose pairs cover reach +
-   m while reach + m + 2 max|x - x_n| <= horizon + skin (LAMMPS keeps max|x - x_n| below skin/2
-   by its own rebuilds, and follow_explicit is set only where reach + skin/4 <= horizon). Owned
-   and ghost atoms alike (every candidate pair has both on this rank; ghost indices do not
-   change between neighbor list builds), so each rank decides alone. About six times fewer
-   candidates than with the whole skin as margin on a lattice with horizon 3a and skin 2a.
+   complete while no atom has moved m/2 from where they were chosen; beyond, they are chosen
+   again with the margin MotionTracker::reachable_margin() allows (LAMMPS keeps max|x - x_n|
+   below skin/2 by its own rebuilds, and follow_explicit is set only where
+   MotionTracker::followable()). Owned and ghost atoms alike (every candidate pair has both on
+   this rank; ghost indices do not change between neighbor list builds), so each rank decides
+   alone. About six times fewer candidates than with the whole skin as margin on a lattice with
+   horizon 3a and skin 2a.
 ------------------------------------------------------------------------- */
-
-// largest squared distance of rows 0 .. n-1 of x from ref, or the first that reaches stop
-static double largest_motion2(double **x, double **ref, int n, double stop)
-{
-  double d = 0.0;
-  for (int i = 0; i < n && d < stop; i++) {
-    double d2 = 0.0;
-    for (int k = 0; k < 3; k++) d2 += (x[i][k] - ref[i][k]) * (x[i][k] - ref[i][k]);
-    d = std::max(d, d2);
-  }
-  return d;
-}
 
 void PairPeriNosb::follow_motion_explicit()
 {
-  double **x = atom->x;
   const int nall = atom->nlocal + atom->nghost;
-  const double trigger = 0.25 * contact_margin * contact_margin;
-  if (largest_motion2(x, xcontact, nall, trigger) < trigger) return;
-  const double moved = largest_motion2(x, xneigh, nall, DBL_MAX);
-  const double skin = neighbor->skin;
-  const double room = contact_horizon() + skin - contact_reach() - 2.0 * sqrt(moved);
-  build_contact_list(std::max(0.0, std::min(0.25 * skin, room)));
+  if (!at_choice.moved_at_least2(atom->x, nall, 0.25 * contact_margin * contact_margin)) return;
+  int farthest;
+  const double moved = at_build.largest_move2(atom->x, nall, nullptr, 0, farthest);
+  build_contact_list(MotionTracker::reachable_margin(contact_reach(), sqrt(moved),
+                                                     contact_horizon(), neighbor->skin));
 }
 
 /* ----------------------------------------------------------------------
@@ -215,18 +198,9 @@ void PairPeriNosb::track_contact_motion(int flag)
   track_motion = flag && any_contact;
   follow_explicit = 0;    // decided again at the next neighbor list build
   if (!track_motion) {
-    memory->destroy(xneigh);
-    memory->destroy(xcontact);
-    nmotion = 0;
+    at_build.clear();
+    at_choice.clear();
   }
-}
-
-void PairPeriNosb::grow_motion()
-{
-  if (atom->nmax <= nmotion) return;
-  nmotion = atom->nmax;
-  memory->grow(xneigh, nmotion, 3, "pair:xneigh");
-  memory->grow(xcontact, nmotion, 3, "pair:xcontact");
 }
 
 /* ----------------------------------------------------------------------
@@ -235,10 +209,10 @@ void PairPeriNosb::grow_motion()
    within reach + m) cover every pair within contact reach while no atom has moved m/2 from
    x_c. Beyond that they are chosen again, at the current positions, with the margin skin/4;
    the neighbor list holds the pairs within horizon + skin of its build (positions x_n), so the
-   new choice is complete only while reach + skin/4 + 2 max|x - x_n| <= horizon + skin
-   (contact_reachable()). An iterate farther away is evaluated with the candidates it has and
-   reported as incomplete (-1): the solver does not accept it as converged, and the step's
-   end (contact_end_of_step()) refuses a result that is that far. One global max per call.
+   new choice is complete only while MotionTracker::reachable() (contact_reachable()). An
+   iterate farther away is evaluated with the candidates it has and reported as incomplete
+   (-1): the solver does not accept it as converged, and the step's end (contact_end_of_step())
+   refuses a result that is that far. One global max per call.
 ------------------------------------------------------------------------- */
 
 int PairPeriNosb::contact_follow_motion()
@@ -247,10 +221,10 @@ int PairPeriNosb::contact_follow_motion()
   if (!track_motion || !list || !contact_list_current()) return 0;
   double moved;
   tagint worst;
-  const double dc = motion_since(xcontact, &moved, &worst);
+  const double dc = motion_since(at_choice, &moved, &worst);
   if (!contact_reachable(moved)) return -1;
   if (dc < 0.5 * contact_margin) return 0;
-  build_contact_list(0.25 * neighbor->skin);
+  build_contact_list(MotionTracker::follow_margin(neighbor->skin));
   return 1;
 }
 
@@ -262,7 +236,8 @@ int PairPeriNosb::contact_follow_motion()
 bool PairPeriNosb::contact_reachable(double moved) const
 {
   const double skin = neighbor->skin;
-  return contact_reach() + 0.25 * skin + 2.0 * moved <= contact_horizon() + skin;
+  return MotionTracker::reachable(contact_reach(), MotionTracker::follow_margin(skin), moved,
+                                  contact_horizon(), skin);
 }
 
 /* ----------------------------------------------------------------------
@@ -291,7 +266,7 @@ bool PairPeriNosb::contact_end_of_step(const std::string &cause)
   if (!track_motion || !list) return false;
   double moved;
   tagint worst;
-  motion_since(xneigh, &moved, &worst);
+  motion_since(at_build, &moved, &worst);
   const double skin = neighbor->skin;
   if (!contact_reachable(moved)) {
     // name the atom that moved farthest (the smallest ID among equals, on any rank count)
@@ -308,34 +283,22 @@ bool PairPeriNosb::contact_end_of_step(const std::string &cause)
                update->ntimestep, idall, moved, skin, 0.5 * (hz - contact_reach()) + 0.25 * skin,
                cause.empty() ? "" : "; " + cause, 2.0 * (2.0 * moved + contact_reach() - hz));
   }
-  return moved > 0.125 * skin;
+  return moved > MotionTracker::rebuild_distance(skin);
 }
 
 /* ----------------------------------------------------------------------
-   largest distance of an owned atom from its position in ref (all ranks); also the largest
+   largest distance of an owned atom from its position in `since` (all ranks); also the largest
    distance from the last neighbor list build and (in *worst) the ID of the atom that moved
    farthest from it on this rank if that is the global largest, else MAXTAGINT
 ------------------------------------------------------------------------- */
 
-double PairPeriNosb::motion_since(double **ref, double *moved, tagint *worst)
+double PairPeriNosb::motion_since(const MotionTracker &since, double *moved, tagint *worst)
 {
-  grow_motion();
-  double **x = atom->x;
   const int nlocal = atom->nlocal;
-  double local[2] = {0.0, 0.0}, all[2];
-  int iworst = -1;
-  for (int i = 0; i < nlocal; i++) {
-    double dr = 0.0, dn = 0.0;
-    for (int k = 0; k < 3; k++) {
-      dr += (x[i][k] - ref[i][k]) * (x[i][k] - ref[i][k]);
-      dn += (x[i][k] - xneigh[i][k]) * (x[i][k] - xneigh[i][k]);
-    }
-    local[0] = std::max(local[0], dr);
-    if (dn > local[1]) {
-      local[1] = dn;
-      iworst = i;
-    }
-  }
+  int ifar, iworst;
+  double local[2], all[2];
+  local[0] = since.largest_move2(atom->x, nlocal, nullptr, 0, ifar);
+  local[1] = at_build.largest_move2(atom->x, nlocal, nullptr, 0, iworst);
   MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
   *moved = sqrt(all[1]);
   *worst = (iworst >= 0 && local[1] == all[1]) ? atom->tag[iworst] : MAXTAGINT;
@@ -351,45 +314,9 @@ double PairPeriNosb::motion_since(double **ref, double *moved, tagint *worst)
 
 void PairPeriNosb::build_contact_list(double margin)
 {
-  double **x = atom->x;
   contact_margin = margin;
-  const double rc = contact_reach() + margin;
-  const double rcsq = rc * rc;
-  const int inum = list->inum;
-  int *ilist = list->ilist;
-  int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-
-  if (inum + 1 > contact_maxfirst) {
-    contact_maxfirst = inum + 1;
-    memory->destroy(contact_first);
-    memory->create(contact_first, contact_maxfirst, "pair:contact_first");
-  }
-  int n = 0;
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    contact_first[ii] = n;
-    if (n + jnum > contact_maxneigh) {
-      contact_maxneigh = std::max(2 * contact_maxneigh, n + jnum);
-      memory->grow(contact_neigh, contact_maxneigh, "pair:contact_neigh");
-    }
-    for (int jj = 0; jj < jnum; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double dx = x[i][0] - x[j][0];
-      const double dy = x[i][1] - x[j][1];
-      const double dz = x[i][2] - x[j][2];
-      if (dx * dx + dy * dy + dz * dz < rcsq) contact_neigh[n++] = j;
-    }
-  }
-  contact_first[inum] = n;
-  contact_inum = inum;
+  shortlist.choose(list->inum, list->ilist, list->numneigh, list->firstneigh, NEIGHMASK, atom->x,
+                   contact_reach() + margin);
   contact_lastcall = neighbor->lastcall;
-  if (track_motion || follow_explicit) {
-    grow_motion();
-    const int nall = atom->nlocal + atom->nghost;
-    for (int i = 0; i < nall; i++)
-      for (int k = 0; k < 3; k++) xcontact[i][k] = x[i][k];
-  }
+  if (track_motion || follow_explicit) at_choice.record(atom->x, atom->nlocal + atom->nghost);
 }

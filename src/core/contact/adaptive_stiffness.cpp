@@ -1,6 +1,7 @@
 #include "contact/adaptive_stiffness.h"
 
 #include <algorithm>
+#include <cmath>
 
 using Eigen::Vector3d;
 
@@ -26,6 +27,23 @@ double AdaptiveStiffness::at_iterate(double min_gap)
       update_barrier_stiffness(prev_min_gap, min_gap, kappa_max, kappa_ip_, bbox_diagonal_);
   prev_min_gap = min_gap;
   return k;
+}
+
+void SceneExtent::add(const double *x, double m)
+{
+  for (int d = 0; d < 3; d++) {
+    lo[d] = std::min(lo[d], x[d]);
+    hi[d] = std::max(hi[d], x[d]);
+  }
+  mass[0] += m;
+  mass[1] += 1.0;
+}
+
+double SceneExtent::diagonal() const
+{
+  double diag2 = 0.0;
+  for (int d = 0; d < 3; d++) diag2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+  return std::sqrt(diag2);
 }
 
 double AdaptiveStiffness::balanced(double res_dot_grad, double grad2) const

@@ -54,6 +54,18 @@ class AdaptiveStiffness {
   double prev_min_gap = HUGE_VAL;
 };
 
+// The scales of set_scene() from atoms: the bounding box of their positions and their mean mass.
+// add() the atoms of one rank; the caller reduces lo (min), hi (max) and mass (sum: the masses
+// and the count) over its ranks.
+struct SceneExtent {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  double hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  double mass[2] = {0.0, 0.0};
+  void add(const double *x, double m);
+  double diagonal() const;
+  double mean_mass() const { return mass[0] / mass[1]; }    // NaN without atoms
+};
+
 // The sums of the balance over the owned atoms i < nlocal with (mask[i] & groupbit):
 // res_dot_grad = sum_i res_i V_i . grad_i B and grad2 = |grad B|^2, grad B the gradient of the
 // barrier sum at unit stiffness over the candidates whose distance (valid) is within dmin +

@@ -7,6 +7,12 @@ using Eigen::Vector3d;
 
 namespace PeriSISSM {
 
+CandidateRange::CandidateRange(double dmin, double dhat, double edge0, double skin)
+{
+  longest_edge = edge0 > 0.0 ? std::max(kEdgeFactor * edge0, edge0 + 2.0 * skin) : 0.0;
+  list_cutoff = dmin + dhat + 1.5 * longest_edge;
+}
+
 namespace {
 
   // a bounding sphere (centre, radius) and box (lo, hi)

@@ -98,6 +98,24 @@ struct ContactAtoms {
 std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list, double reach,
                              std::vector<Candidate> &candidates);
 
+// The ranges of the broad phase for a run with contact range r = dmin + dhat and neighbor skin
+// s, from the longest mesh edge L0 at the run's start (0: no mesh edges): the edges are assumed
+// no longer than Lmax = max(kEdgeFactor L0, L0 + 2 s) (0 without edges); a neighbor list of
+// cutoff r + 1.5 Lmax + s at a build gives every pair closer than r + s (the completeness
+// argument above); the other vertices of a pair with an owned vertex lie within that cutoff +
+// Lmax of it (the ghost cutoff needed). A measured edge L stays covered while L + s <= Lmax.
+struct CandidateRange {
+  // edges may stretch by 50% less the skin (by a skin when the skin is large)
+  static constexpr double kEdgeFactor = 1.5;
+  double longest_edge = 0.0;    // Lmax
+  double list_cutoff = 0.0;     // r + 1.5 Lmax (the skin not included)
+
+  CandidateRange() = default;
+  CandidateRange(double dmin, double dhat, double edge0, double skin);
+  double ghost_cutoff(double skin) const { return list_cutoff + skin + longest_edge; }
+  bool covers(double edge, double skin) const { return !(edge + skin > longest_edge); }
+};
+
 }    // namespace PeriSISSM
 
 #endif    // PERISISSM_CONTACT_CANDIDATES_H

@@ -6,6 +6,11 @@ using Eigen::Vector3d;
 
 namespace PeriSISSM {
 
+double default_slip_speed(double angstrom, double femtosecond)
+{
+  return 1.0e-3 * 1.0e10 * angstrom / (1.0e15 * femtosecond);
+}
+
 void build_lagged_pairs(const std::vector<Candidate> &candidates, const double *const *x,
                         const BarrierParameters &prm, std::vector<LaggedPair> &lagged)
 {

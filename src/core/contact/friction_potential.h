@@ -26,6 +26,10 @@ struct LaggedPair {
   FrictionPair pair;
 };
 
+// IPC's default slip speed below which friction is smoothed, 1e-3 m/s, in the velocity units
+// whose angstrom and femtosecond are the given numbers (1 m/s = 1e10 A / 1e15 fs)
+double default_slip_speed(double angstrom, double femtosecond);
+
 // The lagged pairs of the candidates at positions x (their v) with the barrier's parameters.
 void build_lagged_pairs(const std::vector<Candidate> &candidates, const double *const *x,
                         const BarrierParameters &prm, std::vector<LaggedPair> &lagged);

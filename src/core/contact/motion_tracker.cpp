@@ -12,22 +12,41 @@ void MotionTracker::record(const double *const *x, int n)
     for (int d = 0; d < 3; d++) xbuild[3 * i + d] = x[i][d];
 }
 
+double MotionTracker::move2(int i, const double *x) const
+{
+  const double *b = &xbuild[3 * i];
+  double r2 = 0.0;
+  for (int d = 0; d < 3; d++) r2 += (x[d] - b[d]) * (x[d] - b[d]);
+  return r2;
+}
+
 double MotionTracker::largest_move2(const double *const *x, int n, const int *mask, int groupbit,
                                     int &farthest) const
 {
   double most = 0.0;
   farthest = -1;
   for (int i = 0; i < n; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const double *b = &xbuild[3 * i];
-    double r2 = 0.0;
-    for (int d = 0; d < 3; d++) r2 += (x[i][d] - b[d]) * (x[i][d] - b[d]);
+    if (mask && !(mask[i] & groupbit)) continue;
+    const double r2 = move2(i, x[i]);
     if (r2 > most) {
       most = r2;
       farthest = i;
     }
   }
   return most;
+}
+
+bool MotionTracker::moved_at_least2(const double *const *x, int n, double limit2) const
+{
+  for (int i = 0; i < n; i++)
+    if (move2(i, x[i]) >= limit2) return true;
+  return false;
+}
+
+double MotionTracker::reachable_margin(double reach, double moved, double horizon, double skin)
+{
+  const double room = horizon + skin - reach - 2.0 * moved;
+  return std::max(0.0, std::min(follow_margin(skin), room));
 }
 
 // |a + t d|^2 = R^2 (a = xref - xbuild, d = x - xref) for the root in [0, 1] (|a| <= R)

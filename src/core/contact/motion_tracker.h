@@ -7,9 +7,14 @@
 // step may still move the atoms by 3/8 of the skin), and how far along a straight move an atom
 // stays within a given distance of its build position (reach_fraction()).
 //
+// A contact model that chooses its pairs again between neighbor list builds (from a list of
+// cutoff horizon + skin built at x_n, the pairs within reach + m at the current positions) keeps
+// one tracker for x_n and one for where it chose: the choice is complete while no atom has
+// moved m/2 from there and reach + m + 2 max|x - x_n| <= horizon + skin (reachable()).
+//
 // Use: record() at every build; largest_move2() at every force evaluation (the caller takes the
-// maximum over its ranks). Indices are local (owned atoms); they hold until the next build.
-// LAMMPS-free.
+// maximum over its ranks). Indices are local (owned atoms, or owned and ghost atoms when the
+// caller records those); they hold until the next build. LAMMPS-free.
 
 #ifndef PERISISSM_CONTACT_MOTION_TRACKER_H
 #define PERISISSM_CONTACT_MOTION_TRACKER_H
@@ -26,12 +31,35 @@ class MotionTracker {
   static double request_distance(double skin) { return 0.25 * skin; }
   static double rebuild_distance(double skin) { return 0.125 * skin; }
 
+  // pairs chosen again between builds: the margin m = skin/4 they are chosen with
+  static double follow_margin(double skin) { return 0.25 * skin; }
+  // whether pairs chosen within reach + margin from a neighbor list of cutoff horizon + skin are
+  // complete when the atoms have moved by up to `moved` from the list's build (false if not
+  // finite): reach + margin + 2 moved <= horizon + skin
+  static bool reachable(double reach, double margin, double moved, double horizon, double skin)
+  {
+    return reach + margin + 2.0 * moved <= horizon + skin;
+  }
+  // the margin for a choice after the atoms moved by `moved` from the list's build: the largest
+  // in [0, follow_margin(skin)] that reachable() allows, horizon + skin - reach - 2 moved
+  static double reachable_margin(double reach, double moved, double horizon, double skin);
+  // whether a run whose neighbor lists keep every move below skin/2 (LAMMPS's own rebuilds) can
+  // choose its pairs with follow_margin(skin): reach + skin/4 <= horizon
+  static bool followable(double reach, double horizon, double skin)
+  {
+    return reach + follow_margin(skin) <= horizon;
+  }
+
   // the positions x[0 .. n - 1] at a build
   void record(const double *const *x, int n);
-  // the largest squared distance of an atom i < n with (mask[i] & groupbit) from where it was at
-  // the build, and that atom (farthest, -1: none)
+  // the largest squared distance of an atom i < n with (mask[i] & groupbit) (every atom i < n
+  // when mask is nullptr) from where it was at the build, and that atom (farthest, -1: none; of
+  // equals the first)
   double largest_move2(const double *const *x, int n, const int *mask, int groupbit,
                        int &farthest) const;
+  // whether an atom i < n is at least sqrt(limit2) from where it was at the build (stops at the
+  // first)
+  bool moved_at_least2(const double *const *x, int n, double limit2) const;
   // For atom i on the straight move from xref to x (xref within R of its build position): the
   // largest fraction t in [0, 1] with |xref + t (x - xref) - xbuild| <= R, times (1 - 1e-12);
   // 1 when x is within R too (the segment is inside the ball when both ends are). from: the
@@ -65,11 +93,14 @@ class MotionTracker {
     return r;
   }
 
-  // the positions kept (3 per atom)
+  // the positions kept (3 per atom); clear() forgets them
   std::size_t size() const { return xbuild.size() / 3; }
+  void clear() { xbuild.clear(); }
 
  private:
   std::vector<double> xbuild;
+  // the squared distance of x (atom i) from its build position
+  double move2(int i, const double *x) const;
 };
 
 }    // namespace PeriSISSM

@@ -45,4 +45,12 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
   return t_pairs;
 }
 
+void scale_move(const double *const *xref, double **x, int n, const int *mask, int groupbit,
+                double t)
+{
+  for (int i = 0; i < n; i++)
+    if (mask[i] & groupbit)
+      for (int k = 0; k < 3; k++) x[i][k] = xref[i][k] + t * (x[i][k] - xref[i][k]);
+}
+
 }    // namespace PeriSISSM

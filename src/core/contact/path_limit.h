@@ -19,6 +19,11 @@ namespace PeriSISSM {
 double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
                   const double *const *x, double dmin, CandidateDistances *known);
 
+// The move cut to the fraction t: x = xref + t (x - xref) for the atoms i < n with
+// (mask[i] & groupbit).
+void scale_move(const double *const *xref, double **x, int n, const int *mask, int groupbit,
+                double t);
+
 }    // namespace PeriSISSM
 
 #endif    // PERISISSM_CONTACT_PATH_LIMIT_H

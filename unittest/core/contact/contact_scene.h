@@ -2,7 +2,8 @@
 // spacing h, each square cut along a diagonal) facing each other across a gap, the second
 // shifted sideways so that its vertices do not lie above the first's, plus a few volumetric
 // particles between them. All atoms are owned (no ghosts), IDs are 1-based in a shuffled order,
-// and the neighbor list is the full brute-force list within a cutoff.
+// and the neighbor list is the full brute-force list within a cutoff. rows_of(): positions as
+// the double ** the core takes.
 
 #ifndef PERISISSM_CONTACT_SCENE_H
 #define PERISISSM_CONTACT_SCENE_H
@@ -106,6 +107,14 @@ struct Scene {
     return v;
   }
 };
+
+// positions as rows (double **)
+inline std::vector<double *> rows_of(std::vector<std::array<double, 3>> &p)
+{
+  std::vector<double *> r;
+  for (auto &q : p) r.push_back(q.data());
+  return r;
+}
 
 // two 4 x 4 sheets of unit spacing, the second at height gap shifted by (0.4, 0.3), and two
 // particles between them at height z (the second at (1.6, y2)); the list within cutoff, the IDs

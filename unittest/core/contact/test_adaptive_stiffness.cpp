@@ -2,7 +2,8 @@
 // initial_barrier_stiffness() (kappa_max = 100 kappa_min) and the stiffness starts at the lower
 // one; a restart clamps to them; the doubling only while the smallest gap is tiny and
 // shrinking, capped; the balance minimises |grad E + kappa grad B| inside the bounds; the sums
-// of the balance against a direct computation over the owned atoms of the group.
+// of the balance against a direct computation over the owned atoms of the group; the scene's
+// extent (bounding box diagonal, mean mass) reduced over parts as over the whole.
 
 #include "contact/adaptive_stiffness.h"
 
@@ -123,4 +124,36 @@ TEST(AdaptiveStiffness, BalanceSumsOverTheGroup)
   EXPECT_GT(g2, 0.0);
   EXPECT_NEAR(b.res_dot_grad, rg, 1e-12 * std::fabs(rg));
   EXPECT_NEAR(b.grad2, g2, 1e-12 * g2);
+}
+
+// The scene's extent: the bounding box's diagonal and the mean mass; split between two "ranks"
+// and reduced (min, max, sum) it is the same as over all atoms at once
+TEST(AdaptiveStiffness, SceneExtent)
+{
+  const double x[4][3] = {{0, 0, 0}, {3, 0, 1}, {1, 4, -1}, {2, 2, 11}};
+  const double m[4] = {1.0, 2.0, 3.0, 6.0};
+  SceneExtent one;
+  for (int i = 0; i < 4; i++) one.add(x[i], m[i]);
+  EXPECT_EQ(one.diagonal(), 13.0);    // 3 x 4 x 12
+  EXPECT_EQ(one.mean_mass(), 3.0);
+  SceneExtent a, b, all;
+  a.add(x[0], m[0]);
+  a.add(x[2], m[2]);
+  b.add(x[1], m[1]);
+  b.add(x[3], m[3]);
+  for (int d = 0; d < 3; d++) {
+    all.lo[d] = std::min(a.lo[d], b.lo[d]);
+    all.hi[d] = std::max(a.hi[d], b.hi[d]);
+  }
+  for (int k = 0; k < 2; k++) all.mass[k] = a.mass[k] + b.mass[k];
+  EXPECT_EQ(all.diagonal(), one.diagonal());
+  EXPECT_EQ(all.mean_mass(), one.mean_mass());
+  // a rank without atoms does not move the reduction; no atoms at all: no scales
+  SceneExtent empty;
+  EXPECT_TRUE(std::isnan(empty.mean_mass()));
+  EXPECT_FALSE(empty.diagonal() > 0.0 && empty.mean_mass() > 0.0);
+  for (int d = 0; d < 3; d++) {
+    EXPECT_EQ(std::min(one.lo[d], empty.lo[d]), one.lo[d]);
+    EXPECT_EQ(std::max(one.hi[d], empty.hi[d]), one.hi[d]);
+  }
 }

@@ -3,7 +3,8 @@
 // force over all primitives finds closer than the reach (no pair sharing a vertex, particles
 // that were partners excluded), each once, in canonical vertex order, sorted by kind and IDs;
 // local indices point at the atoms with those IDs; eps, own and counts from the caller's rest
-// shape and owners; a triangle vertex missing from the atoms is reported.
+// shape and owners; a triangle vertex missing from the atoms is reported; the ranges of a run
+// (the list's cutoff finds every candidate).
 
 #include "contact/candidates.h"
 
@@ -201,4 +202,42 @@ TEST(Candidates, ReportsAMissingTriangleVertex)
   };
   std::vector<Candidate> found;
   EXPECT_EQ(find_candidates(atoms, s.list(), 0.5, found), s.tag[12]);
+}
+
+// The run's ranges: Lmax the larger of 1.5 L0 and L0 + 2 skin (0 without edges), the list
+// cutoff r + 1.5 Lmax, the ghost cutoff that + skin + Lmax, an edge covered while L + skin <=
+// Lmax; a list of that cutoff + skin finds the same candidates within r + skin as the full list
+TEST(Candidates, RangeOfARun)
+{
+  const CandidateRange small(0.01, 0.1, 2.0, 0.2);    // 1.5 x 2 = 3 > 2 + 0.4
+  EXPECT_EQ(small.longest_edge, 3.0);
+  EXPECT_DOUBLE_EQ(small.list_cutoff, 0.11 + 4.5);
+  EXPECT_DOUBLE_EQ(small.ghost_cutoff(0.2), 0.11 + 4.5 + 0.2 + 3.0);
+  EXPECT_TRUE(small.covers(2.75, 0.2));
+  EXPECT_FALSE(small.covers(2.85, 0.2));
+  const CandidateRange large(0.0, 0.1, 2.0, 1.5);    // 2 + 3 > 1.5 x 2
+  EXPECT_EQ(large.longest_edge, 5.0);
+  EXPECT_DOUBLE_EQ(large.list_cutoff, 0.1 + 7.5);
+  const CandidateRange none(0.01, 0.1, 0.0, 0.2);
+  EXPECT_EQ(none.longest_edge, 0.0);
+  EXPECT_EQ(none.list_cutoff, 0.01 + 0.1);
+  EXPECT_EQ(none.ghost_cutoff(0.2), 0.01 + 0.1 + 0.2);
+  EXPECT_EQ(CandidateRange().longest_edge, 0.0);
+
+  // the sheets' longest edge is a diagonal; every atom of the scene owned
+  const double dmin = 0.02, dhat = 0.2, skin = 0.1;
+  const CandidateRange range(dmin, dhat, std::sqrt(2.0), skin);
+  for (unsigned seed : {4u, 5u}) {
+    Scene near =
+        PeriSISSMContactTest::facing_sheets(0.25, 0.12, 1.55, range.list_cutoff + skin, seed);
+    Scene all = PeriSISSMContactTest::facing_sheets(0.25, 0.12, 1.55, 100.0, seed);
+    std::vector<Candidate> from_near, from_all;
+    find_candidates(near.atoms(), near.list(), dmin + dhat + skin, from_near);
+    find_candidates(all.atoms(), all.list(), dmin + dhat + skin, from_all);
+    EXPECT_LT(near.flat.size(), all.flat.size());
+    ASSERT_EQ(from_near.size(), from_all.size());
+    EXPECT_GT(from_near.size(), 20u);
+    for (std::size_t k = 0; k < from_near.size(); k++)
+      EXPECT_EQ(key_of(from_near[k]), key_of(from_all[k]));
+  }
 }

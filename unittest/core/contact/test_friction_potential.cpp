@@ -2,7 +2,7 @@
 // sheets and particles: the lagged pairs are the active candidates with lambda > 0; the forces
 // V_i f_i are minus the gradient of the pairs' friction energy in x (central differences); the
 // slip from velocities is v dt; the tally counts the pairs and their work; the blocks are the
-// diagonal blocks of the pairs' Hessians.
+// diagonal blocks of the pairs' Hessians; the default slip speed in LAMMPS's unit systems.
 
 #include "contact/friction_potential.h"
 
@@ -15,6 +15,7 @@
 
 using namespace PeriSISSM;
 using Eigen::Vector3d;
+using PeriSISSMContactTest::rows_of;
 using PeriSISSMContactTest::Scene;
 
 namespace {
@@ -22,13 +23,6 @@ namespace {
 Scene scene()
 {
   return PeriSISSMContactTest::facing_sheets(0.2, 0.1, 1.55, 0.5 + 1.5 * std::sqrt(2.0), 6);
-}
-
-std::vector<double *> rows_of(std::vector<std::array<double, 3>> &p)
-{
-  std::vector<double *> r;
-  for (auto &q : p) r.push_back(q.data());
-  return r;
 }
 
 }    // namespace
@@ -133,4 +127,14 @@ TEST(FrictionPotential, ForcesAreMinusTheGradientOfTheLaggedEnergy)
   for (std::size_t i = 0; i < x.size(); i++)
     for (int m = 0; m < 6; m++)
       EXPECT_NEAR(blk[i][m], ref[i][m], 1e-12 * std::fabs(ref[i][m]) + 1e-300);
+}
+
+// IPC's 1e-3 m/s in LAMMPS's unit systems (force->angstrom and force->femtosecond of each)
+TEST(FrictionPotential, DefaultSlipSpeed)
+{
+  EXPECT_DOUBLE_EQ(default_slip_speed(1.0e-10, 1.0e-15), 1.0e-3);    // si: m/s
+  EXPECT_DOUBLE_EQ(default_slip_speed(1.0e-8, 1.0e-15), 0.1);        // cgs: cm/s
+  EXPECT_DOUBLE_EQ(default_slip_speed(1.0, 1.0e-3), 1.0e-5);         // metal: A/ps
+  EXPECT_DOUBLE_EQ(default_slip_speed(1.0, 1.0), 1.0e-8);            // real: A/fs
+  EXPECT_DOUBLE_EQ(default_slip_speed(1.0e-4, 1.0e-9), 1.0e-3);      // micro: um/us
 }

@@ -1,6 +1,7 @@
 // Tests of the path limit (contact/path_limit.h): with one pair it is that pair's CCD fraction;
 // over many pairs the smallest; the skip by known gaps gives the same fraction as the CCD of
-// every pair; no move, no limit; the scaled move keeps every pair apart (sampled).
+// every pair; no move, no limit; the scaled move keeps every pair apart (sampled); scale_move()
+// moves the group's atoms only.
 
 #include "contact/path_limit.h"
 
@@ -13,18 +14,8 @@
 
 using namespace PeriSISSM;
 using Eigen::Vector3d;
+using PeriSISSMContactTest::rows_of;
 using PeriSISSMContactTest::Scene;
-
-namespace {
-
-std::vector<double *> rows_of(std::vector<std::array<double, 3>> &p)
-{
-  std::vector<double *> r;
-  for (auto &q : p) r.push_back(q.data());
-  return r;
-}
-
-}    // namespace
 
 TEST(PathLimit, OnePairIsItsCcd)
 {
@@ -45,14 +36,10 @@ TEST(PathLimit, OnePairIsItsCcd)
 
 TEST(PathLimit, SheetsPressedTogether)
 {
-  Scene s;
-  s.sheet(4, 1.0, 0.0, 0.0, 0.0);
-  s.sheet(4, 1.0, 0.3, 0.4, 0.3);
-  s.add(1.5, 1.5, 0.15, ContactRole::kParticle);
-  s.finish(1.0 + 1.5 * std::sqrt(2.0), 9);
+  Scene s = PeriSISSMContactTest::facing_sheets(0.3, 0.15, 0.5, 1.0 + 1.5 * std::sqrt(2.0), 9);
   std::vector<Candidate> cands;
   find_candidates(s.atoms(), s.list(), 1.0, cands);
-  // the move: the second sheet down by 0.5 with some noise, the particle sideways
+  // the move: the second sheet down by 0.5 with some noise, the first particle sideways
   std::vector<std::array<double, 3>> end = s.pos;
   std::mt19937_64 rng(2);
   std::normal_distribution<double> n01;
@@ -98,4 +85,29 @@ TEST(PathLimit, SheetsPressedTogether)
       EXPECT_GT(std::sqrt(c.stencil().distance2(y)), dmin);
     }
   }
+}
+
+// The move cut to a fraction: the group's atoms at xref + t (x - xref), the others left at x
+TEST(PathLimit, ScaleMove)
+{
+  std::vector<std::array<double, 3>> ref = {{0, 0, 0}, {1, 1, 1}, {2, -1, 0.5}};
+  std::vector<std::array<double, 3>> x = {{1, 2, -4}, {3, 1, 0}, {5, 5, 5}};
+  const std::vector<std::array<double, 3>> end = x;
+  auto rr = rows_of(ref), rx = rows_of(x);
+  const int mask[3] = {3, 1, 2};
+  scale_move(rr.data(), rx.data(), 3, mask, 1, 0.25);
+  for (int d = 0; d < 3; d++) {
+    EXPECT_EQ(x[0][d], ref[0][d] + 0.25 * (end[0][d] - ref[0][d]));
+    EXPECT_EQ(x[1][d], ref[1][d] + 0.25 * (end[1][d] - ref[1][d]));
+    EXPECT_EQ(x[2][d], end[2][d]);
+  }
+  EXPECT_EQ(x[0][1], 0.5);
+  EXPECT_EQ(x[1][0], 1.5);
+  // t = 0: back at the reference; t = 1: unchanged
+  scale_move(rr.data(), rx.data(), 3, mask, 2, 0.0);
+  EXPECT_EQ(x[2], ref[2]);
+  EXPECT_EQ(x[0], ref[0]);
+  const auto before = x;
+  scale_move(rr.data(), rx.data(), 3, mask, 1, 1.0);
+  EXPECT_EQ(x, before);
 }
