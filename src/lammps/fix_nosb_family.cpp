@@ -17,6 +17,8 @@
    with the atoms and is kept in restart files. Local indices of the partners (closest image)
    are refreshed after every neighbor list build; a partner that no longer exists (deleted or
    lost atom) counts as a broken bond, one that exists beyond the ghost cutoff is an error.
+   The LAMMPS-free parts: core peri/family_build.h (partners, weights), peri/family_ids.h
+   (partners by ID), peri/family_records.h (exchange and restart records).
 
    Blow-up guard and stable time step: fix_nosb_family_guard.cpp.
 ------------------------------------------------------------------------- */
@@ -25,6 +27,9 @@
 
 #include "fix_nosb_mesh.h"
 
+#include "peri/family_build.h"
+#include "peri/family_ids.h"
+#include "peri/family_records.h"
 #include "peri/model.h"
 #include "peri/stable_step.h"
 
@@ -41,24 +46,11 @@
 #include "update.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
-#include <cstring>
-#include <limits>
 #include <vector>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
-
-// per-atom doubles after the bonds in exchange and restart buffers:
-// K^-1, regular, vinit, lamref, owntag
-static constexpr int NATOMDATA = 13;
-// doubles per bond in exchange and restart buffers: partner tag, omega
-static constexpr int NBONDDATA = 2;
-// global restart data: format version, built, maxpartner, periodic (3), box0 (6), tagmax0
-static constexpr int NGLOBAL = 13;
-// format of the restart data (global and per atom); 2: the first one with a version
-static constexpr int RESTART_VERSION = 2;
 
 /* ---------------------------------------------------------------------- */
 
@@ -74,7 +66,7 @@ FixNosbFamily::FixNosbFamily(LAMMPS *lmp, int narg, char **arg) :
   restart_peratom = 1;
   create_attribute = 1;
   maxexchange_dynamic = 1;
-  maxexchange = 1 + NATOMDATA + NBONDDATA * maxpartner;
+  maxexchange = PeriSISSM::family_record_size(maxpartner);
   comm_forward = 1;    // sdiag (stable_time_steps)
 
   grow_arrays(atom->nmax);
@@ -185,40 +177,24 @@ void FixNosbFamily::build_families()
 {
   double **x = atom->x;
   double **x0 = atom->x0;
-  double *vfrac = atom->vfrac;
   int *type = atom->type;
   tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
 
   neighbor->build_one(list);
-  const int inum = list->inum;
 
-  // mesh vertices are bonded only within their own mesh (separate layers, a cloth and the
-  // body it lies on, are never bonded); membranes take their weights from their thickness
+  // partners of each owned atom (core peri/family_build.h): mesh vertices only within their
+  // own mesh; membranes take their weights from their thickness
+
   FixNosbMesh *meshfix = FixNosbMesh::find(lmp);
   const int *mesh = meshfix ? meshfix->mesh : nullptr;
   const double *thick = meshfix ? meshfix->thickness : nullptr;
-  int *ilist = list->ilist;
-  int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-
-  // partners of each owned atom: (tag, local index of the image found by the list)
-
   std::vector<std::vector<std::pair<tagint, int>>> fam(nlocal);
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const int itype = type[i];
-    int *jlist = firstneigh[i];
-    for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      if (mesh && mesh[i] != mesh[j]) continue;
-      const double dx = x[j][0] - x[i][0];
-      const double dy = x[j][1] - x[i][1];
-      const double dz = x[j][2] - x[i][2];
-      const double delta = model->horizon(itype, type[j]);
-      if (dx * dx + dy * dy + dz * dz <= delta * delta) fam[i].emplace_back(tag[j], j);
-    }
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    PeriSISSM::gather_partners(*model, i, list->firstneigh[i], list->numneigh[i], NEIGHMASK, x[0],
+                               type, tag, mesh, fam[i]);
     const tagint twice = PeriSISSM::order_family(fam[i]);
     if (twice)
       error->one(FLERR,
@@ -231,7 +207,7 @@ void FixNosbFamily::build_families()
   for (int i = 0; i < nlocal; i++) maxone = std::max(maxone, (int) fam[i].size());
   MPI_Allreduce(&maxone, &maxpartner, 1, MPI_INT, MPI_MAX, world);
   maxpartner = std::max(maxpartner, 1);
-  maxexchange = 1 + NATOMDATA + NBONDDATA * maxpartner;
+  maxexchange = PeriSISSM::family_record_size(maxpartner);
 
   memory->destroy(partner);
   memory->destroy(omega);
@@ -261,27 +237,12 @@ void FixNosbFamily::build_families()
 
   bigint nbonds = 0, nsingular = 0;
   for (int i = 0; i < nlocal; i++) {
-    const int itype = type[i];
-    npartner[i] = (int) fam[i].size();
-    vinit[i] = 0.0;
-    for (int b = 0; b < npartner[i]; b++) {
-      const int j = fam[i][b].second;
-      double xi[3];
-      PeriSISSM::reference_bond(x0[0], box, i, j, xi);
-      const double r = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-      if (r == 0.0)
-        error->one(FLERR, "Pair peri/nosb: atoms {} and {} are at the same position", tag[i],
-                   tag[j]);
-      omega[i][b] = thick
-          ? model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j], thick[i], thick[j])
-          : model->bond_weight(r, itype, type[j], vfrac[i], vfrac[j]);
-      partner[i][b] = fam[i][b].first;
-      jlocal[i][b] = j;
-      vinit[i] += omega[i][b];
-    }
-    lamref[i] = 0.0;
-    owntag[i] = tag[i];
-    PeriSISSM::update_shape(fview, x0[0], box, i, model->reference_normal(fview, itype, i));
+    const int b = PeriSISSM::store_family(*model, rows(), i, tag[i], fam[i], x0[0], box, type,
+                                          atom->vfrac, thick);
+    if (b >= 0)
+      error->one(FLERR, "Pair peri/nosb: atoms {} and {} are at the same position", tag[i],
+                 tag[fam[i][b].second]);
+    PeriSISSM::update_shape(fview, x0[0], box, i, model->reference_normal(fview, type[i], i));
     nbonds += npartner[i];
     if (!kregular[i]) nsingular++;
   }
@@ -345,6 +306,7 @@ double FixNosbFamily::damage(int i) const
 
 /* ----------------------------------------------------------------------
    local indices of the partners of all owned atoms: closest image of each partner
+   (bookkeeping by ID: core peri/family_ids.h)
 ------------------------------------------------------------------------- */
 
 void FixNosbFamily::refresh_local_indices()
@@ -352,21 +314,15 @@ void FixNosbFamily::refresh_local_indices()
   if (neighbor_rebuilt) neighbor_rebuilt();
   if (!built) return;
   const int nlocal = atom->nlocal;
-  tagint *tag = atom->tag;
+  const PeriSISSM::FamilyArrays<tagint> a = rows();
 
   // families refer to atom IDs: renumbered IDs would silently pair the wrong atoms, and so
   // would an ID of a deleted atom that create_atoms gave to a new one
 
-  int flags[2] = {0, 0}, flags_all[2];
   std::vector<tagint> reused;
-  for (int i = 0; i < nlocal; i++) {
-    if (owntag[i] == 0) {    // atom created after the families (no bonds of its own)
-      owntag[i] = tag[i];
-      if (tag[i] <= tagmax0) reused.push_back(tag[i]);
-    }
-    if (owntag[i] != tag[i]) flags[0] = 1;
-  }
+  int flags[2] = {PeriSISSM::adopt_ids(a, nlocal, atom->tag, tagmax0, reused) ? 1 : 0, 0};
   flags[1] = (int) reused.size();
+  int flags_all[2];
   MPI_Allreduce(flags, flags_all, 2, MPI_INT, MPI_MAX, world);
   if (flags_all[0])
     error->all(FLERR,
@@ -376,22 +332,13 @@ void FixNosbFamily::refresh_local_indices()
   if (flags_all[1]) break_reused(reused);
 
   std::vector<std::pair<int, int>> missing;    // (atom, slot) whose partner is not here
-  for (int i = 0; i < nlocal; i++) {
-    for (int b = 0; b < npartner[i]; b++) {
-      const tagint jtag = partner[i][b];
-      if (jtag == 0) {
-        jlocal[i][b] = -1;
-        continue;
-      }
-      const int j = local_index(jtag);
-      if (j < 0) {
-        jlocal[i][b] = -1;
-        missing.emplace_back(i, b);
-        continue;
-      }
-      jlocal[i][b] = domain->closest_image(i, j);
-    }
-  }
+  PeriSISSM::locate_partners(
+      a, nlocal,
+      [&](int i, tagint jtag) {
+        const int j = local_index(jtag);
+        return j < 0 ? -1 : domain->closest_image(i, j);
+      },
+      missing);
 
   int nmissing = (int) missing.size(), nmissing_all;
   MPI_Allreduce(&nmissing, &nmissing_all, 1, MPI_INT, MPI_SUM, world);
@@ -433,28 +380,14 @@ std::vector<tagint> FixNosbFamily::allgather_tags(const std::vector<tagint> &min
 void FixNosbFamily::break_reused(const std::vector<tagint> &reused)
 {
   std::vector<tagint> all = allgather_tags(reused);
-  const int ntotal = (int) all.size();
   std::sort(all.begin(), all.end());
-
-  int nbroken = 0;
-  for (int i = 0; i < atom->nlocal; i++) {
-    int broke = 0;
-    for (int b = 0; b < npartner[i]; b++) {
-      if (partner[i][b] && std::binary_search(all.begin(), all.end(), partner[i][b])) {
-        partner[i][b] = 0;
-        broke = 1;
-        nbroken++;
-      }
-    }
-    if (broke) reshape.push_back(i);
-  }
-  int nbroken_all;
+  int nbroken = PeriSISSM::break_bonds_to(rows(), atom->nlocal, all, reshape), nbroken_all;
   MPI_Allreduce(&nbroken, &nbroken_all, 1, MPI_INT, MPI_SUM, world);
   if (comm->me == 0 && nbroken_all)
     error->warning(FLERR,
                    "Pair peri/nosb: {} new atoms reuse IDs of deleted atoms; the {} bond ends "
                    "to those IDs count as broken",
-                   ntotal, nbroken_all);
+                   all.size(), nbroken_all);
 }
 
 /* ----------------------------------------------------------------------
@@ -470,29 +403,21 @@ void FixNosbFamily::resolve_missing(const std::vector<std::pair<int, int>> &miss
   for (int k = 0; k < nme; k++) mine[k] = partner[missing[k].first][missing[k].second];
   int first = 0;
   const std::vector<tagint> all = allgather_tags(mine, &first);
-  const int ntotal = (int) all.size();
 
   // which of the wanted tags are owned somewhere
 
-  std::vector<int> own(ntotal, 0), exists(ntotal, 0);
-  for (int k = 0; k < ntotal; k++) {
+  std::vector<int> own(all.size(), 0), exists(all.size(), 0);
+  for (size_t k = 0; k < all.size(); k++) {
     const int j = local_index(all[k]);
     if (j >= 0 && j < atom->nlocal) own[k] = 1;
   }
-  MPI_Allreduce(own.data(), exists.data(), ntotal, MPI_INT, MPI_MAX, world);
-
-  int nbroken = 0;
-  for (int k = 0; k < nme; k++) {
-    const int i = missing[k].first;
-    if (exists[first + k]) missing_partner(i, all[first + k]);
-    partner[i][missing[k].second] = 0;
-    nbroken++;
-  }
+  MPI_Allreduce(own.data(), exists.data(), (int) all.size(), MPI_INT, MPI_MAX, world);
   for (int k = 0; k < nme; k++)
-    if (k == 0 || missing[k].first != missing[k - 1].first) reshape.push_back(missing[k].first);
+    if (exists[first + k]) missing_partner(missing[k].first, all[first + k]);
+  PeriSISSM::break_missing(rows(), missing, reshape);
 
   int nbroken_all;
-  MPI_Allreduce(&nbroken, &nbroken_all, 1, MPI_INT, MPI_SUM, world);
+  MPI_Allreduce(&nme, &nbroken_all, 1, MPI_INT, MPI_SUM, world);
   if (comm->me == 0)
     error->warning(FLERR,
                    "Pair peri/nosb: {} bond ends lost their partner atom (deleted or lost); "
@@ -550,76 +475,35 @@ void FixNosbFamily::grow_arrays(int nmax)
   memory->grow(sdiag, nmax, "nosb/family:sdiag");
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   the per-atom arrays as the core's records see them (core peri/family_records.h); an atom
+   created after the families exist has no bonds; exchange and restart records hold the
+   unbroken bonds and the per-atom data
+------------------------------------------------------------------------- */
+
+PeriSISSM::FamilyArrays<tagint> FixNosbFamily::rows() const
+{
+  return {npartner, partner, omega, jlocal, kinv, kregular, vinit, lamref, owntag};
+}
 
 void FixNosbFamily::copy_arrays(int i, int j, int /*delflag*/)
 {
-  npartner[j] = npartner[i];
-  for (int b = 0; b < npartner[i]; b++) {
-    partner[j][b] = partner[i][b];
-    omega[j][b] = omega[i][b];
-    jlocal[j][b] = jlocal[i][b];
-  }
-  memcpy(kinv[j], kinv[i], sizeof(double) * 9);
-  kregular[j] = kregular[i];
-  vinit[j] = vinit[i];
-  lamref[j] = lamref[i];
-  owntag[j] = owntag[i];
+  PeriSISSM::copy_family(rows(), i, j);
 }
-
-/* ----------------------------------------------------------------------
-   an atom created after the families exist has no bonds
-------------------------------------------------------------------------- */
 
 void FixNosbFamily::set_arrays(int i)
 {
-  npartner[i] = 0;
-  for (int k = 0; k < 9; k++) kinv[i][k] = 0.0;
-  kregular[i] = 0;
-  vinit[i] = 0.0;
-  lamref[i] = 0.0;
-  owntag[i] = 0;
+  PeriSISSM::clear_family(rows(), i);
 }
-
-/* ----------------------------------------------------------------------
-   pack unbroken bonds and per-atom data: n, n x (tag, omega), K^-1, regular, vinit, lamref,
-   owntag
-------------------------------------------------------------------------- */
 
 int FixNosbFamily::pack_exchange(int i, double *buf)
 {
-  int m = 1, n = 0;
-  for (int b = 0; b < npartner[i]; b++) {
-    if (partner[i][b] == 0) continue;
-    buf[m++] = ubuf(partner[i][b]).d;
-    buf[m++] = omega[i][b];
-    n++;
-  }
-  buf[0] = n;
-  for (int k = 0; k < 9; k++) buf[m++] = kinv[i][k];
-  buf[m++] = kregular[i];
-  buf[m++] = vinit[i];
-  buf[m++] = lamref[i];
-  buf[m++] = ubuf(owntag[i]).d;
-  return m;
+  return PeriSISSM::pack_family(rows(), i, buf);
 }
-
-/* ---------------------------------------------------------------------- */
 
 int FixNosbFamily::unpack_exchange(int nlocal, double *buf)
 {
-  int m = 0;
-  npartner[nlocal] = static_cast<int>(buf[m++]);
-  for (int b = 0; b < npartner[nlocal]; b++) {
-    partner[nlocal][b] = (tagint) ubuf(buf[m++]).i;
-    omega[nlocal][b] = buf[m++];
-  }
-  for (int k = 0; k < 9; k++) kinv[nlocal][k] = buf[m++];
-  kregular[nlocal] = static_cast<int>(buf[m++]);
-  vinit[nlocal] = buf[m++];
-  lamref[nlocal] = buf[m++];
-  owntag[nlocal] = (tagint) ubuf(buf[m++]).i;
-  return m;
+  return PeriSISSM::unpack_family(rows(), nlocal, buf);
 }
 
 /* ----------------------------------------------------------------------
@@ -628,23 +512,12 @@ int FixNosbFamily::unpack_exchange(int nlocal, double *buf)
 
 void FixNosbFamily::write_restart(FILE *fp)
 {
-  double list[NGLOBAL] = {(double) RESTART_VERSION,
-                          (double) built,
-                          (double) maxpartner,
-                          (double) box.periodic[0],
-                          (double) box.periodic[1],
-                          (double) box.periodic[2],
-                          box.box[0],
-                          box.box[1],
-                          box.box[2],
-                          box.box[3],
-                          box.box[4],
-                          box.box[5],
-                          ubuf(tagmax0).d};
+  double list[PeriSISSM::kFamilyGlobals];
+  PeriSISSM::pack_family_globals(built, maxpartner, box, tagmax0, list);
   if (comm->me == 0) {
-    int size = NGLOBAL * sizeof(double);
+    int size = PeriSISSM::kFamilyGlobals * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), NGLOBAL, fp);
+    fwrite(list, sizeof(double), PeriSISSM::kFamilyGlobals, fp);
   }
 }
 
@@ -655,18 +528,13 @@ void FixNosbFamily::write_restart(FILE *fp)
 void FixNosbFamily::restart(char *buf)
 {
   auto list = (double *) buf;
-  if (list[0] != (double) RESTART_VERSION)
+  if (!PeriSISSM::unpack_family_globals(list, built, maxpartner, box, tagmax0))
     error->all(FLERR,
                "Pair peri/nosb: the restart file holds bond families of another format version "
                "({} instead of {}): write the restart file again with this build (or use the "
                "build that wrote it)",
-               list[0], (int) RESTART_VERSION);
-  built = static_cast<int>(list[1]);
-  maxpartner = std::max(static_cast<int>(list[2]), 1);
-  for (int k = 0; k < 3; k++) box.periodic[k] = static_cast<int>(list[3 + k]);
-  for (int k = 0; k < 6; k++) box.box[k] = list[6 + k];
-  tagmax0 = (tagint) ubuf(list[12]).i;
-  maxexchange = 1 + NATOMDATA + NBONDDATA * maxpartner;
+               list[0], PeriSISSM::kFamilyRestartVersion);
+  maxexchange = PeriSISSM::family_record_size(maxpartner);
 
   // second dimension of the 2d arrays changes: reallocate before per-atom data arrive
 
@@ -701,17 +569,12 @@ void FixNosbFamily::unpack_restart(int nlocal, int nth)
 
 int FixNosbFamily::maxsize_restart()
 {
-  return 2 + NATOMDATA + NBONDDATA * maxpartner;
+  return 1 + PeriSISSM::family_record_size(maxpartner);
 }
-
-/* ---------------------------------------------------------------------- */
 
 int FixNosbFamily::size_restart(int i)
 {
-  int n = 0;
-  for (int b = 0; b < npartner[i]; b++)
-    if (partner[i][b]) n++;
-  return 2 + NATOMDATA + NBONDDATA * n;
+  return 1 + PeriSISSM::family_record_size(PeriSISSM::unbroken_bonds(rows(), i));
 }
 
 /* ---------------------------------------------------------------------- */

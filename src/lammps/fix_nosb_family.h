@@ -25,7 +25,8 @@ FixStyle(nosb/family,FixNosbFamily);
 
 namespace PeriSISSM {
 class Model;
-}
+template <class Id> struct FamilyArrays;
+}    // namespace PeriSISSM
 
 namespace LAMMPS_NS {
 
@@ -119,6 +120,7 @@ class FixNosbFamily : public Fix {
   std::string likely_cause(int converged);
   void missing_partner(int i, tagint jtag);
   int local_index(tagint) const;
+  PeriSISSM::FamilyArrays<tagint> rows() const;    // the per-atom arrays (core peri/)
 };
 
 }    // namespace LAMMPS_NS

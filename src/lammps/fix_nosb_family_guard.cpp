@@ -12,12 +12,14 @@
    which wrap around for a box that exploded within one step, and then writes outside its bin
    array: signal 11 in NBinStandard::bin_atoms) stop the run with an error that names the step,
    the worst atom (the same on any number of ranks) and the likely cause, judged from the time
-   step against the estimate of stable_time_steps(). Cost: one pass over the owned atoms and
-   one MPI_Allreduce of 8 doubles per step.
+   step against the estimate of stable_time_steps(); its arithmetic is core
+   peri/blowup_guard.h. Cost: one pass over the owned atoms and one MPI_Allreduce of 8 doubles
+   per step.
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_family.h"
 
+#include "peri/blowup_guard.h"
 #include "peri/model.h"
 #include "peri/stable_step.h"
 
@@ -29,7 +31,6 @@
 #include "update.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -60,18 +61,15 @@ void FixNosbFamily::stable_time_steps(double *dt)
   }
   comm->forward_comm(this);
 
+  // partners through the atom map (any image carries s_j), so that this also works between
+  // runs, when jlocal may be stale
+  const auto locate = [&](tagint id) {
+    return local_index(id);
+  };
   for (int i = 0; i < nlocal; i++) {
-    double d = 0.0;
-    if (built) {
-      // partners through the atom map (any image carries s_j), so that this also works
-      // between runs, when jlocal may be stale
-      for (int b = 0; b < npartner[i]; b++) {
-        if (partner[i][b] == 0) continue;
-        const int j = local_index(partner[i][b]);
-        if (j < 0) continue;
-        d += omega[i][b] * (sdiag[i] + sdiag[j]);
-      }
-    }
+    const double d = built
+        ? PeriSISSM::stable_step_coupling(npartner[i], partner[i], omega[i], sdiag, i, locate)
+        : 0.0;
     dt[i] = PeriSISSM::stable_time_step(rho[i], d);
   }
 }
@@ -109,61 +107,24 @@ void FixNosbFamily::check_motion(int converged)
   double **f = atom->f;
   tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
-  const double *lo = domain->boxlo;
-  const double *hinv = domain->h_inv;
-  const int *pbc = domain->periodicity;
-  const int anypbc = pbc[0] || pbc[1] || pbc[2];
 
-  // maxima over all ranks: -(smallest ID with a non-finite value), -(smallest ID beyond one
-  // periodic image), -min and max of the finite positions
+  // the scan (core peri/blowup_guard.h) reduced over all ranks, and the neighbor bins LAMMPS
+  // will need if it rebuilds its lists now (bins of the default size, half the neighbor cutoff)
 
-  constexpr double NONE = -DBL_MAX;
-  double one[8] = {NONE, NONE, NONE, NONE, NONE, NONE, NONE, NONE}, all[8];
-  for (int i = 0; i < nlocal; i++) {
-    const double *xi = x[i];
-    const double sum =
-        xi[0] + xi[1] + xi[2] + v[i][0] + v[i][1] + v[i][2] + f[i][0] + f[i][1] + f[i][2];
-    if (!std::isfinite(sum)) {
-      one[0] = std::max(one[0], -(double) tag[i]);
-      continue;
-    }
-    if (anypbc) {
-      // fractional coordinates: Domain::pbc() can bring back atoms within [-1, 2)
-      const double d0 = xi[0] - lo[0], d1 = xi[1] - lo[1], d2 = xi[2] - lo[2];
-      const double l[3] = {hinv[0] * d0 + hinv[5] * d1 + hinv[4] * d2, hinv[1] * d1 + hinv[3] * d2,
-                           hinv[2] * d2};
-      for (int d = 0; d < 3; d++)
-        if (pbc[d] && (l[d] < -1.0 || l[d] >= 2.0)) one[1] = std::max(one[1], -(double) tag[i]);
-    }
-    for (int d = 0; d < 3; d++) {
-      one[2 + d] = std::max(one[2 + d], -xi[d]);
-      one[5 + d] = std::max(one[5 + d], xi[d]);
-    }
-  }
-  MPI_Allreduce(one, all, 8, MPI_DOUBLE, MPI_MAX, world);
+  double one[PeriSISSM::kGuardScan], all[PeriSISSM::kGuardScan];
+  PeriSISSM::clear_guard_scan(one);
+  const PeriSISSM::PeriodicCell cell = {domain->boxlo, domain->h_inv, domain->periodicity};
+  for (int i = 0; i < nlocal; i++)
+    PeriSISSM::scan_atom_motion(x[i], v[i], f[i], (double) tag[i], cell, one);
+  MPI_Allreduce(one, all, PeriSISSM::kGuardScan, MPI_DOUBLE, MPI_MAX, world);
 
-  // neighbor bins LAMMPS will need if it rebuilds its lists now: the box of a non-periodic
-  // dimension is reset to the atoms (shrink-wrapped) or stays fixed (atoms beyond a fixed
-  // boundary are lost, an error of LAMMPS); bins of the default size, half the neighbor
-  // cutoff, over the box plus the ghost cutoff at both ends
-
-  double span[3], bins = 1.0;
+  double span[3];
   const double binsize = neighbor->binsizeflag ? neighbor->binsize_user
                                                : 0.5 * neighbor->cutneighmax;
-  for (int d = 0; d < 3; d++) {
-    double blo = domain->boxlo[d], bhi = domain->boxhi[d];
-    if (!pbc[d] && all[5 + d] > NONE) {
-      // s: the atoms' extent; m: at least the box it has now (LAMMPS: the initial box)
-      if (domain->boundary[d][0] == 2) blo = -all[2 + d];
-      if (domain->boundary[d][0] == 3) blo = std::min(blo, -all[2 + d]);
-      if (domain->boundary[d][1] == 2) bhi = all[5 + d];
-      if (domain->boundary[d][1] == 3) bhi = std::max(bhi, all[5 + d]);
-    }
-    span[d] = bhi - blo;
-    if (binsize > 0.0) bins *= (span[d] + 2.0 * comm->cutghost[d]) / binsize + 4.0;
-  }
-  constexpr double MAXBINS = 1073741824.0;    // 2^30: half of what LAMMPS can index
-  const int which = (all[0] > NONE) ? 1 : (all[1] > NONE) ? 2 : (bins > MAXBINS) ? 3 : 0;
+  const double bins =
+      PeriSISSM::neighbor_bins(domain->boxlo, domain->boxhi, domain->boundary, domain->periodicity,
+                               comm->cutghost, binsize, all, span);
+  const int which = PeriSISSM::blowup_kind(all, bins);
   if (!which) return;
 
   // the worst atom: the smallest ID for the first two kinds, else the one farthest outside
@@ -176,9 +137,7 @@ void FixNosbFamily::check_motion(int converged)
     double far = -1.0;
     tagint id = 0;
     for (int i = 0; i < nlocal; i++) {
-      double out = 0.0;
-      for (int d = 0; d < 3; d++)
-        out = std::max(out, std::max(domain->boxlo[d] - x[i][d], x[i][d] - domain->boxhi[d]));
+      const double out = PeriSISSM::distance_outside(x[i], domain->boxlo, domain->boxhi);
       if (out > far || (out == far && tag[i] < id)) {
         far = out;
         id = tag[i];
@@ -192,39 +151,20 @@ void FixNosbFamily::check_motion(int converged)
 
   // what the owner of that atom knows (position, velocity, which values are not finite)
 
-  double det[7] = {NONE, NONE, NONE, NONE, NONE, NONE, NONE}, detall[7];
-  for (int i = 0; i < nlocal; i++) {
-    if (tag[i] != worst) continue;
-    int bad = 0;
-    for (int d = 0; d < 3; d++) {
-      if (!std::isfinite(x[i][d])) bad |= 1;
-      if (!std::isfinite(v[i][d])) bad |= 2;
-      if (!std::isfinite(f[i][d])) bad |= 4;
-    }
-    det[6] = bad;
-    for (int d = 0; d < 3; d++) {
-      det[d] = (bad & 1) ? 0.0 : x[i][d];
-      det[3 + d] = (bad & 2) ? 0.0 : v[i][d];
-    }
-  }
+  double det[7], detall[7];
+  std::fill(det, det + 7, PeriSISSM::kGuardNone);
+  for (int i = 0; i < nlocal; i++)
+    if (tag[i] == worst) PeriSISSM::worst_atom_record(x[i], v[i], f[i], det);
   MPI_Allreduce(det, detall, 7, MPI_DOUBLE, MPI_MAX, world);
   const double speed = sqrt(detall[3] * detall[3] + detall[4] * detall[4] + detall[5] * detall[5]);
 
   const std::string cause = likely_cause(converged);
   const bigint step = update->ntimestep;
   if (which == 1) {
-    const int bad = (int) detall[6];
-    std::vector<std::string> names;
-    if (bad & 1) names.emplace_back("position");
-    if (bad & 2) names.emplace_back("velocity");
-    if (bad & 4) names.emplace_back("force");
-    std::string what;
-    for (size_t k = 0; k < names.size(); k++)
-      what += (k == 0 ? "" : (k + 1 == names.size() ? " and " : ", ")) + names[k];
     error->all(FLERR,
                "Pair peri/nosb: the run is unstable: at step {} atom {} has a non-finite {}; "
                "likely cause: {}",
-               step, worst, what, cause);
+               step, worst, PeriSISSM::nonfinite_names((int) detall[6]), cause);
   } else if (which == 2) {
     error->all(FLERR,
                "Pair peri/nosb: the run is unstable: at step {} atom {} is at ({:.4g}, {:.4g}, "

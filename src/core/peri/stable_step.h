@@ -33,6 +33,23 @@ double stable_step_stiffness(const Material &material, const double Kinv[9], dou
 // dt_i from rho_i and d_i = sum_j omega_ij (s_i + s_j); +infinity when d_i <= 0.
 double stable_time_step(double rho, double d);
 
+// d_i = sum_j omega_ij (s_i + s_j) over the unbroken bonds of particle i, in slot order.
+// Inputs: n bond slots, partner IDs (0 = broken), omega per slot; s per local row; row i of the
+//         particle; locate(ID) the local row of any image of a partner, -1 when it is not here
+//         (the bond then does not count). Id is the integer type of particle IDs.
+template <class Id, class Locate>
+double stable_step_coupling(int n, const Id *partner, const double *omega, const double *s, int i,
+                            Locate locate)
+{
+  double d = 0.0;
+  for (int b = 0; b < n; b++) {
+    if (partner[b] == 0) continue;
+    const int j = locate(partner[b]);
+    if (j >= 0) d += omega[b] * (s[i] + s[j]);
+  }
+  return d;
+}
+
 }    // namespace PeriSISSM
 
 #endif    // PERISISSM_PERI_STABLE_STEP_H
