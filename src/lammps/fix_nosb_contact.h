@@ -77,7 +77,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double longest_edge;    // that assumption (this run)
   double list_cutoff;     // dmin + dhat + 1.5 longest_edge (neighbor skin added by LAMMPS)
   class NeighList *list;
-  class FixNosbMesh *meshfix;      // nullptr without meshes
+  class MeshView *meshfix;         // nullptr without meshes
   class BondPartners *partners;    // pair peri/nosb's bond partners; nullptr if none
   bigint nparticles;               // volumetric (non-mesh) particles in the group
 

@@ -23,7 +23,7 @@
 
 #include "fix_nosb_family.h"
 
-#include "fix_nosb_mesh.h"
+#include "mesh_view.h"
 
 #include "peri/model.h"
 #include "peri/stable_step.h"
@@ -196,9 +196,9 @@ void FixNosbFamily::build_families()
 
   // mesh vertices are bonded only within their own mesh (separate layers, a cloth and the
   // body it lies on, are never bonded); membranes take their weights from their thickness
-  FixNosbMesh *meshfix = FixNosbMesh::find(lmp);
-  const int *mesh = meshfix ? meshfix->mesh : nullptr;
-  const double *thick = meshfix ? meshfix->thickness : nullptr;
+  MeshView *meshfix = MeshView::find(lmp);
+  const int *mesh = meshfix ? meshfix->mesh_ids() : nullptr;
+  const double *thick = meshfix ? meshfix->thicknesses() : nullptr;
   int *ilist = list->ilist;
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
@@ -321,8 +321,8 @@ PeriSISSM::Families FixNosbFamily::view()
   fam.kregular = kregular;
   fam.lamref = lamref;
   if (model && model->any_membrane()) {
-    FixNosbMesh *meshfix = FixNosbMesh::find(lmp);
-    if (meshfix) fam.normal = meshfix->normal0;
+    MeshView *meshfix = MeshView::find(lmp);
+    if (meshfix) fam.normal = meshfix->reference_normals();
   }
   return fam;
 }
