@@ -53,7 +53,7 @@
 #include "fix_nosb_contact.h"
 
 #include "bond_partners.h"
-#include "fix_nosb_mesh.h"
+#include "mesh_view.h"
 
 #include "contact/barrier_potential.h"
 #include "contact/path_limit.h"
@@ -194,12 +194,12 @@ void FixNosbContact::init()
 {
   if (!atom->peri_flag || !atom->vfrac)
     error->all(FLERR, "Fix nosb/contact requires atom_style peri (per-atom volume vfrac)");
-  meshfix = FixNosbMesh::find(lmp);
+  meshfix = MeshView::find(lmp);
 
   // the group's mesh vertices and volumetric (non-mesh) particles
   bigint mine[2] = {0, 0}, all[2];
   for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit) mine[(meshfix && meshfix->mesh[i]) ? 0 : 1]++;
+    if (atom->mask[i] & groupbit) mine[(meshfix && meshfix->mesh_of(i)) ? 0 : 1]++;
   MPI_Allreduce(mine, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
   nparticles = all[1];
   if (all[0] + all[1] == 0)
@@ -315,10 +315,10 @@ double FixNosbContact::measure_longest_edge(bool owned_partners_only)
   const int nlocal = atom->nlocal;
   double L2 = 0.0;
   for (int i = 0; i < nlocal; i++) {
-    if (!(atom->mask[i] & groupbit) || !meshfix->mesh[i]) continue;
-    for (int k = 0; k < meshfix->ntri[i]; k++)
+    if (!(atom->mask[i] & groupbit) || !meshfix->mesh_of(i)) continue;
+    for (int k = 0; k < meshfix->ntri_of(i); k++)
       for (int e = 0; e < 2; e++) {
-        const int m = atom->map(meshfix->tri[i][k][e]);
+        const int m = atom->map(meshfix->corner_of(i, k, e));
         if (m < 0 || (owned_partners_only && m >= nlocal)) continue;
         if (!(atom->mask[m] & groupbit)) continue;
         const int j = domain->closest_image(i, m);
@@ -422,7 +422,7 @@ void FixNosbContact::build_candidates()
   // the atoms as the core's broad phase sees them: IDs, roles, the triangles at each vertex
   std::vector<std::int64_t> tags(tag, tag + nall);
   std::vector<PeriSISSM::ContactRole> role(nall, PeriSISSM::ContactRole::kNone);
-  const int *mesh = meshfix ? meshfix->mesh : nullptr;
+  const int *mesh = meshfix ? meshfix->mesh_ids() : nullptr;
   for (int i = 0; i < nall; i++)
     if (mask[i] & groupbit)
       role[i] = (mesh && mesh[i]) ? PeriSISSM::ContactRole::kMeshVertex
@@ -434,10 +434,10 @@ void FixNosbContact::build_candidates()
   atoms.tag = tags.data();
   atoms.role = role.data();
   atoms.triangles = [this](int i, std::vector<std::array<int, 2>> &others) {
-    for (int k = 0; k < meshfix->ntri[i]; k++) {
+    for (int k = 0; k < meshfix->ntri_of(i); k++) {
       std::array<int, 2> w;
       for (int e = 0; e < 2; e++) {
-        const int m = atom->map(meshfix->tri[i][k][e]);
+        const int m = atom->map(meshfix->corner_of(i, k, e));
         w[e] = m < 0 ? -1 : domain->closest_image(i, m);
       }
       others.push_back(w);

@@ -75,7 +75,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double mu, epsv;        // friction coefficient (0: none) and slip speed
   PeriSISSM::CandidateRange range;    // the assumed longest edge and the list's cutoff (this run)
   class NeighList *list;
-  class FixNosbMesh *meshfix;      // nullptr without meshes
+  class MeshView *meshfix;         // nullptr without meshes
   class BondPartners *partners;    // pair peri/nosb's bond partners; nullptr if none
   bigint nparticles;               // volumetric (non-mesh) particles in the group
 

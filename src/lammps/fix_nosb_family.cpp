@@ -25,7 +25,7 @@
 
 #include "fix_nosb_family.h"
 
-#include "fix_nosb_mesh.h"
+#include "mesh_view.h"
 
 #include "peri/family_build.h"
 #include "peri/family_ids.h"
@@ -187,9 +187,9 @@ void FixNosbFamily::build_families()
   // partners of each owned atom (core peri/family_build.h): mesh vertices only within their
   // own mesh; membranes take their weights from their thickness
 
-  FixNosbMesh *meshfix = FixNosbMesh::find(lmp);
-  const int *mesh = meshfix ? meshfix->mesh : nullptr;
-  const double *thick = meshfix ? meshfix->thickness : nullptr;
+  MeshView *meshfix = MeshView::find(lmp);
+  const int *mesh = meshfix ? meshfix->mesh_ids() : nullptr;
+  const double *thick = meshfix ? meshfix->thicknesses() : nullptr;
   std::vector<std::vector<std::pair<tagint, int>>> fam(nlocal);
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -282,8 +282,8 @@ PeriSISSM::Families FixNosbFamily::view()
   fam.kregular = kregular;
   fam.lamref = lamref;
   if (model && model->any_membrane()) {
-    FixNosbMesh *meshfix = FixNosbMesh::find(lmp);
-    if (meshfix) fam.normal = meshfix->normal0;
+    MeshView *meshfix = MeshView::find(lmp);
+    if (meshfix) fam.normal = meshfix->reference_normals();
   }
   return fam;
 }

@@ -22,6 +22,7 @@
 
 #include "fix_nosb_mesh.h"
 
+#include "mesh/lost_vertices.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/vertex_records.h"
 
@@ -43,13 +44,14 @@ static constexpr int NGLOBAL = 3;
 static constexpr int RESTART_VERSION = 1;
 // columns of the per-atom array: mesh, thickness, ntri, normal0 x y z
 static constexpr int NOUTPUT = 6;
+static constexpr auto kBorder = PeriSISSM::VertexRecord::kBorder;
 
 /* ---------------------------------------------------------------------- */
 
 FixNosbMesh::FixNosbMesh(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), nmesh(0), ntriangles(0), mesh(nullptr), thickness(nullptr), ntri(nullptr),
-    tri(nullptr), normal0(nullptr), owntag(nullptr), output(nullptr), normals_at_setup(0),
-    data_header(0), data_ntriangles(0), data_nread(0), data_mesh_offset(0), data_first_row(0)
+    Fix(lmp, narg, arg), nmesh(0), ntriangles(0), owntag(nullptr), output(nullptr),
+    normals_at_setup(0), data_header(0), data_ntriangles(0), data_nread(0), data_mesh_offset(0),
+    data_first_row(0)
 {
   if (narg != 3)
     error->all(FLERR, "Illegal fix nosb/mesh command: no arguments expected, got '{}'", arg[3]);
@@ -120,6 +122,16 @@ FixNosbMesh *FixNosbMesh::find(LAMMPS *lmp)
 {
   const auto fixes = lmp->modify->get_fix_by_style("^nosb/mesh$");
   return fixes.empty() ? nullptr : dynamic_cast<FixNosbMesh *>(fixes[0]);
+}
+
+MeshView *MeshView::find(LAMMPS *lmp)
+{
+  return FixNosbMesh::find(lmp);
+}
+
+MeshView *MeshView::restore(LAMMPS *lmp)
+{
+  return FixNosbMesh::restore(lmp);
 }
 
 /* ----------------------------------------------------------------------
@@ -206,23 +218,13 @@ void FixNosbMesh::set_vertex(int i, int meshid, double t, int n, const tagint (*
 
 void FixNosbMesh::vertex_normals(double **x, double **n)
 {
-  const int nlocal = atom->nlocal;
-  tagint *tag = atom->tag;
-  tagint bad_atom = MAXTAGINT, bad_vertex = MAXTAGINT;
-
-  for (int i = 0; i < nlocal; i++) {
-    n[i][0] = n[i][1] = n[i][2] = 0.0;
-    if (!mesh[i]) continue;
-    auto position = [&](tagint jtag) -> const double * {
-      const int j = closest_image(i, jtag, x);
-      return j < 0 ? nullptr : x[j];
-    };
-    const tagint missing = PeriSISSM::vertex_normal(x[i], ntri[i], tri[i], position, n[i]);
-    if (missing && tag[i] < bad_atom) {
-      bad_atom = tag[i];
-      bad_vertex = missing;
-    }
-  }
+  auto position = [&](int i, tagint jtag) -> const double * {
+    const int j = closest_image(i, jtag, x);
+    return j < 0 ? nullptr : x[j];
+  };
+  const auto bad = PeriSISSM::vertex_normals(rows(), atom->nlocal, atom->tag, x, position, n);
+  const tagint bad_atom = bad.first ? bad.first : MAXTAGINT;
+  const tagint bad_vertex = bad.first ? bad.second : MAXTAGINT;
 
   tagint bad_all;
   MPI_Allreduce(&bad_atom, &bad_all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
@@ -253,22 +255,17 @@ void FixNosbMesh::set_reference_normals()
 void FixNosbMesh::normals_where_missing()
 {
   const int nlocal = atom->nlocal;
-  auto missing = [this](int i) {
-    return mesh[i] && normal0[i][0] == 0.0 && normal0[i][1] == 0.0 && normal0[i][2] == 0.0;
-  };
+  const auto a = rows();
   int any = 0, any_all;
-  for (int i = 0; i < nlocal && !any; i++) any = missing(i) ? 1 : 0;
+  for (int i = 0; i < nlocal && !any; i++) any = PeriSISSM::lacks_normal(a, i) ? 1 : 0;
   MPI_Allreduce(&any, &any_all, 1, MPI_INT, MPI_MAX, world);
   if (!any_all) return;
 
   double **n;
   memory->create(n, std::max(nlocal, 1), 3, "nosb/mesh:n");
   vertex_normals(atom->x, n);
-  for (int i = 0; i < nlocal; i++) {
-    if (!missing(i)) continue;
-    for (int d = 0; d < 3; d++) normal0[i][d] = n[i][d];
-    refresh_output(i);
-  }
+  PeriSISSM::fill_missing_normals(a, nlocal, n);
+  for (int i = 0; i < nlocal; i++) refresh_output(i);
   memory->destroy(n);
   comm->forward_comm(this);
 }
@@ -279,20 +276,8 @@ void FixNosbMesh::normals_where_missing()
 
 int FixNosbMesh::closest_image(int i, tagint jtag, double **x) const
 {
-  int j = local_index(jtag);
-  if (j < 0) return -1;
-  int closest = j;
-  double rsqmin = 0.0;
-  for (int d = 0; d < 3; d++) rsqmin += (x[j][d] - x[i][d]) * (x[j][d] - x[i][d]);
-  for (int k = atom->sametag[j]; k >= 0; k = atom->sametag[k]) {
-    double rsq = 0.0;
-    for (int d = 0; d < 3; d++) rsq += (x[k][d] - x[i][d]) * (x[k][d] - x[i][d]);
-    if (rsq < rsqmin) {
-      rsqmin = rsq;
-      closest = k;
-    }
-  }
-  return closest;
+  const int j = local_index(jtag);
+  return j < 0 ? -1 : PeriSISSM::closest_image(x[i], x, j, atom->sametag);
 }
 
 /* ----------------------------------------------------------------------
@@ -325,64 +310,36 @@ void FixNosbMesh::check_ids()
 }
 
 /* ----------------------------------------------------------------------
-   drop triangles whose other vertices no longer exist as atoms of the same mesh; then
-   count the triangles of all meshes
+   drop triangles whose other vertices no longer exist as atoms of the same mesh (core
+   mesh/lost_vertices.h; the vertices not found here are looked for on all ranks); then count
+   the triangles of all meshes
 ------------------------------------------------------------------------- */
 
 void FixNosbMesh::drop_lost_triangles()
 {
   const int nlocal = atom->nlocal;
-
-  // vertices found here: the atom must belong to the same mesh; the others are looked for on
-  // all ranks (tag, mesh id); a vertex that is gone is marked with ID 0
-
-  std::vector<tagint> wanted;
-  std::vector<tagint *> where;
-  for (int i = 0; i < nlocal; i++) {
-    if (!mesh[i]) continue;
-    for (int k = 0; k < ntri[i]; k++) {
-      for (int c = 0; c < 2; c++) {
-        const int j = local_index(tri[i][k][c]);
-        if (j >= 0) {
-          if (mesh[j] != mesh[i]) tri[i][k][c] = 0;
-        } else {
-          wanted.push_back(tri[i][k][c]);
-          wanted.push_back(mesh[i]);
-          where.push_back(&tri[i][k][c]);
-        }
-      }
-    }
-  }
-
-  int nme = (int) wanted.size(), ntotal = 0;
-  MPI_Allreduce(&nme, &ntotal, 1, MPI_INT, MPI_SUM, world);
-  if (ntotal) {
+  auto local = [this](tagint t) {
+    return local_index(t);
+  };
+  auto exists_elsewhere = [&](const std::vector<tagint> &wanted) {
+    int nme = (int) wanted.size(), ntotal = 0;
+    MPI_Allreduce(&nme, &ntotal, 1, MPI_INT, MPI_SUM, world);
+    if (!ntotal) return std::vector<int>();
     std::vector<int> counts(comm->nprocs), displs(comm->nprocs);
     MPI_Allgather(&nme, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
     for (int p = 1; p < comm->nprocs; p++) displs[p] = displs[p - 1] + counts[p - 1];
     std::vector<tagint> all(ntotal);
     MPI_Allgatherv(wanted.data(), nme, MPI_LMP_TAGINT, all.data(), counts.data(), displs.data(),
                    MPI_LMP_TAGINT, world);
-    const int npairs = ntotal / 2;
-    std::vector<int> here(npairs, 0), exists(npairs, 0);
-    for (int k = 0; k < npairs; k++) {
-      const int j = local_index(all[2 * k]);
-      if (j >= 0 && j < nlocal && mesh[j] == (int) all[2 * k + 1]) here[k] = 1;
-    }
-    MPI_Allreduce(here.data(), exists.data(), npairs, MPI_INT, MPI_MAX, world);
+    std::vector<int> here = PeriSISSM::owned_vertices(all, nlocal, local, mesh);
+    std::vector<int> exists(here.size());
+    MPI_Allreduce(here.data(), exists.data(), (int) here.size(), MPI_INT, MPI_MAX, world);
     const int first = displs[comm->me] / 2;
-    for (size_t k = 0; k < where.size(); k++)
-      if (!exists[first + k]) *where[k] = 0;
-  }
-
-  // keep the triangles whose vertices all exist
-
-  const auto a = rows();
-  for (int i = 0; i < nlocal; i++) {
-    if (!mesh[i]) continue;
-    PeriSISSM::keep_complete_triangles(a, i);
-    refresh_output(i);
-  }
+    return std::vector<int>(exists.begin() + first, exists.begin() + first + nme / 2);
+  };
+  PeriSISSM::drop_lost_triangles(rows(), nlocal, local, exists_elsewhere);
+  for (int i = 0; i < nlocal; i++)
+    if (mesh[i]) refresh_output(i);
 
   const bigint before = ntriangles;
   count_triangles();
@@ -511,7 +468,7 @@ int FixNosbMesh::pack_border(int n, int *list, double *buf)
 {
   const auto a = rows();
   int m = 0;
-  for (int l = 0; l < n; l++) m += PeriSISSM::pack_vertex_border(a, list[l], &buf[m]);
+  for (int l = 0; l < n; l++) m += PeriSISSM::pack_vertex(a, list[l], &buf[m], kBorder);
   return m;
 }
 
@@ -521,7 +478,7 @@ int FixNosbMesh::unpack_border(int n, int first, double *buf)
 {
   const auto a = rows();
   int m = 0;
-  for (int i = first; i < first + n; i++) m += PeriSISSM::unpack_vertex_border(a, i, &buf[m]);
+  for (int i = first; i < first + n; i++) m += PeriSISSM::unpack_vertex(a, i, &buf[m], kBorder);
   return m;
 }
 

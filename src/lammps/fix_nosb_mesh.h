@@ -16,6 +16,7 @@ FixStyle(nosb/mesh,FixNosbMesh);
 #define LMP_FIX_NOSB_MESH_H
 
 #include "fix.h"
+#include "mesh_view.h"
 
 #include <unordered_set>
 
@@ -25,7 +26,7 @@ template <class Id> struct VertexArrays;
 
 namespace LAMMPS_NS {
 
-class FixNosbMesh : public Fix {
+class FixNosbMesh : public Fix, public MeshView {
  public:
   // largest number of triangles at a vertex (the per-atom storage; read_mesh refuses more)
   static constexpr int MAXTRI = 16;
@@ -85,7 +86,7 @@ class FixNosbMesh : public Fix {
   // Inputs: x (nlocal + nghost rows). Outputs: n (nlocal rows).
   void vertex_normals(double **x, double **n);
   // normal0 := vertex_normals(atom->x) (collective; called when the bond families are built)
-  void set_reference_normals();
+  void set_reference_normals() override;
 
   // read_mesh: a new mesh of ntriangles triangles; returns its mesh id (1, 2, ...)
   int add_mesh(bigint ntriangles_added);
@@ -93,16 +94,9 @@ class FixNosbMesh : public Fix {
   // (i, others[k][0], others[k][1]) (n <= MAXTRI)
   void set_vertex(int i, int id, double t, int n, const tagint (*others)[2]);
 
-  // state (per atom: owned and ghost rows unless said otherwise)
+  // state (the per-atom arrays are MeshView's: mesh, thickness, ntri, tri, normal0)
   int nmesh;            // number of meshes read (mesh ids are 1..nmesh)
   bigint ntriangles;    // number of triangles of all meshes (all ranks)
-  int *mesh;            // mesh id of the atom, 0 = not a mesh vertex
-  double *thickness;    // thickness of its mesh, 0 for non-mesh atoms
-  int *ntri;            // number of triangles at the atom (0..MAXTRI)
-  tagint ***tri;        // tri[i][k][0], tri[i][k][1]: IDs of the other two vertices of triangle
-                        //   k of atom i, in the triangle's orientation: (i, tri[i][k][0],
-                        //   tri[i][k][1]) is the file's vertex order rotated to start at i
-  double **normal0;     // reference unit normal (owned and ghost rows); 0 until set
 
  protected:
   tagint *owntag;            // the atom's ID when its triangles were stored (detects renumbering)
@@ -117,7 +111,6 @@ class FixNosbMesh : public Fix {
 
   PeriSISSM::VertexArrays<tagint> rows() const;    // the per-atom arrays (core mesh/)
   void refresh_output(int i);
-  void add_triangle(int i, tagint a, tagint b);
   int local_index(tagint) const;
   int closest_image(int i, tagint jtag, double **x) const;
   void check_ids();

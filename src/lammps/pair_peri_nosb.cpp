@@ -21,7 +21,7 @@
 #include "pair_peri_nosb.h"
 
 #include "fix_nosb_family.h"
-#include "fix_nosb_mesh.h"
+#include "mesh_view.h"
 
 #include "linalg/fused.h"
 #include "materials/moduli.h"
@@ -214,7 +214,7 @@ void PairPeriNosb::check_membranes()
 {
   // (asked for in every deck: after read_restart, restore() defines the mesh fix of the file
   // again before LAMMPS discards its data)
-  FixNosbMesh *mesh = FixNosbMesh::restore(lmp);
+  MeshView *mesh = MeshView::restore(lmp);
   meshfix = mesh;
   const int n = atom->ntypes;
   bend.resize(n + 1, 0.0);
@@ -230,7 +230,7 @@ void PairPeriNosb::check_membranes()
   int badtype = 0;
   for (int i = 0; i < atom->nlocal && !bad; i++) {
     if (!model_->membrane(atom->type[i])) continue;
-    if (!mesh || mesh->mesh[i] == 0) {
+    if (!mesh || mesh->mesh_of(i) == 0) {
       bad = atom->tag[i];
       badtype = atom->type[i];
     }

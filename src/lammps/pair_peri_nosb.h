@@ -101,7 +101,7 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   // E / (12 (1 - nu^2)) of its material (set at init; D = that times the thickness cubed)
   std::vector<double> bend, bend_auto_factor;
   int any_bend;
-  class FixNosbMesh *meshfix;    // the meshes (read_mesh), null if none
+  class MeshView *meshfix;    // the meshes (read_mesh), null if none
   // the hinges of the bending term with an owned vertex here, each once per rank (straddling
   // ones on every rank; core membrane/bending.h)
   using Hinge = PeriSISSM::Hinge;

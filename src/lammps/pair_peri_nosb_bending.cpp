@@ -12,7 +12,7 @@
 #include "pair_peri_nosb.h"
 
 #include "fix_nosb_family.h"
-#include "fix_nosb_mesh.h"
+#include "mesh_view.h"
 
 #include "membrane/bending.h"
 #include "peri/bond_stiffness.h"
@@ -33,7 +33,7 @@ double PairPeriNosb::bending_modulus(int i) const
   const int t = atom->type[i];
   const double b = bend[t];
   if (b >= 0.0) return b;
-  const double thick = meshfix->thickness[i];
+  const double thick = meshfix->thickness_of(i);
   return bend_auto_factor[t] * thick * thick * thick;
 }
 
@@ -50,11 +50,11 @@ class NosbHingeMesh : public PeriSISSM::HingeMesh {
   explicit NosbHingeMesh(const PairPeriNosb *pair) : pair_(pair), atom_(pair->atom) {}
   int nlocal() const override { return atom_->nlocal; }
   std::int64_t id(int i) const override { return atom_->tag[i]; }
-  int ntri(int i) const override { return pair_->meshfix->ntri[i]; }
+  int ntri(int i) const override { return pair_->meshfix->ntri_of(i); }
   void triangle(int i, int k, std::int64_t &a, std::int64_t &b) const override
   {
-    a = pair_->meshfix->tri[i][k][0];
-    b = pair_->meshfix->tri[i][k][1];
+    a = pair_->meshfix->corner_of(i, k, 0);
+    b = pair_->meshfix->corner_of(i, k, 1);
   }
   int image(int i, std::int64_t t) const override
   {
@@ -64,7 +64,7 @@ class NosbHingeMesh : public PeriSISSM::HingeMesh {
   int sharer(std::int64_t t) const override
   {
     const int j = atom_->map((tagint) t);
-    const bool shares = j >= 0 && j < atom_->nlocal && pair_->meshfix->mesh[j] &&
+    const bool shares = j >= 0 && j < atom_->nlocal && pair_->meshfix->mesh_of(j) &&
         pair_->bend[atom_->type[j]] != 0.0;
     return shares ? j : -1;
   }

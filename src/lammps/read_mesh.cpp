@@ -21,6 +21,7 @@
 
 #include "mesh/mesh_geometry.h"
 #include "mesh/obj_file.h"
+#include "mesh/read_mesh_options.h"
 #include "mesh/triangle_mesh.h"
 
 #include "atom.h"
@@ -36,21 +37,13 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 using namespace LAMMPS_NS;
 
 namespace {
-
-struct Options {
-  std::string file;
-  int type = 0;
-  double thickness = 0.0;
-  double density = 0.0;
-  PeriSISSM::Placement place;
-  std::string group;
-};
 
 // a finite number for read_mesh (utils::numeric), naming the keyword on error
 double number(const char *what, const char *str, LAMMPS *lmp)
@@ -62,14 +55,6 @@ double number(const char *what, const char *str, LAMMPS *lmp)
   if (!std::isfinite(value))
     lmp->error->all(FLERR, "Illegal read_mesh command: {} must be a finite number, got '{}'", what,
                     str);
-  return value;
-}
-
-double positive(const char *what, const char *str, LAMMPS *lmp)
-{
-  const double value = number(what, str, lmp);
-  if (!(value > 0.0))
-    lmp->error->all(FLERR, "Illegal read_mesh command: {} must be > 0, got '{}'", what, str);
   return value;
 }
 
@@ -89,72 +74,20 @@ int atom_type(const char *str, LAMMPS *lmp)
   return value;
 }
 
-Options parse(int narg, char **arg, LAMMPS *lmp)
+// the arguments (core mesh/read_mesh_options.h), numbers and types parsed as LAMMPS does
+PeriSISSM::ReadMeshOptions parse(int narg, char **arg, LAMMPS *lmp)
 {
-  Error *error = lmp->error;
-  const char *usage = "read_mesh FILE type T thickness t density rho [offset dx dy dz] "
-                      "[scale s] [rotate theta Rx Ry Rz] [group G]";
-  if (narg < 1) error->all(FLERR, "Illegal read_mesh command: no mesh file ({})", usage);
-  Options opt;
-  opt.file = arg[0];
-  bool have_type = false, have_thickness = false, have_density = false;
-  int iarg = 1;
-  auto need = [&](const char *keyword, int n) {
-    if (iarg + n >= narg)
-      error->all(FLERR, "Illegal read_mesh command: keyword {} needs {} value{} ({})", keyword, n,
-                 n > 1 ? "s" : "", usage);
+  auto num = [lmp](const char *what, const std::string &text) {
+    return number(what, text.c_str(), lmp);
   };
-  while (iarg < narg) {
-    const std::string keyword = arg[iarg];
-    if (keyword == "type") {
-      need("type", 1);
-      opt.type = atom_type(arg[iarg + 1], lmp);
-      have_type = true;
-      iarg += 2;
-    } else if (keyword == "thickness") {
-      need("thickness", 1);
-      opt.thickness = positive("thickness", arg[iarg + 1], lmp);
-      have_thickness = true;
-      iarg += 2;
-    } else if (keyword == "density") {
-      need("density", 1);
-      opt.density = positive("density", arg[iarg + 1], lmp);
-      have_density = true;
-      iarg += 2;
-    } else if (keyword == "offset") {
-      need("offset", 3);
-      for (int d = 0; d < 3; d++) opt.place.offset[d] = number("offset", arg[iarg + 1 + d], lmp);
-      iarg += 4;
-    } else if (keyword == "scale") {
-      need("scale", 1);
-      opt.place.scale = positive("scale", arg[iarg + 1], lmp);
-      iarg += 2;
-    } else if (keyword == "rotate") {
-      need("rotate", 4);
-      opt.place.theta = number("rotate angle theta", arg[iarg + 1], lmp);
-      for (int d = 0; d < 3; d++) opt.place.axis[d] = number("rotate axis", arg[iarg + 2 + d], lmp);
-      const double *r = opt.place.axis;
-      if (r[0] == 0.0 && r[1] == 0.0 && r[2] == 0.0)
-        error->all(FLERR,
-                   "Illegal read_mesh command: the rotate axis must not be zero, got {} {} "
-                   "{}",
-                   arg[iarg + 2], arg[iarg + 3], arg[iarg + 4]);
-      iarg += 5;
-    } else if (keyword == "group") {
-      need("group", 1);
-      opt.group = arg[iarg + 1];
-      iarg += 2;
-    } else {
-      error->all(FLERR, "Illegal read_mesh command: unknown keyword '{}' ({})", keyword, usage);
-    }
+  auto type = [lmp](const std::string &text) {
+    return atom_type(text.c_str(), lmp);
+  };
+  try {
+    return PeriSISSM::parse_read_mesh({arg, arg + narg}, num, type);
+  } catch (std::invalid_argument &e) {
+    lmp->error->all(FLERR, e.what());
   }
-  const char *missing = !have_type ? "type"
-      : !have_thickness            ? "thickness"
-      : !have_density              ? "density"
-                                   : nullptr;
-  if (missing)
-    error->all(FLERR, "Illegal read_mesh command: keyword {} is required ({})", missing, usage);
-  return opt;
 }
 
 // rank 0 reads and checks the file, all ranks get the mesh (or the same error)
@@ -222,7 +155,7 @@ void ReadMesh::command(int narg, char **arg)
                "atom_modify map array (or hash) before the box is created");
   if (domain->dimension != 3) error->all(FLERR, "Read_mesh requires a 3d simulation");
 
-  const Options opt = parse(narg, arg, lmp);
+  const PeriSISSM::ReadMeshOptions opt = parse(narg, arg, lmp);
 
   // new atoms would get the per-atom restart data of fixes defined later wrong (as for
   // create_atoms)
@@ -282,13 +215,10 @@ void ReadMesh::command(int narg, char **arg)
     for (int d = 0; d < 3; d++) {
       const double lo = triclinic ? 0.0 : domain->boxlo[d];
       const double hi = triclinic ? 1.0 : domain->boxhi[d];
-      if (domain->periodicity[d]) {
-        if (c[d] < lo || c[d] >= hi) c[d] = lo;    // round-off of the wrap
-        continue;
-      }
-      const int side = (c[d] < lo) ? 0 : (c[d] >= hi) ? 1 : -1;
-      if (side < 0) continue;
-      if (domain->boundary[d][side] == 1)
+      const bool fixed[2] = {domain->boundary[d][0] == 1, domain->boundary[d][1] == 1};
+      int side = 0;
+      const auto fit = PeriSISSM::fit_to_box(c[d], lo, hi, domain->periodicity[d], fixed, side);
+      if (fit == PeriSISSM::BoxFit::kOutside)
         error->all(FLERR,
                    "Read_mesh: vertex {} of {} (line {}) is placed at ({:.8g}, {:.8g}, {:.8g}), "
                    "outside the box in {}{} (boundary f: the box is {} to {}{}): enlarge the "
@@ -296,8 +226,7 @@ void ReadMesh::command(int narg, char **arg)
                    k + 1, opt.file, mesh.vertex_line[k], x[k][0], x[k][1], x[k][2], "xyz"[d],
                    triclinic ? " (fractional coordinate of the triclinic box)" : "", lo, hi,
                    side ? ", its upper face excluded" : "");
-      c[d] = side ? std::nextafter(hi, lo) : lo;
-      grows = 1;
+      if (fit == PeriSISSM::BoxFit::kGrows) grows = 1;
     }
     if (c[0] >= sublo[0] && c[0] < subhi[0] && c[1] >= sublo[1] && c[1] < subhi[1] &&
         c[2] >= sublo[2] && c[2] < subhi[2])

@@ -123,3 +123,14 @@ def test_contact_fix_sees_the_pair_through_an_interface_only():
     for name in ("fix_nosb_contact.h", "fix_nosb_contact.cpp", "fix_nosb_contact_sissm.cpp"):
         assert not incs[name] & {"pair_peri_nosb.h", "fix_nosb_family.h"}, name
         assert "PairPeriNosb" not in (GLUE / name).read_text(), name
+
+
+def test_meshes_are_read_through_an_interface_only():
+    """Styles read the meshes of read_mesh through mesh_view.h; fix_nosb_mesh.h is included only
+    by the fix's own files, read_mesh (which fills it) and the plugin entry."""
+    allowed = {"fix_nosb_mesh.cpp", "fix_nosb_mesh_data.cpp", "read_mesh.cpp", "perisissmplugin.cpp"}
+    incs = glue_includes()
+    users = {name for name, own in incs.items() if "fix_nosb_mesh.h" in own}
+    assert users <= allowed, sorted(users - allowed)
+    readers = {n for n in GLUE.glob("*.[ch]*") if "FixNosbMesh" in n.read_text()}
+    assert {n.name for n in readers} <= allowed | {"fix_nosb_mesh.h"}, sorted(n.name for n in readers)

@@ -41,6 +41,20 @@ void place(const Placement &p, const double X[3], double x[3])
   for (int k = 0; k < 3; k++) x[k] = v[k] + p.offset[k];
 }
 
+BoxFit fit_to_box(double &c, double lo, double hi, bool periodic, const bool fixed[2], int &side)
+{
+  if (periodic) {
+    if (c < lo || c >= hi) c = lo;
+    return BoxFit::kInside;
+  }
+  const int beyond = (c < lo) ? 0 : (c >= hi) ? 1 : -1;
+  if (beyond < 0) return BoxFit::kInside;
+  side = beyond;
+  if (fixed[side]) return BoxFit::kOutside;
+  c = side ? std::nextafter(hi, lo) : lo;
+  return BoxFit::kGrows;
+}
+
 double triangle_area(const double a[3], const double b[3], const double c[3])
 {
   const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
@@ -60,6 +74,22 @@ std::vector<double> vertex_areas(const std::vector<std::array<double, 3>> &verti
     for (int c = 0; c < 3; c++) area[t[c]] += third;
   }
   return area;
+}
+
+int closest_image(const double xi[3], const double *const *x, int j, const int *sametag)
+{
+  int closest = j;
+  double rsqmin = 0.0;
+  for (int d = 0; d < 3; d++) rsqmin += (x[j][d] - xi[d]) * (x[j][d] - xi[d]);
+  for (int k = sametag[j]; k >= 0; k = sametag[k]) {
+    double rsq = 0.0;
+    for (int d = 0; d < 3; d++) rsq += (x[k][d] - xi[d]) * (x[k][d] - xi[d]);
+    if (rsq < rsqmin) {
+      rsqmin = rsq;
+      closest = k;
+    }
+  }
+  return closest;
 }
 
 void add_angle_weighted_normal(const double xi[3], const double xa[3], const double xb[3],

@@ -1,10 +1,13 @@
 /* PERI-SISSM core: geometry of triangle meshes: placing a mesh file in the box, triangle and
-   vertex areas, and angle-weighted vertex normals.
+   vertex areas, the closest image of a vertex, and angle-weighted vertex normals.
 */
 #ifndef PERISISSM_MESH_MESH_GEOMETRY_H
 #define PERISISSM_MESH_MESH_GEOMETRY_H
 
+#include "mesh/vertex_records.h"
+
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace PeriSISSM {
@@ -21,6 +24,16 @@ struct Placement {
 
 // Inputs: placement, X (a position in the file). Outputs: x (in the box).
 void place(const Placement &placement, const double X[3], double x[3]);
+
+// Where a placed vertex goes along one direction of the box [lo, hi) (read_mesh, after
+// LAMMPS's remap): inside it stays; across a periodic boundary a value still outside (by the
+// round-off of the wrap) goes to lo; beyond a shrink-wrapped face it goes onto the face (the
+// largest double below hi for the upper one) and the box has to grow; beyond a fixed face it is
+// outside (left where it is).
+enum class BoxFit { kInside, kGrows, kOutside };
+// Inputs: c, lo, hi, periodic, fixed (lower and upper face fixed). Outputs: c, side (0 lower,
+// 1 upper: the face it was beyond; unchanged when inside or periodic).
+BoxFit fit_to_box(double &c, double lo, double hi, bool periodic, const bool fixed[2], int &side);
 
 // area of the triangle (a, b, c)
 double triangle_area(const double a[3], const double b[3], const double c[3]);
@@ -42,6 +55,12 @@ void add_angle_weighted_normal(const double xi[3], const double xa[3], const dou
 
 // n / |n|; a zero vector stays zero. Returns false for a zero vector.
 bool normalize_or_zero(double n[3]);
+
+// The image of an atom closest to xi: of row j and the rows of the atom's other images (the
+// chain sametag[j], sametag[sametag[j]], ... ending in a negative index, as LAMMPS's
+// atom->sametag), the one whose position x[row] has the smallest squared distance to xi (the
+// first in the chain of equal ones).
+int closest_image(const double xi[3], const double *const *x, int j, const int *sametag);
 
 // Angle-weighted unit normal of a vertex: add_angle_weighted_normal over its triangles
 // (i, tri[k][0], tri[k][1]) in the order k = 0..ntri-1, then normalize_or_zero. A triangle with
@@ -65,6 +84,28 @@ Id vertex_normal(const double xi[3], int ntri, Id *const *tri, Position position
   }
   normalize_or_zero(n);
   return missing;
+}
+
+// vertex_normal of every mesh row 0..nrows-1 (n zero for the other rows), the other vertices
+// of row i's triangles at position(i, id) (nullptr if not found).
+// Inputs: a (mesh, ntri, tri), nrows, tag (ID per row), x (position per row), position.
+// Outputs: n (nrows rows). Returns (ID of the row, ID of the vertex not found) for the row
+// with the smallest ID that misses a vertex, (0, 0) if none does.
+template <class Id, class Position>
+std::pair<Id, Id> vertex_normals(const VertexArrays<Id> &a, int nrows, const Id *tag,
+                                 const double *const *x, Position position, double *const *n)
+{
+  std::pair<Id, Id> bad(0, 0);
+  for (int i = 0; i < nrows; i++) {
+    n[i][0] = n[i][1] = n[i][2] = 0.0;
+    if (!a.mesh[i]) continue;
+    auto at = [&](Id id) {
+      return position(i, id);
+    };
+    const Id missing = vertex_normal(x[i], a.ntri[i], a.tri[i], at, n[i]);
+    if (missing && (!bad.first || tag[i] < bad.first)) bad = {tag[i], missing};
+  }
+  return bad;
 }
 
 }    // namespace PeriSISSM

@@ -7,10 +7,10 @@
    Buffers of doubles carry an ID as the bit pattern of its value as a 64-bit integer (as
    LAMMPS's ubuf does), so that any ID survives exactly.
 
-   Exchange and restart record (pack_vertex): mesh id; for a mesh vertex then thickness,
-   owntag, normal (3), ntri and the 2 x ntri IDs of the triangles.
-   Border record (pack_vertex_border, ghosts): mesh id; for a mesh vertex then thickness,
-   normal (3), ntri and the 2 x ntri IDs (no owntag: ghosts do not check renumbering).
+   Exchange and restart record (pack_vertex, VertexRecord::kExchange): mesh id; for a mesh
+   vertex then thickness, owntag, normal (3), ntri and the 2 x ntri IDs of the triangles.
+   Border record (VertexRecord::kBorder, ghosts): the same without owntag (ghosts do not check
+   renumbering).
 */
 #ifndef PERISISSM_MESH_VERTEX_RECORDS_H
 #define PERISISSM_MESH_VERTEX_RECORDS_H
@@ -20,10 +20,13 @@
 
 namespace PeriSISSM {
 
+// the two records of a vertex: exchange and restart (with owntag), border (ghosts: without)
+enum class VertexRecord { kExchange, kBorder };
+
 // doubles of a mesh vertex's exchange record before its triangles
 constexpr int kVertexScalars = 7;
 // doubles of a mesh vertex's border record before its triangles
-constexpr int kVertexBorderScalars = 6;
+constexpr int kVertexBorderScalars = kVertexScalars - 1;
 
 // the rows of the per-atom arrays (owned and ghost atoms)
 template <class Id> struct VertexArrays {
@@ -57,14 +60,15 @@ inline int vertex_record_size(int mesh, int ntri)
   return mesh ? kVertexScalars + 2 * ntri : 1;
 }
 
-// row i is no mesh vertex: mesh id, thickness, triangles, normal and owntag zero
-template <class Id> void clear_vertex(const VertexArrays<Id> &a, int i)
+// Row i is no mesh vertex: mesh id, thickness, triangles and normal zero; owntag zero unless
+// keep_owntag.
+template <class Id> void clear_vertex(const VertexArrays<Id> &a, int i, bool keep_owntag = false)
 {
   a.mesh[i] = 0;
   a.thickness[i] = 0.0;
   a.ntri[i] = 0;
   a.normal0[i][0] = a.normal0[i][1] = a.normal0[i][2] = 0.0;
-  a.owntag[i] = 0;
+  if (!keep_owntag) a.owntag[i] = 0;
 }
 
 // row j := row i
@@ -81,14 +85,16 @@ template <class Id> void copy_vertex(const VertexArrays<Id> &a, int i, int j)
   a.owntag[j] = a.owntag[i];
 }
 
-// Inputs: row i. Outputs: its exchange record in buf. Returns the doubles written.
-template <class Id> int pack_vertex(const VertexArrays<Id> &a, int i, double *buf)
+// Inputs: row i, the record kind. Outputs: its record in buf. Returns the doubles written.
+template <class Id>
+int pack_vertex(const VertexArrays<Id> &a, int i, double *buf,
+                VertexRecord kind = VertexRecord::kExchange)
 {
   int m = 0;
   buf[m++] = a.mesh[i];
   if (!a.mesh[i]) return m;
   buf[m++] = a.thickness[i];
-  buf[m++] = id_bits(a.owntag[i]);
+  if (kind == VertexRecord::kExchange) buf[m++] = id_bits(a.owntag[i]);
   for (int d = 0; d < 3; d++) buf[m++] = a.normal0[i][d];
   buf[m++] = a.ntri[i];
   for (int k = 0; k < a.ntri[i]; k++) {
@@ -98,56 +104,22 @@ template <class Id> int pack_vertex(const VertexArrays<Id> &a, int i, double *bu
   return m;
 }
 
-// Inputs: an exchange record in buf. Outputs: row i. Returns the doubles read.
-template <class Id> int unpack_vertex(const VertexArrays<Id> &a, int i, const double *buf)
+// Inputs: a record of the given kind in buf. Outputs: row i (a border record leaves its
+// owntag as it is). Returns the doubles read.
+template <class Id>
+int unpack_vertex(const VertexArrays<Id> &a, int i, const double *buf,
+                  VertexRecord kind = VertexRecord::kExchange)
 {
+  const bool exchange = kind == VertexRecord::kExchange;
   int m = 0;
   const int mesh = static_cast<int>(buf[m++]);
   if (!mesh) {
-    clear_vertex(a, i);
+    clear_vertex(a, i, !exchange);
     return m;
   }
   a.mesh[i] = mesh;
   a.thickness[i] = buf[m++];
-  a.owntag[i] = bits_id<Id>(buf[m++]);
-  for (int d = 0; d < 3; d++) a.normal0[i][d] = buf[m++];
-  a.ntri[i] = static_cast<int>(buf[m++]);
-  for (int k = 0; k < a.ntri[i]; k++) {
-    a.tri[i][k][0] = bits_id<Id>(buf[m++]);
-    a.tri[i][k][1] = bits_id<Id>(buf[m++]);
-  }
-  return m;
-}
-
-// Inputs: row i. Outputs: its border record in buf. Returns the doubles written.
-template <class Id> int pack_vertex_border(const VertexArrays<Id> &a, int i, double *buf)
-{
-  int m = 0;
-  buf[m++] = a.mesh[i];
-  if (!a.mesh[i]) return m;
-  buf[m++] = a.thickness[i];
-  for (int d = 0; d < 3; d++) buf[m++] = a.normal0[i][d];
-  buf[m++] = a.ntri[i];
-  for (int k = 0; k < a.ntri[i]; k++) {
-    buf[m++] = id_bits(a.tri[i][k][0]);
-    buf[m++] = id_bits(a.tri[i][k][1]);
-  }
-  return m;
-}
-
-// Inputs: a border record in buf. Outputs: row i (its owntag is left as it is). Returns the
-// doubles read.
-template <class Id> int unpack_vertex_border(const VertexArrays<Id> &a, int i, const double *buf)
-{
-  int m = 0;
-  a.mesh[i] = static_cast<int>(buf[m++]);
-  if (!a.mesh[i]) {
-    a.thickness[i] = 0.0;
-    a.normal0[i][0] = a.normal0[i][1] = a.normal0[i][2] = 0.0;
-    a.ntri[i] = 0;
-    return m;
-  }
-  a.thickness[i] = buf[m++];
+  if (exchange) a.owntag[i] = bits_id<Id>(buf[m++]);
   for (int d = 0; d < 3; d++) a.normal0[i][d] = buf[m++];
   a.ntri[i] = static_cast<int>(buf[m++]);
   for (int k = 0; k < a.ntri[i]; k++) {
@@ -170,6 +142,24 @@ template <class Id> int keep_complete_triangles(const VertexArrays<Id> &a, int i
   }
   a.ntri[i] = n;
   return n;
+}
+
+// Row i is a mesh vertex without a reference normal (all three components zero).
+template <class Id> bool lacks_normal(const VertexArrays<Id> &a, int i)
+{
+  return a.mesh[i] && a.normal0[i][0] == 0.0 && a.normal0[i][1] == 0.0 && a.normal0[i][2] == 0.0;
+}
+
+// Of rows 0..nrows-1, those that lack a normal get n[i]. Returns the rows set.
+template <class Id> int fill_missing_normals(const VertexArrays<Id> &a, int nrows, double *const *n)
+{
+  int nset = 0;
+  for (int i = 0; i < nrows; i++) {
+    if (!lacks_normal(a, i)) continue;
+    for (int d = 0; d < 3; d++) a.normal0[i][d] = n[i][d];
+    nset++;
+  }
+  return nset;
 }
 
 // A triangle is written (and counted) once, by its vertex with the smallest ID: true for the

@@ -1,6 +1,7 @@
 // Geometry of read_mesh: placement (scale, rotate, offset in that order), triangle and vertex
 // areas, and angle-weighted vertex normals against hand computations, at extreme scales too.
 #include "mesh/mesh_geometry.h"
+#include "vertex_storage.h"
 
 #include <gtest/gtest.h>
 
@@ -157,4 +158,106 @@ TEST(MeshGeometry, DegenerateTriangleAddsNothingAndZeroStaysZero)
   add_angle_weighted_normal(xi, xa, xb, n);
   EXPECT_FALSE(normalize_or_zero(n));
   expect_vector(n, 0, 0, 0, 0);
+}
+
+TEST(MeshGeometry, ClosestImageFollowsTheSametagChain)
+{
+  // one atom at rows 1, 3 and 4 (images one box length 10 apart), row 0 elsewhere
+  const double rows[5][3] = {{0, 0, 0}, {9.5, 0, 0}, {5, 5, 5}, {-0.5, 0, 0}, {9.5, 10, 0}};
+  const double *x[5] = {rows[0], rows[1], rows[2], rows[3], rows[4]};
+  const int sametag[5] = {-1, 3, -1, 4, -1};
+  const double xi[3] = {0.2, 0.1, 0.0};
+  EXPECT_EQ(closest_image(xi, x, 1, sametag), 3);
+  const double near_last[3] = {9.0, 9.0, 0.0};
+  EXPECT_EQ(closest_image(near_last, x, 1, sametag), 4);
+  // a single image is itself; of equal distances the first in the chain
+  EXPECT_EQ(closest_image(xi, x, 2, sametag), 2);
+  const double middle[3] = {4.5, 0.0, 0.0};
+  EXPECT_EQ(closest_image(middle, x, 1, sametag), 1);
+  // at a scale of 1e8 the same choice
+  const double big[5][3] = {
+      {0, 0, 0}, {9.5e8, 0, 0}, {5e8, 5e8, 5e8}, {-0.5e8, 0, 0}, {9.5e8, 1e9, 0}};
+  const double *xb[5] = {big[0], big[1], big[2], big[3], big[4]};
+  const double xib[3] = {0.2e8, 0.1e8, 0.0};
+  EXPECT_EQ(closest_image(xib, xb, 1, sametag), 3);
+}
+
+TEST(MeshGeometry, VertexNormalsOfAllRowsNameTheSmallestAtomMissingAVertex)
+{
+  // rows 0..3: IDs 40, 30, 20, 10; row 2 is no mesh vertex; rows 0 and 1 form a right triangle
+  // with the vertex of ID 50 (not found from row 0) and ID 60 (found nowhere)
+  Storage<int> s(4);
+  const int tag[4] = {40, 30, 20, 10};
+  const double rows[4][3] = {{0, 0, 0}, {1, 0, 0}, {9, 9, 9}, {0, 1, 0}};
+  const double *x[4] = {rows[0], rows[1], rows[2], rows[3]};
+  s.mesh[0] = s.mesh[1] = s.mesh[3] = 1;
+  s.ntri[0] = 2;    // (40, 30, 10) and (40, 50, 30)
+  s.tri[0][0][0] = 30;
+  s.tri[0][0][1] = 10;
+  s.tri[0][1][0] = 50;
+  s.tri[0][1][1] = 30;
+  s.ntri[1] = 1;    // (30, 10, 40)
+  s.tri[1][0][0] = 10;
+  s.tri[1][0][1] = 40;
+  s.ntri[3] = 1;    // (10, 40, 60)
+  s.tri[3][0][0] = 40;
+  s.tri[3][0][1] = 60;
+  auto position = [&](int, int id) -> const double * {
+    for (int j = 0; j < 4; j++)
+      if (tag[j] == id) return x[j];
+    return nullptr;
+  };
+  double nrows[4][3];
+  double *n[4] = {nrows[0], nrows[1], nrows[2], nrows[3]};
+  for (auto &r : nrows) r[0] = r[1] = r[2] = 7.0;
+  const auto bad = vertex_normals(s.arrays(), 4, tag, x, position, n);
+  EXPECT_EQ(bad.first, 10);
+  EXPECT_EQ(bad.second, 60);
+  expect_vector(n[0], 0.0, 0.0, 1.0, 0.0);    // the triangle with 50 adds nothing
+  expect_vector(n[1], 0.0, 0.0, 1.0, 0.0);
+  expect_vector(n[2], 0.0, 0.0, 0.0, 0.0);
+  expect_vector(n[3], 0.0, 0.0, 0.0, 0.0);
+
+  // with every vertex found, no row is named
+  s.tri[3][0][1] = 30;
+  s.tri[0][1][0] = 10;
+  const auto none = vertex_normals(s.arrays(), 4, tag, x, position, n);
+  EXPECT_EQ(none.first, 0);
+  EXPECT_EQ(none.second, 0);
+}
+
+TEST(MeshGeometry, FitToBoxWrapsClampsOrRefuses)
+{
+  const bool shrink[2] = {false, false}, fixed_upper[2] = {false, true};
+  int side = -1;
+  double c = 0.5;
+  EXPECT_EQ(fit_to_box(c, 0.0, 1.0, false, fixed_upper, side), BoxFit::kInside);
+  EXPECT_EQ(c, 0.5);
+  EXPECT_EQ(side, -1);
+  // periodic: what the wrap left outside by round-off goes to lo
+  c = 1.0;
+  EXPECT_EQ(fit_to_box(c, 0.0, 1.0, true, shrink, side), BoxFit::kInside);
+  EXPECT_EQ(c, 0.0);
+  c = -1e-17;
+  EXPECT_EQ(fit_to_box(c, 0.0, 1.0, true, shrink, side), BoxFit::kInside);
+  EXPECT_EQ(c, 0.0);
+  // shrink-wrapped: onto the face, the upper one excluded
+  c = -2.0;
+  EXPECT_EQ(fit_to_box(c, -1.0, 3.0, false, shrink, side), BoxFit::kGrows);
+  EXPECT_EQ(c, -1.0);
+  EXPECT_EQ(side, 0);
+  c = 3.0;
+  EXPECT_EQ(fit_to_box(c, -1.0, 3.0, false, shrink, side), BoxFit::kGrows);
+  EXPECT_EQ(c, std::nextafter(3.0, -1.0));
+  EXPECT_LT(c, 3.0);
+  EXPECT_EQ(side, 1);
+  // a fixed face refuses and leaves the value; the other face of the same direction clamps
+  c = 1e9;
+  EXPECT_EQ(fit_to_box(c, 0.0, 1.0, false, fixed_upper, side), BoxFit::kOutside);
+  EXPECT_EQ(c, 1e9);
+  EXPECT_EQ(side, 1);
+  c = -1e-9;
+  EXPECT_EQ(fit_to_box(c, 0.0, 1.0, false, fixed_upper, side), BoxFit::kGrows);
+  EXPECT_EQ(c, 0.0);
+  EXPECT_EQ(side, 0);
 }

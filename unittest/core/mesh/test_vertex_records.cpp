@@ -4,6 +4,7 @@
 // a triangle to start at its vertex, and the vertex normal with a missing vertex.
 #include "mesh/mesh_geometry.h"
 #include "mesh/vertex_records.h"
+#include "vertex_storage.h"
 
 #include <gtest/gtest.h>
 
@@ -17,36 +18,6 @@
 using namespace PeriSISSM;
 
 namespace {
-
-constexpr int kMaxTri = 16;
-
-// nrows rows of the per-atom arrays, as the fix allocates them
-template <class Id> struct Storage {
-  explicit Storage(int nrows) :
-      mesh(nrows, 0), thickness(nrows, 0.0), owntag(nrows, 0), normal_rows(nrows), normal(nrows),
-      ntri(nrows, 0), tri_rows(nrows), tri_ptrs(nrows * kMaxTri), tri(nrows)
-  {
-    for (int i = 0; i < nrows; i++) {
-      normal[i] = normal_rows[i].data();
-      tri_rows[i].assign(2 * kMaxTri, 0);
-      for (int k = 0; k < kMaxTri; k++) tri_ptrs[i * kMaxTri + k] = &tri_rows[i][2 * k];
-      tri[i] = &tri_ptrs[i * kMaxTri];
-    }
-  }
-  VertexArrays<Id> arrays()
-  {
-    return {mesh.data(), thickness.data(), owntag.data(), normal.data(), ntri.data(), tri.data()};
-  }
-  std::vector<int> mesh;
-  std::vector<double> thickness;
-  std::vector<Id> owntag;
-  std::vector<std::array<double, 3>> normal_rows;
-  std::vector<double *> normal;
-  std::vector<int> ntri;
-  std::vector<std::vector<Id>> tri_rows;
-  std::vector<Id *> tri_ptrs;
-  std::vector<Id **> tri;
-};
 
 // row i: mesh 3, thickness 0.01, owntag, a normal, three triangles
 template <class Id> void fill(Storage<Id> &s, int i, Id own, Id base)
@@ -88,10 +59,10 @@ template <class Id> void round_trip(Id own, Id base)
   EXPECT_EQ(unpack_vertex(a, 2, buf.data()), m);
   expect_same_row(s, 0, 2, true);
 
-  const int mb = pack_vertex_border(a, 0, buf.data());
+  const int mb = pack_vertex(a, 0, buf.data(), VertexRecord::kBorder);
   EXPECT_EQ(mb, kVertexBorderScalars + 6);
   s.owntag[1] = 77;
-  EXPECT_EQ(unpack_vertex_border(a, 1, buf.data()), mb);
+  EXPECT_EQ(unpack_vertex(a, 1, buf.data(), VertexRecord::kBorder), mb);
   expect_same_row(s, 0, 1, false);
   EXPECT_EQ(s.owntag[1], (Id) 77);    // ghosts keep their owntag
 }
@@ -128,7 +99,7 @@ TEST(VertexRecords, ExchangeLayoutFieldByField)
   EXPECT_EQ(buf[6], 3.0);
   for (int k = 0; k < 6; k++) EXPECT_EQ(bits_id<int64_t>(buf[7 + k]), (int64_t(1) << 40) + k);
 
-  ASSERT_EQ(pack_vertex_border(s.arrays(), 0, buf), kVertexBorderScalars + 6);
+  ASSERT_EQ(pack_vertex(s.arrays(), 0, buf, VertexRecord::kBorder), kVertexBorderScalars + 6);
   EXPECT_EQ(buf[0], 3.0);
   EXPECT_EQ(buf[1], 0.01);
   EXPECT_EQ(buf[2], 0.6);
@@ -158,11 +129,12 @@ TEST(VertexRecords, NonMeshRowIsOneZeroAndClearsTheRow)
   for (int d = 0; d < 3; d++) EXPECT_EQ(s.normal[1][d], 0.0);
 
   fill(s, 1, 9, 100);
-  EXPECT_EQ(pack_vertex_border(s.arrays(), 0, buf), 1);
-  EXPECT_EQ(unpack_vertex_border(s.arrays(), 1, buf), 1);
+  EXPECT_EQ(pack_vertex(s.arrays(), 0, buf, VertexRecord::kBorder), 1);
+  EXPECT_EQ(unpack_vertex(s.arrays(), 1, buf, VertexRecord::kBorder), 1);
   EXPECT_EQ(s.mesh[1], 0);
   EXPECT_EQ(s.thickness[1], 0.0);
   EXPECT_EQ(s.ntri[1], 0);
+  EXPECT_EQ(s.owntag[1], 9);    // ghosts keep their owntag
   for (int d = 0; d < 3; d++) EXPECT_EQ(s.normal[1][d], 0.0);
 }
 
@@ -262,4 +234,25 @@ TEST(VertexRecords, VertexNormalSkipsTrianglesWithAMissingVertex)
   EXPECT_EQ(vertex_normal(x[1].data(), 2, tri2, position, n), 6);
   for (int d = 0; d < 3; d++) EXPECT_EQ(n[d], 0.0);
   EXPECT_EQ(vertex_normal(x[1].data(), 2, tri, position, n), 0);
+}
+
+TEST(VertexRecords, MissingNormalsAreFilledOnlyWhereAllThreeAreZero)
+{
+  Storage<int> s(4);
+  s.mesh[0] = s.mesh[1] = s.mesh[3] = 1;    // row 2 is no mesh vertex
+  s.normal[1][2] = 1.0;                     // row 1 has a normal
+  s.normal[3][0] = -0.0;                    // a negative zero counts as zero
+  EXPECT_TRUE(lacks_normal(s.arrays(), 0));
+  EXPECT_FALSE(lacks_normal(s.arrays(), 1));
+  EXPECT_FALSE(lacks_normal(s.arrays(), 2));
+  EXPECT_TRUE(lacks_normal(s.arrays(), 3));
+  double rows[4][3] = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}, {0.6, 0.8, 0}};
+  double *n[4] = {rows[0], rows[1], rows[2], rows[3]};
+  EXPECT_EQ(fill_missing_normals(s.arrays(), 3, n), 1);    // row 3 is beyond nrows
+  EXPECT_EQ(s.normal[0][2], 1.0);
+  EXPECT_EQ(s.normal[1][1], 0.0);
+  EXPECT_EQ(s.normal[1][2], 1.0);
+  for (int d = 0; d < 3; d++) EXPECT_EQ(s.normal[2][d], 0.0);
+  EXPECT_EQ(fill_missing_normals(s.arrays(), 4, n), 1);
+  EXPECT_EQ(s.normal[3][1], 0.8);
 }
