@@ -1,26 +1,16 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix sissm (doc/theory.rst, "The implicit step"). Per step, with h the time step, for the atoms of the group,
-   the backward-Euler problem
-     r_i(y) = rho_i (yhat_i - y_i) + h^2 f_i(y) = 0,     yhat_i = y_i^n + h v_i^n
-   where f is the exact peri/nosb force density plus, with external implicit (default), the
-   forces of the other fixes re-evaluated at y (external lagged: they are taken at y^n, from
-   the total force of the last evaluation minus the pair part captured in pre_reverse, and
-   moved into yhat as h^2 fext / rho). So a converged step is the backward-Euler step of the
-   material fix nve integrates. The per-particle implicit block
-     D_i = rho_i I + h^2 sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I)
-   drives two solvers:
-     jacobi   y^{k+1} = y^k + alpha_i D_i^-1 r_i(y^k)               (the SISSM sweep)
-     krylov   Newton steps J s = r, J = -dr/dy, solved by conjugate gradients preconditioned
-              with D (products J p by a finite difference of r along p), with a backtracking
-              safeguard on sum_i V_i |r_i|^2 / rho_i
-   both started at y^0 = y^n + h v^n (an equilibrium is a fixed point for any iteration
-   count); an "iteration" is one force evaluation. End of step: v^{n+1} = (y^{n+1} - y^n) / h.
+   fix sissm (doc/theory.rst, "The implicit step"): per step, for the atoms of the group, the
+   implicit problem r_i(y) = rho_i (yhat_i - y_i) + c f_i(y) = 0 of the time scheme (keyword
+   scheme, src/core/solvers/time_scheme.h; backward Euler: c = h^2, yhat_i = y_i^n + h v_i^n),
+   solved by the SISSM sweeps (solver jacobi, solvers/jacobi.h) or Newton-Krylov (solver krylov,
+   solvers/newton_krylov.h), an iteration being one force evaluation. f is the exact peri/nosb
+   force density plus, with external implicit (default), the forces of the other fixes
+   re-evaluated at y (external lagged: taken at y^n, from the total force of the last
+   evaluation minus the pair part captured in pre_reverse, and moved into yhat as c fext / rho).
    The solve runs in post_integrate, after every initial_integrate, so particles prescribed by
-   fix move or other integrators already sit at t^{n+1}. Keyword scheme replaces backward Euler
-   by BDF2 or generalized-alpha (src/core/solvers/time_scheme.h): the same problem with another
-   predictor yhat and factor c in place of h^2, and a per-atom history (fix_sissm_history.cpp).
+   fix move or other integrators already sit at t^{n+1}.
 ------------------------------------------------------------------------- */
 
 #include "fix_sissm.h"
@@ -292,6 +282,14 @@ void FixSissm::reset_dt()
    the per-atom work arrays: rows of cols doubles (or one double per atom, vector), and whether
    the options of this run use them
 ------------------------------------------------------------------------- */
+
+struct FixSissm::WorkArray {
+  double ***rows;
+  double **vector;
+  int cols;
+  bool used;
+  const char *name;
+};
 
 std::vector<FixSissm::WorkArray> FixSissm::work_arrays()
 {

@@ -138,13 +138,7 @@ class FixSissm : public Fix {
   friend class SissmSystem;
   friend class SissmAttempts;
 
-  struct WorkArray {
-    double ***rows;
-    double **vector;
-    int cols;
-    bool used;
-    const char *name;
-  };
+  struct WorkArray;    // (fix_sissm.cpp)
   std::vector<WorkArray> work_arrays();
   void grow();
   void destroy_arrays();
