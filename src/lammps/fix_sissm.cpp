@@ -1,26 +1,16 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix sissm (doc/theory.rst, "The implicit step"). Per step, with h the time step, for the atoms of the group,
-   the backward-Euler problem
-     r_i(y) = rho_i (yhat_i - y_i) + h^2 f_i(y) = 0,     yhat_i = y_i^n + h v_i^n
-   where f is the exact peri/nosb force density plus, with external implicit (default), the
-   forces of the other fixes re-evaluated at y (external lagged: they are taken at y^n, from
-   the total force of the last evaluation minus the pair part captured in pre_reverse, and
-   moved into yhat as h^2 fext / rho). So a converged step is the backward-Euler step of the
-   material fix nve integrates. The per-particle implicit block
-     D_i = rho_i I + h^2 sum_j omega_ij (H_i + H_j + (C_i + C_j)/2 I)
-   drives two solvers:
-     jacobi   y^{k+1} = y^k + alpha_i D_i^-1 r_i(y^k)               (the SISSM sweep)
-     krylov   Newton steps J s = r, J = -dr/dy, solved by conjugate gradients preconditioned
-              with D (products J p by a finite difference of r along p), with a backtracking
-              safeguard on sum_i V_i |r_i|^2 / rho_i
-   both started at y^0 = y^n + h v^n (an equilibrium is a fixed point for any iteration
-   count); an "iteration" is one force evaluation. End of step: v^{n+1} = (y^{n+1} - y^n) / h.
+   fix sissm (doc/theory.rst, "The implicit step"): per step, for the atoms of the group, the
+   implicit problem r_i(y) = rho_i (yhat_i - y_i) + c f_i(y) = 0 of the time scheme (keyword
+   scheme, src/core/solvers/time_scheme.h; backward Euler: c = h^2, yhat_i = y_i^n + h v_i^n),
+   solved by the SISSM sweeps (solver jacobi, solvers/jacobi.h) or Newton-Krylov (solver krylov,
+   solvers/newton_krylov.h), an iteration being one force evaluation. f is the exact peri/nosb
+   force density plus, with external implicit (default), the forces of the other fixes
+   re-evaluated at y (external lagged: taken at y^n, from the total force of the last
+   evaluation minus the pair part captured in pre_reverse, and moved into yhat as c fext / rho).
    The solve runs in post_integrate, after every initial_integrate, so particles prescribed by
-   fix move or other integrators already sit at t^{n+1}. Keyword scheme replaces backward Euler
-   by BDF2 or generalized-alpha (src/core/solvers/time_scheme.h): the same problem with another
-   predictor yhat and factor c in place of h^2, and a per-atom history (fix_sissm_history.cpp).
+   fix move or other integrators already sit at t^{n+1}.
 ------------------------------------------------------------------------- */
 
 #include "fix_sissm.h"
@@ -48,11 +38,12 @@
 
 #include <cmath>
 #include <cstring>
-#include <initializer_list>
 #include <vector>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
+using PeriSISSM::PrecondKind;
+using PeriSISSM::SolverKind;
 
 namespace {
 
@@ -79,38 +70,14 @@ constexpr bool kDefaultAmg = true;
 constexpr bool kDefaultAmg = false;
 #endif
 
-bool is_keyword(const char *word)
-{
-  for (const char *k : {"iterations", "tolerance", "relax", "solver", "external", "lagged",
-                        "precond", "unconverged", "scheme"})
-    if (strcmp(word, k) == 0) return true;
-  return false;
-}
-
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
 
-FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), forces(nullptr), solver(KRYLOV),
-    precond_type(kDefaultAmg ? PRECOND_AMG : PRECOND_BLOCK), precond_given(0), maxiter(100),
-    tolerance(1.0e-6), relax(0), implicit_external(1), external_mode(PeriSISSM::ExternalMode::none),
-    dtv(0.0), tol_step(1.0e-6), last_iterations(0), last_measure(0.0), nsteps_run(0),
-    iterations_run(0), unconverged_run(0), last_substeps(1), last_newton(0), last_krylov(0),
-    cutback_run(0), fallback_run(0), warned_fallback(0), block_first(0), warned(0),
-    warned_roundoff(0), nmax(0), fint(nullptr), fext(nullptr), flagged(nullptr), yn(nullptr),
-    yhat(nullptr), res(nullptr), kblock(nullptr), rprev(nullptr), dprev(nullptr), xbase(nullptr),
-    rbase(nullptr), jbase(nullptr), cres(nullptr), zdir(nullptr), pdir(nullptr), sdir(nullptr),
-    term(nullptr), moment(nullptr), xstart(nullptr), vstart(nullptr), hstart(nullptr), vn(nullptr),
-    fstart(nullptr), gnode(nullptr), psize(nullptr)
+FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
-  ncols = 0;
-  hist = nullptr;
-  hist_from_restart = 1;
   reductions = std::make_unique<WorldReductions>(lmp, world);
   system = std::make_unique<SissmSystem>(this, *reductions);
-  std::string scheme_name = "euler";
-  double rho_inf = 0.8;
   time_integrate = 1;
   force_reneighbor = 1;    // after steps that moved atoms far (short-range contact)
   next_reneighbor = -1;
@@ -120,128 +87,71 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
   global_freq = 1;
   extvector = 0;
 
+  // the keywords (doc/fix_sissm.rst); their words, ranges and rules are solvers/step_options.h
+  using namespace PeriSISSM;
+  opt.precond = kDefaultAmg ? PrecondKind::amg : PrecondKind::block;
   int iarg = 3;
   while (iarg < narg) {
-    if (strcmp(arg[iarg], "iterations") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm iterations", error);
-      maxiter = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-      if (maxiter < 1)
-        error->all(FLERR, "Illegal fix sissm command: iterations must be >= 1, got {}",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "tolerance") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm tolerance", error);
-      tolerance = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (!(tolerance >= 0.0))
-        error->all(FLERR, "Illegal fix sissm command: tolerance must be >= 0, got {}",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "relax") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm relax", error);
-      relax = utils::logical(FLERR, arg[iarg + 1], false, lmp);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "solver") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm solver", error);
-      if (strcmp(arg[iarg + 1], "jacobi") == 0)
-        solver = JACOBI;
-      else if (strcmp(arg[iarg + 1], "krylov") == 0)
-        solver = KRYLOV;
-      else
-        error->all(FLERR, "Illegal fix sissm command: solver must be jacobi or krylov, got '{}'",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "external") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm external", error);
-      if (strcmp(arg[iarg + 1], "implicit") == 0)
-        implicit_external = 1;
-      else if (strcmp(arg[iarg + 1], "lagged") == 0)
-        implicit_external = 0;
-      else
-        error->all(FLERR,
-                   "Illegal fix sissm command: external must be implicit or lagged, got '{}'",
-                   arg[iarg + 1]);
-      iarg += 2;
-    } else if (strcmp(arg[iarg], "lagged") == 0) {
+    const std::string key = arg[iarg];
+    if (!is_step_keyword(key))
+      error->all(FLERR, "Illegal fix sissm command: unknown keyword '{}' (allowed: {})", key,
+                 utils::join_words(kStepKeywords, ", "));
+    if (iarg + 2 > narg || (key == "lagged" && is_step_keyword(arg[iarg + 1])))
+      utils::missing_cmd_args(FLERR, "fix sissm " + key, error);
+    const char *value = arg[iarg + 1];
+    iarg += 2;
+    auto choose = [&](const std::vector<std::string> &words) {
+      const int k = choice_index(value, words);
+      if (k < 0)
+        error->all(FLERR, "Illegal fix sissm command: {} must be {}, got '{}'", key,
+                   choice_text(words), value);
+      return k;
+    };
+    if (key == "iterations") {
+      opt.iterations = utils::inumeric(FLERR, value, false, lmp);
+    } else if (key == "tolerance") {
+      opt.tolerance = utils::numeric(FLERR, value, false, lmp);
+    } else if (key == "relax") {
+      opt.relax = utils::logical(FLERR, value, false, lmp);
+    } else if (key == "solver") {
+      opt.solver = (SolverKind) choose(kSolverWords);
+    } else if (key == "external") {
+      opt.implicit_external = choose(kExternalWords) == 0;
+    } else if (key == "lagged") {
       // the fix IDs up to the next keyword
-      if (iarg + 2 > narg || is_keyword(arg[iarg + 1]))
-        utils::missing_cmd_args(FLERR, "fix sissm lagged", error);
-      for (iarg++; iarg < narg && !is_keyword(arg[iarg]); iarg++)
-        lagged_ids.emplace_back(arg[iarg]);
-    } else if (strcmp(arg[iarg], "precond") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm precond", error);
-      precond_given = 1;
-      if (strcmp(arg[iarg + 1], "block") == 0)
-        precond_type = PRECOND_BLOCK;
-      else if (strcmp(arg[iarg + 1], "amg") == 0)
-        precond_type = PRECOND_AMG;
-      else
-        error->all(FLERR, "Illegal fix sissm command: precond must be block or amg, got '{}'",
-                   arg[iarg + 1]);
-      iarg += 2;
+      for (iarg--; iarg < narg && !is_step_keyword(arg[iarg]); iarg++)
+        opt.lagged.emplace_back(arg[iarg]);
+    } else if (key == "precond") {
+      opt.precond_given = true;
+      opt.precond = (PrecondKind) choose(kPrecondWords);
       if (iarg < narg && strcmp(arg[iarg], "petsc") == 0) {
         if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm precond amg petsc", error);
-        if (precond_type != PRECOND_AMG)
+        if (opt.precond != PrecondKind::amg)
           error->all(FLERR, "Illegal fix sissm command: petsc options need precond amg");
-        petsc_options = arg[iarg + 1];
+        opt.petsc = arg[iarg + 1];
         iarg += 2;
       }
-    } else if (strcmp(arg[iarg], "unconverged") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm unconverged", error);
-      using PeriSISSM::Unconverged;
-      if (strcmp(arg[iarg + 1], "warn") == 0)
-        retry.unconverged = Unconverged::warn;
-      else if (strcmp(arg[iarg + 1], "error") == 0)
-        retry.unconverged = Unconverged::error;
-      else if (strcmp(arg[iarg + 1], "cutback") == 0)
-        retry.unconverged = Unconverged::cutback;
-      else
-        error->all(FLERR,
-                   "Illegal fix sissm command: unconverged must be warn, error or cutback, "
-                   "got '{}'",
-                   arg[iarg + 1]);
-      iarg += 2;
-      if (retry.unconverged == Unconverged::cutback && iarg < narg && isdigit(arg[iarg][0])) {
-        retry.max_cutback = utils::inumeric(FLERR, arg[iarg], false, lmp);
-        if (retry.max_cutback < 1 || retry.max_cutback > 20)
-          error->all(FLERR,
-                     "Illegal fix sissm command: unconverged cutback levels must be 1 to 20, "
-                     "got {}",
-                     arg[iarg]);
-        iarg++;
+    } else if (key == "unconverged") {
+      opt.retry.unconverged = (Unconverged) choose(kUnconvergedWords);
+      if (opt.retry.unconverged == Unconverged::cutback && iarg < narg && isdigit(arg[iarg][0])) {
+        value = arg[iarg++];
+        opt.retry.max_cutback = utils::inumeric(FLERR, value, false, lmp);
       }
-    } else if (strcmp(arg[iarg], "scheme") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm scheme", error);
-      scheme_name = arg[iarg + 1];
-      if (scheme_name != "euler" && scheme_name != "bdf2" && scheme_name != "genalpha")
-        error->all(FLERR,
-                   "Illegal fix sissm command: scheme must be euler, bdf2 or genalpha, got '{}'",
-                   arg[iarg + 1]);
-      iarg += 2;
-      if (scheme_name == "genalpha" && iarg < narg &&
+    } else if (key == "scheme") {
+      opt.scheme = kSchemeWords[choose(kSchemeWords)];
+      if (opt.scheme == "genalpha" && iarg < narg &&
           (isdigit(arg[iarg][0]) || arg[iarg][0] == '.' || arg[iarg][0] == '-')) {
-        rho_inf = utils::numeric(FLERR, arg[iarg], false, lmp);
-        if (!(rho_inf >= 0.0 && rho_inf <= 1.0))
-          error->all(FLERR,
-                     "Illegal fix sissm command: scheme genalpha rho_inf must be 0 to 1, got {}",
-                     arg[iarg]);
-        iarg++;
+        value = arg[iarg++];
+        opt.rho_inf = utils::numeric(FLERR, value, false, lmp);
       }
-    } else {
-      error->all(FLERR,
-                 "Illegal fix sissm command: unknown keyword '{}' (allowed: iterations, "
-                 "tolerance, solver, precond, unconverged, scheme, relax, external, lagged)",
-                 arg[iarg]);
     }
+    const std::string bad = value_problem(opt, key);
+    if (!bad.empty()) error->all(FLERR, "Illegal fix sissm command: {}, got {}", bad, value);
   }
-  if (relax && solver != JACOBI)
-    error->all(FLERR, "Illegal fix sissm command: relax yes requires solver jacobi");
-  if (solver == JACOBI && precond_given && precond_type == PRECOND_AMG)
-    error->all(FLERR,
-               "Illegal fix sissm command: precond amg needs solver krylov (the jacobi "
-               "sweeps use the blocks themselves)");
-  if (solver == JACOBI) precond_type = PRECOND_BLOCK;
+  const std::string refused = settle(opt);
+  if (!refused.empty()) error->all(FLERR, "Illegal fix sissm command: {}", refused);
 
-  scheme = PeriSISSM::make_time_scheme(scheme_name, rho_inf);
+  scheme = PeriSISSM::make_time_scheme(opt.scheme, opt.rho_inf);
   ncols = scheme->history_columns();
   if (ncols > 0) {
     // the history travels with the atoms and is kept in restart files
@@ -254,7 +164,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) :
     for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
   }
 #ifndef PERISISSM_HAVE_PETSC
-  if (precond_type == PRECOND_AMG)
+  if (opt.precond == PrecondKind::amg)
     error->all(FLERR,
                "Fix sissm precond amg needs PETSc, and this build of the plugin has none "
                "(install Debian's petsc-dev and rebuild, e.g. with tools/setup.sh); "
@@ -313,8 +223,8 @@ void FixSissm::init()
   // leave its plane (measured: the hanging strip of examples/membranes buckles sideways in the
   // first step and then misses the tolerance; block keeps it in its plane), so the default is
   // block there
-  if (!precond_given && precond_type == PRECOND_AMG && forces->has_unbent_membranes()) {
-    precond_type = PRECOND_BLOCK;
+  if (!opt.precond_given && opt.precond == PrecondKind::amg && forces->has_unbent_membranes()) {
+    opt.precond = PrecondKind::block;
     if (comm->me == 0)
       utils::logmesg(lmp,
                      "Fix sissm {}: membranes without bending (pair_coeff ... membrane yes, no "
@@ -324,7 +234,7 @@ void FixSissm::init()
   }
   block_precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
   amg_precond.reset();
-  if (precond_type == PRECOND_AMG) amg_precond = make_amg();
+  if (opt.precond == PrecondKind::amg) amg_precond = make_amg();
   precond = amg_precond ? amg_precond.get() : block_precond.get();
   // the options of this run decide which work arrays exist: allocate them anew
   destroy_arrays();
@@ -369,57 +279,68 @@ void FixSissm::reset_dt()
 }
 
 /* ----------------------------------------------------------------------
-   per-atom work arrays: only those the chosen options use
+   the per-atom work arrays: rows of cols doubles (or one double per atom, vector), and whether
+   the options of this run use them
 ------------------------------------------------------------------------- */
+
+struct FixSissm::WorkArray {
+  double ***rows;
+  double **vector;
+  int cols;
+  bool used;
+  const char *name;
+};
+
+std::vector<FixSissm::WorkArray> FixSissm::work_arrays()
+{
+  const bool lagged = external_mode == PeriSISSM::ExternalMode::lagged ||
+      external_mode == PeriSISSM::ExternalMode::mixed;
+  // redone steps start again from y^n, v^n; with precond amg too (a switch of preconditioner)
+  const bool restart = opt.retry.unconverged == PeriSISSM::Unconverged::cutback ||
+      opt.precond == PrecondKind::amg || (scheme && scheme->force_time() < 1.0);
+  const bool krylov = opt.solver == SolverKind::krylov, history = ncols > 0;
+  return {{&kblock, nullptr, 6, true, "sissm:block"},
+          {nullptr, &psize, 1, true, "sissm:size"},
+          {&yn, nullptr, 3, true, "sissm:yn"},
+          {&yhat, nullptr, 3, true, "sissm:yhat"},
+          {&res, nullptr, 3, true, "sissm:res"},
+          {&fext, nullptr, 3, true, "sissm:fext"},
+          {&moment, nullptr, PeriSISSM::kMomentumColumns, true, "sissm:moment"},
+          {&fint, nullptr, 3, lagged, "sissm:fint"},
+          {&flagged, nullptr, 3, lagged, "sissm:flagged"},
+          {&xstart, nullptr, 3, restart, "sissm:xstart"},
+          {&vstart, nullptr, 3, restart, "sissm:vstart"},
+          {&hstart, nullptr, ncols, restart && history, "sissm:hstart"},
+          {&vn, nullptr, 3, history, "sissm:vn"},
+          {&fstart, nullptr, 3, history, "sissm:fstart"},
+          {nullptr, &gnode, 1, opt.precond == PrecondKind::amg, "sissm:gnode"},
+          {&rprev, nullptr, 3, opt.relax, "sissm:rprev"},
+          {&dprev, nullptr, 3, opt.relax, "sissm:dprev"},
+          {&xbase, nullptr, 3, krylov, "sissm:krylov"},
+          {&rbase, nullptr, 3, krylov, "sissm:krylov"},
+          {&jbase, nullptr, 3, krylov, "sissm:krylov"},
+          {&cres, nullptr, 3, krylov, "sissm:krylov"},
+          {&zdir, nullptr, 3, krylov, "sissm:krylov"},
+          {&pdir, nullptr, 3, krylov, "sissm:krylov"},
+          {&sdir, nullptr, 3, krylov, "sissm:krylov"},
+          {nullptr, &term, 1, krylov, "sissm:term"}};
+}
 
 void FixSissm::destroy_arrays()
 {
-  for (double ***a :
-       {&fint,  &fext, &flagged, &yn,   &yhat, &res,    &kblock, &rprev,  &dprev,  &xbase, &rbase,
-        &jbase, &cres, &zdir,    &pdir, &sdir, &moment, &xstart, &vstart, &hstart, &vn,    &fstart})
-    memory->destroy(*a);
-  memory->destroy(term);
-  memory->destroy(gnode);
-  memory->destroy(psize);
+  for (const WorkArray &w : work_arrays()) {
+    if (w.rows) memory->destroy(*w.rows);
+    if (w.vector) memory->destroy(*w.vector);
+  }
 }
 
 void FixSissm::grow()
 {
   if (atom->nmax <= nmax) return;
   nmax = atom->nmax;
-  const bool lagged = external_mode == PeriSISSM::ExternalMode::lagged ||
-      external_mode == PeriSISSM::ExternalMode::mixed;
-  const bool restart_step = retry.unconverged == PeriSISSM::Unconverged::cutback ||
-      precond_type == PRECOND_AMG || scheme->force_time() < 1.0;
-  memory->grow(kblock, nmax, 6, "sissm:block");
-  memory->grow(psize, nmax, "sissm:size");
-  memory->grow(yn, nmax, 3, "sissm:yn");
-  memory->grow(yhat, nmax, 3, "sissm:yhat");
-  memory->grow(res, nmax, 3, "sissm:res");
-  memory->grow(fext, nmax, 3, "sissm:fext");
-  memory->grow(moment, nmax, PeriSISSM::kMomentumColumns, "sissm:moment");
-  if (lagged) {
-    memory->grow(fint, nmax, 3, "sissm:fint");
-    memory->grow(flagged, nmax, 3, "sissm:flagged");
-  }
-  if (restart_step) {
-    memory->grow(xstart, nmax, 3, "sissm:xstart");
-    memory->grow(vstart, nmax, 3, "sissm:vstart");
-    if (ncols > 0) memory->grow(hstart, nmax, ncols, "sissm:hstart");
-  }
-  if (ncols > 0) {
-    memory->grow(vn, nmax, 3, "sissm:vn");
-    memory->grow(fstart, nmax, 3, "sissm:fstart");
-  }
-  if (precond_type == PRECOND_AMG) memory->grow(gnode, nmax, "sissm:gnode");
-  if (relax) {
-    memory->grow(rprev, nmax, 3, "sissm:rprev");
-    memory->grow(dprev, nmax, 3, "sissm:dprev");
-  }
-  if (solver == KRYLOV) {
-    for (double ***a : {&xbase, &rbase, &jbase, &cres, &zdir, &pdir, &sdir})
-      memory->grow(*a, nmax, 3, "sissm:krylov");
-    memory->grow(term, nmax, "sissm:term");
+  for (const WorkArray &w : work_arrays()) {
+    if (w.used && w.rows) memory->grow(*w.rows, nmax, w.cols, w.name);
+    if (w.used && w.vector) memory->grow(*w.vector, nmax, w.name);
   }
 }
 
@@ -485,14 +406,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   const bool move_others = xstart && (tforce < 1.0);
   if (move_others) place_others(tforce);
   if (!contacts.empty()) begin_path(h);    // (the limiters are among the contacts)
-  arrays.y = x;
-  arrays.v = v;
-  arrays.yn = yn;
-  arrays.vn = vn;
-  arrays.yhat = yhat;
-  arrays.hist = hist;
-  arrays.flag = flag;
-  arrays.fstart = fstart;
+  arrays = {x, v, yn, vn, yhat, hist, flag, fstart};
   const PeriSISSM::Rows &rows = system->rows();
   scheme->begin(rows, arrays);
   for (int i = 0; i < nlocal; i++)
@@ -500,27 +414,15 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
 
   system->begin_solve();
   PeriSISSM::SolveResult result;
-  if (solver == KRYLOV) {
-    PeriSISSM::KrylovWork work;
-    work.xbase = xbase;
-    work.rbase = rbase;
-    work.jbase = jbase;
-    work.cres = cres;
-    work.zdir = zdir;
-    work.pdir = pdir;
-    work.sdir = sdir;
-    work.term = term;
-    result = PeriSISSM::solve_newton_krylov(*system, *precond, maxiter, work);
+  if (opt.solver == SolverKind::krylov) {
+    const PeriSISSM::KrylovWork work{xbase, rbase, jbase, cres, zdir, pdir, sdir, term};
+    result = PeriSISSM::solve_newton_krylov(*system, *precond, opt.iterations, work);
+    // (tolerance 0: every step runs to the limit by request, which says nothing of the
+    // preconditioner)
+    precond->finished(result.newton, result.krylov, result.converged() || opt.tolerance == 0.0);
   } else {
-    PeriSISSM::SweepMemory memory_rows;
-    memory_rows.rprev = rprev;
-    memory_rows.dprev = dprev;
-    result = PeriSISSM::solve_jacobi(*system, maxiter, memory_rows);
+    result = PeriSISSM::solve_jacobi(*system, opt.iterations, {rprev, dprev});
   }
-  // (tolerance 0: every step runs to the limit by request, which says nothing of the
-  // preconditioner)
-  if (solver == KRYLOV)
-    precond->finished(result.newton, result.krylov, result.converged() || tolerance == 0.0);
   last_newton += result.newton;
   last_krylov += result.krylov;
   if (!forces->group_coupled(groupbit)) {
@@ -603,14 +505,14 @@ void FixSissm::report_retries(const PeriSISSM::RetryOutcome &outcome)
                "sub-steps of {:.6g} (convergence measure {:.3g} > tolerance {:.3g}): raise "
                "iterations, lower the time step, or accept unconverged steps with 'unconverged "
                "warn'",
-               id, update->ntimestep, maxiter, substeps, dtv / substeps, result.measure,
+               id, update->ntimestep, opt.iterations, substeps, dtv / substeps, result.measure,
                result.tolerance);
   cutback_run++;
   if (comm->me == 0)
     utils::logmesg(lmp,
                    "Fix sissm {}: step {} did not converge in {} iterations; redone as {} "
                    "sub-steps of {:.6g} (counted in f_{}[6])\n",
-                   id, update->ntimestep, maxiter, substeps, dtv / substeps, id);
+                   id, update->ntimestep, opt.iterations, substeps, dtv / substeps, id);
 }
 
 /* ----------------------------------------------------------------------
@@ -702,15 +604,15 @@ void FixSissm::post_integrate()
   last_newton = last_krylov = 0;
   // tolerance 0 asks for every step to use all its iterations: such a step is neither redone
   // nor refused
-  retry.fixed_count = tolerance == 0.0;
-  retry.two_preconditioners = amg_precond != nullptr;
+  opt.retry.fixed_count = opt.tolerance == 0.0;
+  opt.retry.two_preconditioners = amg_precond != nullptr;
   PeriSISSM::RetryOutcome outcome;
   {
     ImplicitStep step(forces, groupbit);
     // precond amg: the preconditioner that converged the last step goes first
     precond = (amg_precond && !block_first) ? amg_precond.get() : block_precond.get();
     SissmAttempts attempts(this, lagged ? flagged : nullptr);
-    outcome = PeriSISSM::run_retry_ladder(attempts, retry);
+    outcome = PeriSISSM::run_retry_ladder(attempts, opt.retry);
     report_retries(outcome);
   }
   const PeriSISSM::SolveResult &result = outcome.result;
@@ -738,7 +640,7 @@ void FixSissm::post_integrate()
   last_substeps = outcome.substeps;
   nsteps_run++;
   iterations_run += evaluations;
-  const PeriSISSM::StepVerdict verdict = PeriSISSM::step_verdict(retry, measure, tol_step);
+  const PeriSISSM::StepVerdict verdict = PeriSISSM::step_verdict(opt.retry, measure, tol_step);
   if (verdict != PeriSISSM::StepVerdict::converged) {
     unconverged_run++;
     if (verdict == PeriSISSM::StepVerdict::error)
@@ -750,7 +652,7 @@ void FixSissm::post_integrate()
       error->warning(FLERR,
                      "Fix sissm: step {} stopped at {} iterations with convergence measure {:.3g} "
                      "> tolerance {:.3g} (counted in f_{}[4]; reported once per run)",
-                     update->ntimestep, evaluations, measure, tolerance, id);
+                     update->ntimestep, evaluations, measure, opt.tolerance, id);
     warned = 1;
   }
 }
@@ -774,14 +676,10 @@ double FixSissm::compute_vector(int n)
 
 double FixSissm::memory_usage()
 {
-  // the per-atom arrays grow() allocates (PETSc's matrix and hierarchy are not counted)
-  // yn, yhat, res, fext, block, moment, size
-  int arrays = 4 * 3 + 6 + PeriSISSM::kMomentumColumns + 1;
-  if (fint) arrays += 2 * 3;                             // fint, flagged
-  if (xstart) arrays += 2 * 3 + (hstart ? ncols : 0);    // redone steps
-  arrays += ncols + (vn ? 2 * 3 : 0);                    // the scheme's history, v^n and f at y^n
-  if (gnode) arrays += 1;
-  if (relax) arrays += 6;
-  if (solver == KRYLOV) arrays += 7 * 3 + 1;
+  // the per-atom arrays grow() allocates and the scheme's history (PETSc's matrix and hierarchy
+  // are not counted)
+  int arrays = ncols;
+  for (const WorkArray &w : work_arrays())
+    if (w.used) arrays += w.cols;
   return (double) arrays * nmax * sizeof(double);
 }

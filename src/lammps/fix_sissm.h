@@ -24,7 +24,7 @@ FixStyle(sissm,FixSissm);
 
 #include "solvers/external_forces.h"
 #include "solvers/jacobi.h"
-#include "solvers/step_retry.h"
+#include "solvers/step_options.h"
 #include "solvers/time_scheme.h"
 
 #include <memory>
@@ -70,9 +70,7 @@ class FixSissm : public Fix {
   int maxsize_restart() override;
 
  protected:
-  enum { JACOBI, KRYLOV };
-  enum { PRECOND_BLOCK, PRECOND_AMG };
-  class ImplicitForces *forces;    // the pair style's side of the step
+  class ImplicitForces *forces = nullptr;    // the pair style's side of the step
   // the nonlinear system the solvers see, and its reductions over world (fix_sissm_system.cpp)
   std::unique_ptr<class SissmSystem> system;
   std::unique_ptr<class WorldReductions> reductions;
@@ -81,25 +79,16 @@ class FixSissm : public Fix {
   PeriSISSM::Preconditioner *precond = nullptr;
   std::unique_ptr<PeriSISSM::Preconditioner> amg_precond, block_precond;
   std::unique_ptr<PeriSISSM::TimeScheme> scheme;    // which implicit step
+  PeriSISSM::StepOptions opt;                       // the keywords (solvers/step_options.h)
   PeriSISSM::StepArrays arrays;                     // the per-atom arrays of the step being solved
-  int ncols;                       // the scheme's per-atom history columns (0: none)
-  double **hist;                   // the scheme's history per atom (grown with atom->nmax)
-  int hist_from_restart;           // 0: a restart file's history is of another scheme: not taken
-  int solver;                      // JACOBI sweeps or KRYLOV (Newton-CG)
-  int precond_type;                // PRECOND_BLOCK (the SISSM blocks) or PRECOND_AMG (PETSc)
-  std::string petsc_options;       // keyword petsc: options for PETSc's preconditioner
-  int precond_given;               // the keyword precond was given
-  PeriSISSM::RetryPolicy retry;    // keyword unconverged (solvers/step_retry.h)
-  int maxiter;                     // force evaluations per step at most
-  double tolerance;                // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
-  int relax;                       // 1: per-particle step factor alpha_i, 0: alpha_i = 1 (jacobi)
-  int implicit_external;           // keyword external: 1 implicit, 0 lagged
-  std::vector<std::string> lagged_ids;    // keyword lagged: fixes that act once per step
+  int ncols = 0;                // the scheme's per-atom history columns (0: none)
+  double **hist = nullptr;      // the scheme's history per atom (grown with atom->nmax)
+  int hist_from_restart = 1;    // 0: a restart file's history is of another scheme: not taken
   // how the forces of the other fixes enter the step (decided in init, choose_external(), by
   // the rule of solvers/external_forces.h): NONE there are none; IMPLICIT all re-evaluated at
   // every iterate; MIXED those that add forces re-evaluated, the others lagged (their force of
   // the evaluation that ended the previous step); LAGGED all lagged
-  PeriSISSM::ExternalMode external_mode;
+  PeriSISSM::ExternalMode external_mode = PeriSISSM::ExternalMode::none;
   std::vector<class Fix *> implicit_fixes;    // re-evaluated at every iterate, in LAMMPS order
   // contact that makes the step collision-free: every move of the atoms is limited by it
   // (collision_limit.h)
@@ -111,45 +100,46 @@ class FixSissm : public Fix {
   int balance_first = 0;        // the next evaluation is the first of a (sub-)step: balance them
   int reach_cut = 0;            // the last evaluation's move was cut short by a contact's reach
   std::string external_note;    // what was last logged about them
-  double dtv;
-  double tol_step;    // the tolerance of the current step (SissmSystem::step_tolerance())
+  double dtv = 0.0;
+  double tol_step = 1.0e-6;    // the tolerance of the current step (SissmSystem::step_tolerance())
 
-  // statistics (global vector)
-  int last_iterations;
-  double last_measure;
-  bigint nsteps_run, iterations_run, unconverged_run;
-  int last_substeps;               // sub-steps of the last step (1: not cut back)
-  int last_newton, last_krylov;    // Newton steps and Krylov iterations of the last step
-  bigint cutback_run;              // steps cut back since the run started
-  bigint fallback_run;             // precond amg: steps redone with the other preconditioner
-  int warned_fallback;
-  int block_first;    // precond amg: the blocks converged the last step that amg did not
-
-  int warned;             // non-convergence already reported in this run
-  int warned_roundoff;    // round-off limit of the tolerance already reported in this run
-  int nmax;
-  double **fint;       // internal force density at y^n (captured in pre_reverse; lagged, mixed)
-  double **fext;       // force density of the other fixes at the last evaluation (implicit,
-                       //   mixed: used by the momentum balance; lagged: zero, it is in yhat)
-  double **flagged;    // mixed: force density of the lagged fixes for this step
-  double **yn;         // y^n of owned atoms
-  double **yhat;       // predictor y^n + h v^n (+ h^2 f_ext / rho when lagged)
-  double **res;        // backward-Euler residual of the last evaluation
-  double **kblock;     // implicit block sum_j omega_ij (H_i + H_j + S_ij) per owned atom
-  double **rprev, **dprev;    // relax: residual and correction of the previous sweep
-  double **xbase, **rbase, **jbase, **cres, **zdir, **pdir, **sdir;    // krylov vectors
-  double *term;                       // krylov: per-atom terms of a global sum
-  double **moment;                    // per-atom terms of the momentum balance
-  double **xstart, **vstart;          // cutback: y^n, v^n of the group; end positions of the others
-  double **hstart;                    // the history at the start of the step (redone steps)
+  // statistics (global vector): the last step's evaluations, measure, sub-steps (1: not cut
+  // back), Newton steps and Krylov iterations; the run's steps, evaluations, unconverged steps,
+  // steps cut back and steps redone with the other preconditioner (precond amg)
+  int last_iterations = 0, last_substeps = 1, last_newton = 0, last_krylov = 0;
+  double last_measure = 0.0;
+  bigint nsteps_run = 0, iterations_run = 0, unconverged_run = 0, cutback_run = 0, fallback_run = 0;
+  int block_first = 0;    // precond amg: the blocks converged the last step that amg did not
+  // warnings already given in this run: unconverged, round-off floor, preconditioner switch
+  int warned = 0, warned_roundoff = 0, warned_fallback = 0;
+  int nmax = 0;
+  double **fint = nullptr;       // internal force density at y^n (captured in pre_reverse; lagged,
+                                 //   mixed)
+  double **fext = nullptr;       // force density of the other fixes at the last evaluation
+                                 //   (implicit, mixed: used by the momentum balance; lagged: zero)
+  double **flagged = nullptr;    // mixed: force density of the lagged fixes for this step
+  double **yn = nullptr;         // y^n of owned atoms
+  double **yhat = nullptr;       // predictor y^n + h v^n (+ h^2 f_ext / rho when lagged)
+  double **res = nullptr;        // backward-Euler residual of the last evaluation
+  double **kblock = nullptr;     // implicit block sum_j omega_ij (H_i + H_j + S_ij) per atom
+  double **rprev = nullptr, **dprev = nullptr;    // relax: residual, correction of the last sweep
+  double **xbase = nullptr, **rbase = nullptr, **jbase = nullptr, **cres = nullptr,
+         **zdir = nullptr, **pdir = nullptr, **sdir = nullptr;    // krylov vectors
+  double *term = nullptr;                           // krylov: per-atom terms of a global sum
+  double **moment = nullptr;                        // per-atom terms of the momentum balance
+  double **xstart = nullptr, **vstart = nullptr;    // cutback: y^n, v^n of the group; end
+                                                    //   positions of the others
+  double **hstart = nullptr;          // the history at the start of the step (redone steps)
   std::vector<double> state_start;    // the scheme's global state at the start of the step
-  double **vn, **fstart;              // schemes with history: v^n, and the force density at y^n
-  double *gnode;                      // amg: global node number of each atom (-1: not an unknown)
-  double *psize;                      // V^(1/3) of each atom (Rows::size), refreshed at every step
+  double **vn = nullptr, **fstart = nullptr;    // with history: v^n, the force density at y^n
+  double *gnode = nullptr;    // amg: global node number of each atom (-1: not an unknown)
+  double *psize = nullptr;    // V^(1/3) of each atom (Rows::size), refreshed at every step
   friend class SissmAmg;
   friend class SissmSystem;
   friend class SissmAttempts;
 
+  struct WorkArray;    // (fix_sissm.cpp)
+  std::vector<WorkArray> work_arrays();
   void grow();
   void destroy_arrays();
   void choose_external();

@@ -30,7 +30,7 @@ using namespace FixConst;
 
 void FixSissm::choose_external()
 {
-  for (const std::string &name : lagged_ids) {
+  for (const std::string &name : opt.lagged) {
     Fix *f = modify->get_fix_by_id(name);
     if (!f) error->all(FLERR, "Fix sissm {} lagged: no fix with ID {}", id, name);
     if (!(modify->get_fix_mask(f) & POST_FORCE))
@@ -55,7 +55,7 @@ void FixSissm::choose_external()
       what.keeps_state = f->restart_global != 0 && !dynamic_cast<CollisionLimit *>(f);
       what.potential = f->energy_global_flag != 0 || f->virial_global_flag != 0;
       what.named_lagged =
-          std::find(lagged_ids.begin(), lagged_ids.end(), f->id) != lagged_ids.end();
+          std::find(opt.lagged.begin(), opt.lagged.end(), f->id) != opt.lagged.end();
       const PeriSISSM::ExternalRole role = PeriSISSM::external_role(what);
       roles.push_back(role);
       const std::string name = fmt::format("{} ({})", f->id, f->style);
@@ -68,7 +68,7 @@ void FixSissm::choose_external()
       implicit_fixes.push_back(f);
     }
   }
-  external_mode = PeriSISSM::external_mode(roles, implicit_external != 0);
+  external_mode = PeriSISSM::external_mode(roles, opt.implicit_external);
 
   std::string note;
   if (external_mode == PeriSISSM::ExternalMode::mixed)
@@ -77,7 +77,7 @@ void FixSissm::choose_external()
                        "keyword lagged) and must act once per step: its force is lagged (taken "
                        "at the start of each step); the other fixes' forces are implicit\n",
                        id, lagged_names);
-  else if (external_mode == PeriSISSM::ExternalMode::lagged && implicit_external)
+  else if (external_mode == PeriSISSM::ExternalMode::lagged && opt.implicit_external)
     note = fmt::format("Fix sissm {}: fix {} may hold state or random numbers (an integrator, a "
                        "dynamic group, a thermostat, a fix with restart state, or named by "
                        "keyword lagged) and must act once per step, and fix {} declares no "
@@ -106,10 +106,10 @@ void FixSissm::choose_external()
                  "iterate, but the forces of the other fixes are lagged here ({}): remove that, "
                  "or {}",
                  id, f->id, f->style, needs,
-                 implicit_external ? "a fix that may rewrite forces is present next to a "
-                                     "lagged one; hold atoms by leaving them out of fix "
-                                     "sissm's group instead"
-                                   : "keyword external lagged",
+                 opt.implicit_external ? "a fix that may rewrite forces is present next to a "
+                                         "lagged one; hold atoms by leaving them out of fix "
+                                         "sissm's group instead"
+                                       : "keyword external lagged",
                  remedy);
     };
     if (limit->adapts_stiffness()) {

@@ -168,7 +168,7 @@ void SissmSystem::check_finite()
 double SissmSystem::step_tolerance()
 {
   FixSissm &s = *fix_;
-  const double asked = s.tolerance;
+  const double asked = s.opt.tolerance;
   const PeriSISSM::StepTolerance t = PeriSISSM::step_tolerance(
       asked, rows_, s.atom->x, s.kblock, s.scheme->force_factor(), reductions_);
   s.tol_step = t.tolerance;

@@ -1,0 +1,126 @@
+// The preconditioning matrix of precond amg in 3x3 blocks (see block_matrix.h).
+
+#include "solvers/block_matrix.h"
+
+namespace PeriSISSM {
+
+void index_hinges(const HingeCouplings &hinges, int n, HingeIndex &index)
+{
+  index.first.assign(n + 1, 0);
+  const int nh = hinges.count();
+  for (int h = 0; h < nh; h++)
+    for (int v = 0; v < 4; v++) {
+      const int i = hinges.row[4 * h + v];
+      if (i >= 0) index.first[i + 1]++;
+    }
+  for (int i = 0; i < n; i++) index.first[i + 1] += index.first[i];
+  index.of.resize(index.first[n]);
+  std::vector<int> next(index.first.begin(), index.first.end() - 1);
+  for (int h = 0; h < nh; h++)
+    for (int v = 0; v < 4; v++) {
+      const int i = hinges.row[4 * h + v];
+      if (i >= 0) index.of[next[i]++] = 4 * h + v;
+    }
+}
+
+int BlockPattern::find(int r, int gcol) const
+{
+  const int end = r + 1 < (int) first.size() ? first[r + 1] : (int) col.size();
+  for (int m = first[r]; m < end; m++)
+    if (col[m] == gcol) return m;
+  return -1;
+}
+
+void build_block_pattern(const Rows &rows, const double *node, const BondSprings &springs,
+                         const HingeCouplings &hinges, const HingeIndex &index,
+                         BlockPattern &pattern)
+{
+  pattern.first.assign(1, 0);
+  pattern.col.clear();
+  pattern.row.clear();
+  for (int i = 0; i < rows.n; i++) {
+    if (!rows.has(i)) continue;
+    const int gi = (int) node[i];
+    const int r = (int) pattern.first.size() - 1;
+    pattern.col.push_back(gi);
+    for (int s = springs.first[i]; s < springs.first[i + 1]; s++) {
+      const int gj = (int) node[springs.partner[s]];
+      if (gj >= 0) pattern.col.push_back(gj);
+    }
+    for (int q = index.first[i]; q < index.first[i + 1]; q++) {
+      const int *v = &hinges.vertex[4 * (index.of[q] / 4)];
+      for (int b = 0; b < 4; b++) {
+        const int gj = (int) node[v[b]];
+        if (gj < 0) continue;
+        pattern.col.push_back(gj);    // provisionally, to find it below
+        if (pattern.find(r, gj) != (int) pattern.col.size() - 1) pattern.col.pop_back();
+      }
+    }
+    pattern.first.push_back((int) pattern.col.size());
+    pattern.row.resize(pattern.col.size(), gi);
+  }
+}
+
+void assemble_blocks(const Rows &rows, const double *node, double c, const BondSprings &springs,
+                     const HingeCouplings &hinges, const HingeIndex &index,
+                     const BlockPattern &pattern, double **x, std::vector<double> &values,
+                     std::vector<double> &coords)
+{
+  values.assign(9 * pattern.col.size(), 0.0);
+  coords.assign(3 * (pattern.first.size() - 1), 0.0);
+  const double *rho = rows.density, *vol = rows.volume;
+  int r = 0;
+  for (int i = 0; i < rows.n; i++) {
+    if (!rows.has(i)) continue;
+    int m = pattern.first[r];
+    double *diag = &values[9 * m++];
+    for (int k = 0; k < 9; k += 4) diag[k] = vol[i] * rho[i];
+    for (int s = springs.first[i]; s < springs.first[i + 1]; s++) {
+      const double *e = &springs.e[3 * s];
+      const double ck = c * springs.k[s];
+      const bool unknown = node[springs.partner[s]] >= 0.0;
+      double *off = unknown ? &values[9 * m++] : nullptr;
+      for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+          const double kab = ck * e[a] * e[b];
+          diag[3 * a + b] += kab;
+          if (off) off[3 * a + b] -= kab;
+        }
+    }
+    // the hinges: row v of c g g^T, blocks g_v g_b^T (g = sqrt(2 c_hinge) grad theta)
+    for (int q = index.first[i]; q < index.first[i + 1]; q++) {
+      const int h = index.of[q] / 4, v = index.of[q] % 4;
+      const double *g = &hinges.grad[12 * h];
+      for (int b = 0; b < 4; b++) {
+        const int j = hinges.vertex[4 * h + b];
+        const int gj = b == v ? (int) node[i] : (int) node[j];
+        if (gj < 0) continue;    // not an unknown: held, no column
+        double *blk = &values[9 * pattern.find(r, gj)];
+        for (int a = 0; a < 3; a++)
+          for (int d = 0; d < 3; d++) blk[3 * a + d] += c * g[3 * v + a] * g[3 * b + d];
+      }
+    }
+    for (int k = 0; k < 3; k++) coords[3 * r + k] = x[i][k];
+    r++;
+  }
+}
+
+void gather_weighted(const Rows &rows, double **r, std::vector<double> &b)
+{
+  b.clear();
+  for (int i = 0; i < rows.n; i++)
+    if (rows.has(i))
+      for (int k = 0; k < 3; k++) b.push_back(rows.volume[i] * r[i][k]);
+}
+
+void scatter_unknowns(const Rows &rows, const std::vector<double> &z, double **out)
+{
+  int node = 0;
+  for (int i = 0; i < rows.n; i++) {
+    if (!rows.has(i)) continue;
+    for (int k = 0; k < 3; k++) out[i][k] = z[3 * node + k];
+    node++;
+  }
+}
+
+}    // namespace PeriSISSM

@@ -1,0 +1,62 @@
+// The preconditioning matrix of precond amg (doc/fix_sissm.rst, "Preconditioners";
+// doc/theory.rst, "The coarse level") in 3x3 blocks over the unknowns of one process:
+//   M = V (rho I + c P),   c the time scheme's force factor (h^2 for backward Euler),
+// P the bond-projected stiffness of the current configuration plus the Gauss-Newton Hessian of
+// the membranes' bending hinges (peri/bond_stiffness.h). Row r is the r-th unknown row in row
+// order; its columns are global node numbers: the diagonal first, then its unbroken bonds'
+// partners that are unknowns, then the other vertices of its hinges that are not bond
+// partners. Bonds to rows that are not unknowns add their diagonal part only (Dirichlet rows
+// eliminated); hinge vertices that are not unknowns add nothing. The glue numbers the unknowns
+// over the processes and hands the blocks to the multigrid library.
+
+#ifndef PERISISSM_SOLVERS_BLOCK_MATRIX_H
+#define PERISISSM_SOLVERS_BLOCK_MATRIX_H
+
+#include "peri/bond_stiffness.h"
+#include "solvers/system.h"
+
+#include <vector>
+
+namespace PeriSISSM {
+
+// The hinges of each of n local rows: of[first[i] .. first[i+1]-1] holds 4 h + v for the place
+// v (0..3) of row i in hinge h, in hinge order.
+struct HingeIndex {
+  std::vector<int> first, of;
+};
+void index_hinges(const HingeCouplings &hinges, int n, HingeIndex &index);
+
+// The sparsity pattern: row r holds blocks first[r] .. first[r+1]-1 with global columns col;
+// row[m] is the global row of block m (the coordinate lists of a sparse matrix).
+struct BlockPattern {
+  std::vector<int> first, col, row;
+  // the block (row r, global column gcol), -1 when it is not in the pattern (row r may be the
+  // one being built: its blocks then run to the end of col)
+  int find(int r, int gcol) const;
+  bool operator==(const BlockPattern &o) const { return first == o.first && col == o.col; }
+};
+
+// Inputs: rows (the unknowns: rows.has(i), i < rows.n); node: global node number of every
+// local row, owned and ghost (-1: not an unknown); springs, hinges and their index.
+// Output: pattern (rebuilt).
+void build_block_pattern(const Rows &rows, const double *node, const BondSprings &springs,
+                         const HingeCouplings &hinges, const HingeIndex &index,
+                         BlockPattern &pattern);
+
+// Inputs: as build_block_pattern, the pattern built from them, c, hinges with gradients, and x
+// (3 per local row). Outputs: values (9 per block of the pattern, row-major; resized) = the
+// blocks of M; coords (3 per unknown, in row order; resized) = their positions, for the
+// rigid-body modes of the near-null space.
+void assemble_blocks(const Rows &rows, const double *node, double c, const BondSprings &springs,
+                     const HingeCouplings &hinges, const HingeIndex &index,
+                     const BlockPattern &pattern, double **x, std::vector<double> &values,
+                     std::vector<double> &coords);
+
+// b (3 per unknown, in row order; resized) = V_i r_i of the unknown rows; and back: z_i (3 per
+// row) from 3 per unknown in row order
+void gather_weighted(const Rows &rows, double **r, std::vector<double> &b);
+void scatter_unknowns(const Rows &rows, const std::vector<double> &z, double **out);
+
+}    // namespace PeriSISSM
+
+#endif    // PERISISSM_SOLVERS_BLOCK_MATRIX_H

@@ -1,0 +1,56 @@
+// The options of an implicit integrator's step (doc/fix_sissm.rst, Syntax: the keywords of fix
+// sissm) and their rules, apart from how an input script is read: the keywords, the words each
+// choice accepts, the range of each value, and which combinations are refused.
+
+#ifndef PERISISSM_SOLVERS_STEP_OPTIONS_H
+#define PERISISSM_SOLVERS_STEP_OPTIONS_H
+
+#include "solvers/step_retry.h"
+
+#include <string>
+#include <vector>
+
+namespace PeriSISSM {
+
+// in the order of the words of kSolverWords and kPrecondWords
+enum class SolverKind { jacobi, krylov };
+enum class PrecondKind { block, amg };
+
+struct StepOptions {
+  int iterations = 100;       // force evaluations per step at most
+  double tolerance = 1e-6;    // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
+  bool relax = false;         // jacobi: per-particle step factor alpha_i (false: alpha_i = 1)
+  SolverKind solver = SolverKind::krylov;
+  PrecondKind precond = PrecondKind::amg;
+  bool precond_given = false;         // the keyword precond was given
+  std::string petsc;                  // options for PETSc's preconditioner (precond amg)
+  bool implicit_external = true;      // keyword external: implicit or lagged
+  std::vector<std::string> lagged;    // keyword lagged: fixes that act once per step
+  RetryPolicy retry;                  // keyword unconverged
+  std::string scheme = "euler";       // keyword scheme, and generalized-alpha's rho_inf
+  double rho_inf = 0.8;
+};
+
+// the keywords, in the order an error message lists them
+extern const std::vector<std::string> kStepKeywords;
+// the words of each choice, in the order of their enum (the external ones: implicit, lagged)
+extern const std::vector<std::string> kSolverWords, kPrecondWords, kExternalWords,
+    kUnconvergedWords, kSchemeWords;
+
+bool is_step_keyword(const std::string &word);
+// the place of word in words, -1 when it is not one of them
+int choice_index(const std::string &word, const std::vector<std::string> &words);
+// "a, b or c"
+std::string choice_text(const std::vector<std::string> &words);
+
+// What is wrong with the value the keyword set (empty: nothing), e.g. "iterations must be >= 1";
+// for unconverged the cutback levels, for scheme the rho_inf of genalpha.
+std::string value_problem(const StepOptions &o, const std::string &keyword);
+
+// The rules between keywords once all are read: the combination refused (empty: none), and
+// otherwise solver jacobi takes precond block (its sweeps use the blocks themselves).
+std::string settle(StepOptions &o);
+
+}    // namespace PeriSISSM
+
+#endif    // PERISISSM_SOLVERS_STEP_OPTIONS_H

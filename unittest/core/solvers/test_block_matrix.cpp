@@ -1,0 +1,162 @@
+// The preconditioning matrix of precond amg in 3x3 blocks (solvers/block_matrix.h), on a small
+// hand-made set of rows: four owned rows of which three are unknowns, one ghost, springs along
+// the bonds and one bending hinge. The pattern is checked column by column, and the assembled
+// matrix against the same matrix written out densely from its definition
+//   M = V rho I + c (sum over springs of k e e^T, -k e e^T off the diagonal) + c g g^T.
+
+#include "solvers/block_matrix.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace {
+
+using namespace PeriSISSM;
+
+// rows 0, 1, 3 are unknowns (global nodes 10, 11, 12), row 2 is held, row 4 a ghost unknown
+// (global node 20) of another process
+struct Scene {
+  int mask[4] = {1, 1, 0, 1};
+  double volume[4] = {2.0, 3.0, 4.0, 5.0};
+  double density[4] = {7.0, 11.0, 13.0, 17.0};
+  double node[5] = {10, 11, -1, 12, 20};
+  double xdata[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}};
+  double *x[5] = {xdata[0], xdata[1], xdata[2], xdata[3], xdata[4]};
+  Rows rows;
+  BondSprings springs;
+  HingeCouplings hinges;
+  HingeIndex index;
+
+  Scene()
+  {
+    rows.n = 4;
+    rows.mask = mask;
+    rows.bit = 1;
+    rows.volume = volume;
+    rows.density = density;
+    // springs of each owned row (partners in family order): 0-1, 0-2, 1-0, 1-3, 2-0, 3-1, 3-4
+    springs.first = {0, 2, 4, 5, 7};
+    springs.partner = {1, 2, 0, 3, 0, 1, 4};
+    springs.k = {1.5, 2.5, 1.5, 0.5, 2.5, 0.5, 4.0};
+    for (int s = 0; s < 7; s++) {
+      const int i = s < 2 ? 0 : s < 4 ? 1 : s < 5 ? 2 : 3;
+      const int j = springs.partner[s];
+      double e[3], len = 0.0;
+      for (int k = 0; k < 3; k++) {
+        e[k] = x[j][k] - x[i][k];
+        len += e[k] * e[k];
+      }
+      for (int k = 0; k < 3; k++) springs.e.push_back(e[k] / std::sqrt(len));
+    }
+    // one hinge over rows 0, 1, 2 and ghost 4; row 3 takes no part: vertex 2 (held) has no row
+    // here, nor the ghost
+    hinges.vertex = {0, 1, 2, 4};
+    hinges.row = {0, 1, -1, -1};
+    for (int k = 0; k < 12; k++) hinges.grad.push_back(0.1 * (k + 1) * (k % 2 ? -1.0 : 1.0));
+    index_hinges(hinges, rows.n, index);
+  }
+};
+
+TEST(BlockMatrix, HingeIndexListsEachRowsPlaces)
+{
+  Scene s;
+  EXPECT_EQ(s.index.first, (std::vector<int>{0, 1, 2, 2, 2}));
+  EXPECT_EQ(s.index.of, (std::vector<int>{0, 1}));    // 4 h + v: hinge 0, places 0 and 1
+}
+
+TEST(BlockMatrix, PatternHasDiagonalFirstThenPartnersThenHingeVertices)
+{
+  Scene s;
+  BlockPattern p;
+  build_block_pattern(s.rows, s.node, s.springs, s.hinges, s.index, p);
+  // row 0 (node 10): diagonal, bond partner 11 (2 is held), hinge vertices 10, 11, 20: only
+  // 20 is new; row 1 (node 11): 11, 10, 12, then hinge vertex 20; row 3 (node 12): 12, 11, 20
+  EXPECT_EQ(p.first, (std::vector<int>{0, 3, 7, 10}));
+  EXPECT_EQ(p.col, (std::vector<int>{10, 11, 20, 11, 10, 12, 20, 12, 11, 20}));
+  EXPECT_EQ(p.row, (std::vector<int>{10, 10, 10, 11, 11, 11, 11, 12, 12, 12}));
+  EXPECT_EQ(p.find(1, 12), 5);
+  EXPECT_EQ(p.find(2, 10), -1);
+  BlockPattern q;
+  build_block_pattern(s.rows, s.node, s.springs, s.hinges, s.index, q);
+  EXPECT_TRUE(p == q);
+  s.node[4] = 21;    // the ghost renumbered: another pattern
+  build_block_pattern(s.rows, s.node, s.springs, s.hinges, s.index, q);
+  EXPECT_FALSE(p == q);
+}
+
+TEST(BlockMatrix, AssembledBlocksMatchTheDenseDefinition)
+{
+  Scene s;
+  BlockPattern p;
+  build_block_pattern(s.rows, s.node, s.springs, s.hinges, s.index, p);
+  const double c = 0.3;
+  std::vector<double> values, coords;
+  assemble_blocks(s.rows, s.node, c, s.springs, s.hinges, s.index, p, s.x, values, coords);
+  ASSERT_EQ(values.size(), 9 * p.col.size());
+  ASSERT_EQ(coords.size(), 9u);
+
+  // the dense matrix over the local rows and the ghost (index by local row), rows of unknowns
+  const int nl = 5;
+  std::vector<double> dense(9 * nl * nl, 0.0);
+  auto at = [&](int i, int j, int a, int b) -> double & {
+    return dense[((3 * i + a) * nl + j) * 3 + b];
+  };
+  const int owner[7] = {0, 0, 1, 1, 2, 3, 3};
+  for (int i = 0; i < 4; i++)
+    for (int a = 0; a < 3; a++) at(i, i, a, a) = s.volume[i] * s.density[i];
+  for (int t = 0; t < 7; t++) {
+    const int i = owner[t], j = s.springs.partner[t];
+    const double *e = &s.springs.e[3 * t];
+    for (int a = 0; a < 3; a++)
+      for (int b = 0; b < 3; b++) {
+        at(i, i, a, b) += c * s.springs.k[t] * e[a] * e[b];
+        at(i, j, a, b) -= c * s.springs.k[t] * e[a] * e[b];
+      }
+  }
+  for (int v = 0; v < 2; v++)    // the hinge's rows of owned unknowns 0 and 1
+    for (int b = 0; b < 4; b++)
+      for (int a = 0; a < 3; a++)
+        for (int d = 0; d < 3; d++)
+          at(v, s.hinges.vertex[b], a, d) +=
+              c * s.hinges.grad[3 * v + a] * s.hinges.grad[3 * b + d];
+
+  // every block of every unknown row's column that is an unknown is in the pattern with the
+  // dense value; the held row 2 is no column
+  const int local_of_row[3] = {0, 1, 3};
+  for (int r = 0; r < 3; r++) {
+    const int i = local_of_row[r];
+    for (int j = 0; j < nl; j++) {
+      const int m = p.find(r, (int) s.node[j]);
+      if (s.node[j] < 0) continue;
+      double norm = 0.0;
+      for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+          const double want = at(i, j, a, b);
+          norm += std::fabs(want);
+          if (m >= 0) { EXPECT_NEAR(values[9 * m + 3 * a + b], want, 1e-13) << r << " " << j; }
+        }
+      if (m < 0) { EXPECT_EQ(norm, 0.0) << "row " << r << " misses column " << s.node[j]; }
+    }
+    for (int k = 0; k < 3; k++) EXPECT_EQ(coords[3 * r + k], s.x[i][k]);
+  }
+}
+
+TEST(BlockMatrix, GatherAndScatterFollowTheUnknownRows)
+{
+  Scene s;
+  double rdata[4][3] = {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}, {10, 11, 12}};
+  double *r[4] = {rdata[0], rdata[1], rdata[2], rdata[3]};
+  std::vector<double> b;
+  gather_weighted(s.rows, r, b);
+  EXPECT_EQ(b, (std::vector<double>{2, 4, 6, 12, 15, 18, 50, 55, 60}));
+  double zdata[4][3] = {};
+  double *z[4] = {zdata[0], zdata[1], zdata[2], zdata[3]};
+  scatter_unknowns(s.rows, b, z);
+  EXPECT_EQ(zdata[1][2], 18.0);
+  EXPECT_EQ(zdata[2][0], 0.0);    // held: untouched
+  EXPECT_EQ(zdata[3][1], 55.0);
+}
+
+}    // namespace
