@@ -21,13 +21,13 @@ double contact_energy(double r, double d, double kc, double vi, double vj)
 }
 
 // f_i = kc V_j (d/r - 1) del:  df_i/dx_i = kc V_j ((d/r - 1) I - (d/r) n n^T).
-void contact_block(const double del[3], double d, double kc, double vj, double block[6])
+void contact_block(const double del[3], double kc, double vj, double block[6])
 {
-  const double r = std::sqrt(del[0] * del[0] + del[1] * del[1] + del[2] * del[2]);
-  const double a = kc * vj * (1.0 - d / r), b = kc * vj * d / (r * r * r);
-  block[0] = a + b * del[0] * del[0];
-  block[1] = a + b * del[1] * del[1];
-  block[2] = a + b * del[2] * del[2];
+  const double r2 = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+  const double b = kc * vj / r2;
+  block[0] = b * del[0] * del[0];
+  block[1] = b * del[1] * del[1];
+  block[2] = b * del[2] * del[2];
   block[3] = b * del[0] * del[1];
   block[4] = b * del[0] * del[2];
   block[5] = b * del[1] * del[2];
@@ -90,10 +90,10 @@ void contact_pass(const Model &model, const Particles &p, const ReferenceBox &bo
       if (block) {
         const double del[3] = {delx, dely, delz};
         double b[6];
-        contact_block(del, d, kc, vfrac[j], b);
+        contact_block(del, kc, vfrac[j], b);
         for (int m = 0; m < 6; m++) block[6 * i + m] += b[m];
         if (jforce) {
-          contact_block(del, d, kc, vfrac[i], b);
+          contact_block(del, kc, vfrac[i], b);
           for (int m = 0; m < 6; m++) block[6 * j + m] += b[m];
         }
       }

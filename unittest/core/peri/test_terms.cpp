@@ -301,8 +301,10 @@ TEST(BondTerms, BlocksOfEveryParticleSumTheUnbrokenBonds)
 }
 
 // Short-range contact of one pair: the force densities are -(1/V) dE/dy of the pair energy
-// (unequal volumes), and the block is -df_i/dy_i, both by central differences (step 1e-7 on a
-// gap of ~0.1: relative error ~1e-9; tolerance 1e-6).
+// (unequal volumes), and the block is -df_i/dy_i without its transverse part
+// kc V_j (1 - d/r) (I - n n^T), which is negative in contact: the block is kc V_j n n^T, positive
+// semi-definite (derivatives by central differences, step 1e-7 on a gap of ~0.1: relative error
+// ~1e-9; tolerance 1e-6).
 TEST(Contact, PairForceAndBlockAreDerivatives)
 {
   const double kc = 3.7, vi = 0.7, vj = 1.3;
@@ -324,7 +326,7 @@ TEST(Contact, PairForceAndBlockAreDerivatives)
     const double step = 1e-7;
     const Eigen::Vector3d fi = force_i(del);
     double block[6];
-    PeriSISSM::contact_block(del.data(), d, kc, vj, block);
+    PeriSISSM::contact_block(del.data(), kc, vj, block);
     Eigen::Matrix3d B;
     B << block[0], block[3], block[4], block[3], block[1], block[5], block[4], block[5], block[2];
     for (int k = 0; k < 3; k++) {
@@ -336,8 +338,13 @@ TEST(Contact, PairForceAndBlockAreDerivatives)
       EXPECT_NEAR(fi(k), -dEi / vi, 1e-6 * fi.norm());
       EXPECT_NEAR(-vi * fi(k) / vj, -dEj / vj, 1e-6 * fi.norm());    // f_j = -V_i f_i / V_j
       const Eigen::Vector3d col = -(force_i(dp) - force_i(dm)) / (2.0 * step);
-      for (int a = 0; a < 3; a++) EXPECT_NEAR(B(a, k), col(a), 1e-6 * B.norm());
+      const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
+      const Eigen::Vector3d transverse = kc * vj * (1.0 - d / r) * P.col(k);
+      for (int a = 0; a < 3; a++) EXPECT_NEAR(B(a, k) + transverse(a), col(a), 1e-6 * B.norm());
     }
+    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(B).eigenvalues().minCoeff(),
+              -1e-12 * B.norm());
+    EXPECT_NEAR((B * n).norm(), kc * vj, 1e-12 * kc * vj);
     EXPECT_EQ(PeriSISSM::contact_energy(1.01 * d, d, kc, vi, vj), 0.0);
   }
 }
