@@ -15,8 +15,7 @@
 #ifndef PERISISSM_MESH_VERTEX_RECORDS_H
 #define PERISISSM_MESH_VERTEX_RECORDS_H
 
-#include <cstdint>
-#include <cstring>
+#include "linalg/id_bits.h"
 
 namespace PeriSISSM {
 
@@ -37,22 +36,6 @@ template <class Id> struct VertexArrays {
   int *ntri;            // triangles at the atom
   Id ***tri;            // tri[i][k][0..1]: the other two vertices of triangle k of atom i
 };
-
-// an ID as a double carrying its 64-bit integer bits, and back
-template <class Id> double id_bits(Id id)
-{
-  const int64_t v = static_cast<int64_t>(id);
-  double d;
-  std::memcpy(&d, &v, sizeof(d));
-  return d;
-}
-
-template <class Id> Id bits_id(double d)
-{
-  int64_t v;
-  std::memcpy(&v, &d, sizeof(v));
-  return static_cast<Id>(v);
-}
 
 // doubles of the exchange record of a vertex with ntri triangles (1 for a non-mesh atom)
 inline int vertex_record_size(int mesh, int ntri)

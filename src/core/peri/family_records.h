@@ -13,7 +13,7 @@
 #ifndef PERISISSM_PERI_FAMILY_RECORDS_H
 #define PERISISSM_PERI_FAMILY_RECORDS_H
 
-#include "mesh/vertex_records.h"
+#include "linalg/id_bits.h"
 #include "peri/family.h"
 
 #include <algorithm>
