@@ -38,17 +38,7 @@ PeriSISSM::Model make_model(const std::string &name, double cs)
   }
   m.set_membrane(1, true);
   m.set_pair(1, 1, 2.2, false, 0.0);
-  m.breaking().configure(
-      1,
-      [](int, int) {
-        return false;
-      },
-      [](int, int) {
-        return 0.0;
-      },
-      [](int, int) {
-        return 0.0;
-      });
+  PeriSISSMTest::never_breaks(m, 1);
   return m;
 }
 

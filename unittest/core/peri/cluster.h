@@ -233,6 +233,22 @@ class Cluster : public PeriSISSM::Halo {
   double delta_;
 };
 
+// bonds of every type pair 1..ntypes never break (s00 and alpha 0)
+inline void never_breaks(PeriSISSM::Model &m, int ntypes)
+{
+  m.breaking().configure(
+      ntypes,
+      [](int, int) {
+        return false;
+      },
+      [](int, int) {
+        return 0.0;
+      },
+      [](int, int) {
+        return 0.0;
+      });
+}
+
 }    // namespace PeriSISSMTest
 
 #endif    // PERISISSM_TEST_CLUSTER_H

@@ -27,17 +27,7 @@ PeriSISSM::Model linear_model(double bulk, double shear, double horizon)
   const auto lame = PeriSISSM::lame_from_bulk_shear(bulk, shear);
   m.set_type(1, PeriSISSM::make_material("linear", lame.mu, lame.lambda), 0.0, bulk);
   m.set_pair(1, 1, horizon, false, 0.0);
-  m.breaking().configure(
-      1,
-      [](int, int) {
-        return false;
-      },
-      [](int, int) {
-        return 0.0;
-      },
-      [](int, int) {
-        return 0.0;
-      });
+  PeriSISSMTest::never_breaks(m, 1);
   return m;
 }
 

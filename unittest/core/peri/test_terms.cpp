@@ -35,17 +35,7 @@ PeriSISSM::Model make_model(const std::string &name, double cs)
   const auto lame = PeriSISSM::lame_from_bulk_shear(1.0, 0.6);
   m.set_type(1, PeriSISSM::make_material(name, lame.mu, lame.lambda), cs, 1.0);
   m.set_pair(1, 1, 1.6, false, 0.0);
-  m.breaking().configure(
-      1,
-      [](int, int) {
-        return false;
-      },
-      [](int, int) {
-        return 0.0;
-      },
-      [](int, int) {
-        return 0.0;
-      });
+  PeriSISSMTest::never_breaks(m, 1);
   return m;
 }
 
