@@ -207,12 +207,7 @@ void FixNosbFamily::build_families()
   for (int i = 0; i < nlocal; i++) maxone = std::max(maxone, (int) fam[i].size());
   MPI_Allreduce(&maxone, &maxpartner, 1, MPI_INT, MPI_MAX, world);
   maxpartner = std::max(maxpartner, 1);
-  maxexchange = PeriSISSM::family_record_size(maxpartner);
-
-  memory->destroy(partner);
-  memory->destroy(omega);
-  memory->destroy(jlocal);
-  grow_arrays(atom->nmax);
+  resize_bond_slots();
 
   // the reference configuration is the current one, in the current box
 
@@ -534,10 +529,17 @@ void FixNosbFamily::restart(char *buf)
                "({} instead of {}): write the restart file again with this build (or use the "
                "build that wrote it)",
                list[0], PeriSISSM::kFamilyRestartVersion);
+  resize_bond_slots();    // before per-atom data arrive
+}
+
+/* ----------------------------------------------------------------------
+   maxpartner changed: the exchange record's size and the second dimension of the per-bond
+   arrays follow it (those are reallocated, their contents are not kept)
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::resize_bond_slots()
+{
   maxexchange = PeriSISSM::family_record_size(maxpartner);
-
-  // second dimension of the 2d arrays changes: reallocate before per-atom data arrive
-
   memory->destroy(partner);
   memory->destroy(omega);
   memory->destroy(jlocal);

@@ -109,6 +109,7 @@ class FixNosbFamily : public Fix {
   class NeighList *list;
 
   void build_families();
+  void resize_bond_slots();
   void refresh_local_indices();
   void resolve_missing(const std::vector<std::pair<int, int>> &);
   void break_reused(const std::vector<tagint> &);
