@@ -54,6 +54,7 @@
 
 #include "bond_partners.h"
 #include "mesh_view.h"
+#include "restart_records.h"
 
 #include "contact/barrier_potential.h"
 #include "contact/path_limit.h"
@@ -626,11 +627,8 @@ void FixNosbContact::unpack_forward_comm(int n, int first, double *buf)
 
 void FixNosbContact::write_restart(FILE *fp)
 {
-  if (comm->me != 0) return;
   const double list[4] = {3.0, stiffness.value(), stiffness.bbox_diagonal(), stiffness.mean_mass()};
-  const int size = 4 * sizeof(double);
-  fwrite(&size, sizeof(int), 1, fp);
-  fwrite(list, sizeof(double), 4, fp);
+  write_global_record(fp, comm->me, list, 4);
 }
 
 void FixNosbContact::restart(char *buf)

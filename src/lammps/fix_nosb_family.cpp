@@ -26,6 +26,7 @@
 #include "fix_nosb_family.h"
 
 #include "mesh_view.h"
+#include "restart_records.h"
 
 #include "peri/family_build.h"
 #include "peri/family_ids.h"
@@ -509,11 +510,7 @@ void FixNosbFamily::write_restart(FILE *fp)
 {
   double list[PeriSISSM::kFamilyGlobals];
   PeriSISSM::pack_family_globals(built, maxpartner, box, tagmax0, list);
-  if (comm->me == 0) {
-    int size = PeriSISSM::kFamilyGlobals * sizeof(double);
-    fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), PeriSISSM::kFamilyGlobals, fp);
-  }
+  write_global_record(fp, comm->me, list, PeriSISSM::kFamilyGlobals);
 }
 
 /* ----------------------------------------------------------------------
@@ -552,19 +549,16 @@ void FixNosbFamily::resize_bond_slots()
 
 int FixNosbFamily::pack_restart(int i, double *buf)
 {
-  const int m = pack_exchange(i, &buf[1]);
-  buf[0] = m + 1;
-  return m + 1;
+  return pack_sized_record(buf, [&](double *rec) {
+    return pack_exchange(i, rec);
+  });
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixNosbFamily::unpack_restart(int nlocal, int nth)
 {
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+  unpack_exchange(nlocal, fix_record(atom->extra, nlocal, nth) + 1);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -21,6 +21,7 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_mesh.h"
+#include "restart_records.h"
 
 #include "mesh/lost_vertices.h"
 #include "mesh/mesh_geometry.h"
@@ -486,12 +487,8 @@ int FixNosbMesh::unpack_border(int n, int first, double *buf)
 
 void FixNosbMesh::write_restart(FILE *fp)
 {
-  double list[NGLOBAL] = {(double) RESTART_VERSION, (double) nmesh, ubuf(ntriangles).d};
-  if (comm->me == 0) {
-    int size = NGLOBAL * sizeof(double);
-    fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), NGLOBAL, fp);
-  }
+  const double list[NGLOBAL] = {(double) RESTART_VERSION, (double) nmesh, ubuf(ntriangles).d};
+  write_global_record(fp, comm->me, list, NGLOBAL);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -515,19 +512,16 @@ void FixNosbMesh::restart(char *buf)
 
 int FixNosbMesh::pack_restart(int i, double *buf)
 {
-  const int m = pack_exchange(i, &buf[1]);
-  buf[0] = m + 1;
-  return m + 1;
+  return pack_sized_record(buf, [&](double *rec) {
+    return pack_exchange(i, rec);
+  });
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixNosbMesh::unpack_restart(int nlocal, int nth)
 {
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+  unpack_exchange(nlocal, fix_record(atom->extra, nlocal, nth) + 1);
 }
 
 /* ---------------------------------------------------------------------- */

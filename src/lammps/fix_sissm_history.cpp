@@ -11,6 +11,7 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_sissm.h"
+#include "restart_records.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -74,11 +75,7 @@ void FixSissm::write_restart(FILE *fp)
                               (double) scheme->state_size()};
   list.resize(3 + scheme->state_size());
   scheme->get_state(list.data() + 3);
-  if (comm->me == 0) {
-    int size = (int) (list.size() * sizeof(double));
-    fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list.data(), sizeof(double), list.size(), fp);
-  }
+  write_global_record(fp, comm->me, list.data(), (int) list.size());
 }
 
 void FixSissm::restart(char *buf)
@@ -110,10 +107,7 @@ int FixSissm::pack_restart(int i, double *buf)
 
 void FixSissm::unpack_restart(int nlocal, int nth)
 {
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  const double *rec = &extra[nlocal][m];
+  const double *rec = fix_record(atom->extra, nlocal, nth);
   const bool same = hist_from_restart && static_cast<int>(rec[0]) == ncols + 2 &&
       rec[1] == scheme_code(scheme->name());
   for (int k = 0; k < ncols; k++) hist[nlocal][k] = same ? rec[2 + k] : 0.0;
