@@ -4,6 +4,21 @@
 
 namespace PeriSISSM {
 
+int count_unknowns(const Rows &rows)
+{
+  int count = 0;
+  for (int i = 0; i < rows.n; i++)
+    if (rows.has(i)) count++;
+  return count;
+}
+
+void number_unknowns(const Rows &rows, int first, int nall, double *node)
+{
+  for (int i = 0; i < nall; i++) node[i] = -1.0;
+  for (int i = 0; i < rows.n; i++)
+    if (rows.has(i)) node[i] = first++;
+}
+
 void index_hinges(const HingeCouplings &hinges, int n, HingeIndex &index)
 {
   index.first.assign(n + 1, 0);

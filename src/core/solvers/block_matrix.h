@@ -26,6 +26,11 @@ struct HingeIndex {
 };
 void index_hinges(const HingeCouplings &hinges, int n, HingeIndex &index);
 
+// The unknown rows of this process (rows.has(i)), and their global node numbers: node[i] of
+// each of nall local rows is first + k for the k-th unknown, -1 for the others.
+int count_unknowns(const Rows &rows);
+void number_unknowns(const Rows &rows, int first, int nall, double *node);
+
 // The sparsity pattern: row r holds blocks first[r] .. first[r+1]-1 with global columns col;
 // row[m] is the global row of block m (the coordinate lists of a sparse matrix).
 struct BlockPattern {

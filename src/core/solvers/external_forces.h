@@ -23,18 +23,25 @@
 #ifndef PERISISSM_SOLVERS_EXTERNAL_FORCES_H
 #define PERISISSM_SOLVERS_EXTERNAL_FORCES_H
 
+#include <string>
 #include <vector>
 
 namespace PeriSISSM {
 
-// what LAMMPS tells about a fix that acts in post_force
+// what LAMMPS tells about a fix (choose_external(): any fix; external_role(): one that acts in
+// post_force)
 struct ExternalFix {
+  std::string id, style;
+  bool post_force = false;       // acts in post_force
   bool integrator = false;       // time_integrate
   bool dynamic_group = false;    // the fix of a dynamic group
   bool reservoir = false;        // ecouple_flag
   bool keeps_state = false;      // restart_global
   bool potential = false;        // energy_global_flag or virial_global_flag
   bool named_lagged = false;     // named in fix sissm's keyword lagged
+  // a contact of the implicit step (collision_limit.h) that adapts its stiffness to the step
+  // (kappa auto), that makes the step collision-free
+  bool adapts_stiffness = false, limits_moves = false;
 };
 
 enum class ExternalRole { adds, may_rewrite, lagged };
@@ -45,6 +52,23 @@ enum class ExternalMode { none, implicit, mixed, lagged };
 
 // roles: of all fixes that act in post_force; implicit_asked: keyword external implicit
 ExternalMode external_mode(const std::vector<ExternalRole> &roles, bool implicit_asked);
+
+struct ExternalChoice {
+  std::string problem;    // a name of keyword lagged that is no fix acting in post_force
+  ExternalMode mode = ExternalMode::none;
+  // the fixes re-evaluated at every iterate (places in the list), in the order LAMMPS calls
+  // them in post_force: the dynamic-group fixes (style GROUP) first
+  std::vector<int> implicit;
+  std::string note;       // what to log about the choice (empty: nothing)
+  std::string refusal;    // a contact that must be re-evaluated at every iterate but is lagged
+};
+
+// The roles of fixes (all of a LAMMPS instance, in their order; named_lagged is taken from
+// lagged, the names of keyword lagged) and the mode of the step; the texts name the integrator
+// ("Fix sissm ID: ...").
+ExternalChoice choose_external(std::vector<ExternalFix> fixes,
+                               const std::vector<std::string> &lagged, bool implicit_asked,
+                               const std::string &integrator);
 
 }    // namespace PeriSISSM
 

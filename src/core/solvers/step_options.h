@@ -7,6 +7,7 @@
 
 #include "solvers/step_retry.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,32 @@ std::string value_problem(const StepOptions &o, const std::string &keyword);
 // The rules between keywords once all are read: the combination refused (empty: none), and
 // otherwise solver jacobi takes precond block (its sweeps use the blocks themselves).
 std::string settle(StepOptions &o);
+
+// Membranes without bending (unbent_membranes): the coarse level's matrix has no stiffness out
+// of their plane but the mass (with bending, the hinges give it one), and amg lets such a flat
+// membrane leave its plane (measured: the hanging strip of examples/membranes buckles sideways in
+// the first step and then misses the tolerance; block keeps it in its plane), so the default
+// precond amg becomes block there. Returns the note for the log of the integrator with fix ID id
+// (empty: nothing changed).
+std::string settle_for_membranes(StepOptions &o, bool unbent_membranes, const std::string &id);
+
+// How a single word becomes a number of a kind, by the rules and error messages of the caller
+// (LAMMPS: utils::inumeric, numeric, logical; a logical as 1 or 0); a word that is no such
+// number does not return.
+enum class WordKind { integer, real, logical };
+using WordReader = std::function<double(const std::string &, WordKind)>;
+
+// What reading the keywords found wrong (both empty: nothing): missing names the command whose
+// arguments ran out ("fix sissm iterations"); problem what is illegal about the words.
+struct StepOptionsProblem {
+  std::string missing, problem;
+};
+
+// The keywords and values of words (those after "fix ID group sissm") read into o in their
+// order, each value checked by value_problem() as it is read, then settle(o). A choice word,
+// an unknown keyword or a missing value ends the reading with the problem.
+StepOptionsProblem read_step_options(const std::vector<std::string> &words, const WordReader &read,
+                                     StepOptions &o);
 
 }    // namespace PeriSISSM
 

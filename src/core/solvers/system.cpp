@@ -44,4 +44,11 @@ double scaled_max(NonlinearSystem &sys, double **a, bool per_density)
   return local;
 }
 
+int first_nonfinite(const Rows &rows, double **y)
+{
+  for (int i = 0; i < rows.n; i++)
+    if (rows.has(i) && !std::isfinite(y[i][0] + y[i][1] + y[i][2])) return i;
+  return -1;
+}
+
 }    // namespace PeriSISSM

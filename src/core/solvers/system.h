@@ -63,6 +63,9 @@ double merit(NonlinearSystem &sys, double *term);
 // particle size; near a stable state J >= rho, so |r|/rho bounds the distance to the solution)
 double scaled_max(NonlinearSystem &sys, double **a, bool per_density);
 
+// the first row of the group whose y_x + y_y + y_z is not finite, -1 when there is none
+int first_nonfinite(const Rows &rows, double **y);
+
 }    // namespace PeriSISSM
 
 #endif    // PERISISSM_SOLVERS_SYSTEM_H

@@ -63,6 +63,9 @@ class TimeScheme {
   {
     for (int k = 0; k < 3; k++) r[k] = rho * (yhat[k] - y[k]) + c_ * f[k];
   }
+  // residual() of every row of the group (rho: rows.density); the first row whose |r|^2 is not
+  // finite (the rest are then not computed), -1 when there is none
+  int residuals(const Rows &rows, double **yhat, double **y, double **f, double **r) const;
   // diagonal block of -dr/dy of one row from the force model's stiffness block K
   // (xx yy zz xy xz yz)
   void block(double rho, const double *K, double D[6]) const

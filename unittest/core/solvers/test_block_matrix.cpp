@@ -159,4 +159,15 @@ TEST(BlockMatrix, GatherAndScatterFollowTheUnknownRows)
   EXPECT_EQ(zdata[3][1], 55.0);
 }
 
+TEST(BlockMatrix, UnknownsAreNumberedInRowOrderFromTheFirst)
+{
+  Scene s;
+  EXPECT_EQ(count_unknowns(s.rows), 3);
+  double node[6] = {7, 7, 7, 7, 7, 7};
+  number_unknowns(s.rows, 10, 5, node);
+  for (int i = 0; i < 4; i++) EXPECT_EQ(node[i], s.node[i]) << i;
+  EXPECT_EQ(node[4], -1.0);    // a ghost: its owner numbers it
+  EXPECT_EQ(node[5], 7.0);     // beyond nall: untouched
+}
+
 }    // namespace

@@ -241,4 +241,21 @@ TEST(Momentum, RowsOutsideTheGroupAreIgnored)
   }
 }
 
+TEST(Solvers, FirstNonFiniteRowOfTheGroup)
+{
+  const int mask[3] = {0, 1, 1};
+  Rows rows;
+  rows.n = 3;
+  rows.mask = mask;
+  rows.bit = 1;
+  double d[3][3] = {{std::nan(""), 0, 0}, {1, 2, 3}, {4, 5, 6}};
+  double *y[3] = {d[0], d[1], d[2]};
+  EXPECT_EQ(first_nonfinite(rows, y), -1);    // row 0 is outside the group
+  d[2][1] = INFINITY;
+  EXPECT_EQ(first_nonfinite(rows, y), 2);
+  d[1][0] = 1e308;
+  d[1][1] = 1e308;    // each finite, their sum not
+  EXPECT_EQ(first_nonfinite(rows, y), 1);
+}
+
 }    // namespace

@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -89,6 +92,129 @@ TEST(StepOptions, SettleRefusesCombinationsAndGivesJacobiTheBlocks)
   EXPECT_EQ(settle(a).rfind("precond amg needs solver krylov", 0), 0u);
   a.precond = PrecondKind::block;
   EXPECT_EQ(settle(a), "");
+}
+
+// words become numbers by std::sto* whole; a word that is none throws, as LAMMPS's error does
+double read_word(const std::string &w, WordKind kind)
+{
+  if (kind == WordKind::logical) {
+    if (w != "yes" && w != "no") throw std::invalid_argument(w);
+    return w == "yes" ? 1.0 : 0.0;
+  }
+  size_t end = 0;
+  const double value = kind == WordKind::integer ? std::stoi(w, &end) : std::stod(w, &end);
+  if (end != w.size()) throw std::invalid_argument(w);
+  return value;
+}
+
+StepOptionsProblem read_words(const std::vector<std::string> &words, StepOptions &o)
+{
+  return read_step_options(words, read_word, o);
+}
+
+TEST(StepOptions, ReadsEveryKeyword)
+{
+  StepOptions o;
+  const StepOptionsProblem p = read_words(
+      {"iterations", "40", "tolerance", "1e-8", "solver", "jacobi", "relax", "yes", "external",
+       "lagged", "lagged", "f1", "f2", "unconverged", "cutback", "6", "scheme", "genalpha", ".5"},
+      o);
+  EXPECT_EQ(p.missing, "");
+  EXPECT_EQ(p.problem, "");
+  EXPECT_EQ(o.iterations, 40);
+  EXPECT_EQ(o.tolerance, 1e-8);
+  EXPECT_EQ(o.solver, SolverKind::jacobi);
+  EXPECT_TRUE(o.relax);
+  EXPECT_FALSE(o.implicit_external);
+  EXPECT_EQ(o.lagged, (std::vector<std::string>{"f1", "f2"}));
+  EXPECT_EQ(o.retry.unconverged, Unconverged::cutback);
+  EXPECT_EQ(o.retry.max_cutback, 6);
+  EXPECT_EQ(o.scheme, "genalpha");
+  EXPECT_EQ(o.rho_inf, 0.5);
+  EXPECT_EQ(o.precond, PrecondKind::block);    // settled: jacobi sweeps use the blocks
+}
+
+TEST(StepOptions, ReadsPetscOptionsAndOptionalValues)
+{
+  StepOptions o;
+  EXPECT_EQ(read_words({"precond", "amg", "petsc", "-pc_type lu", "scheme", "genalpha",
+                        "unconverged", "cutback"},
+                       o)
+                .problem,
+            "");
+  EXPECT_TRUE(o.precond_given);
+  EXPECT_EQ(o.petsc, "-pc_type lu");
+  EXPECT_EQ(o.rho_inf, 0.8);            // genalpha's default rho_inf: the next word is a keyword
+  EXPECT_EQ(o.retry.max_cutback, 4);    // cutback's default levels: no word follows
+  StepOptions b;
+  EXPECT_EQ(read_words({"scheme", "genalpha", "-0.5"}, b).problem,
+            "scheme genalpha rho_inf must be 0 to 1, got -0.5");
+}
+
+TEST(StepOptions, ReadingNamesEachProblem)
+{
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"iterations", "10", "speed", "2"},
+       "unknown keyword 'speed' (allowed: iterations, tolerance, solver, precond, unconverged, "
+       "scheme, relax, external, lagged)"},
+      {{"iterations", "0"}, "iterations must be >= 1, got 0"},
+      {{"tolerance", "-1"}, "tolerance must be >= 0, got -1"},
+      {{"solver", "gmres"}, "solver must be jacobi or krylov, got 'gmres'"},
+      {{"external", "explicit"}, "external must be implicit or lagged, got 'explicit'"},
+      {{"precond", "multigrid"}, "precond must be block or amg, got 'multigrid'"},
+      {{"precond", "block", "petsc", "-pc_type lu"}, "petsc options need precond amg"},
+      {{"unconverged", "ignore"}, "unconverged must be warn, error or cutback, got 'ignore'"},
+      {{"unconverged", "cutback", "30"}, "unconverged cutback levels must be 1 to 20, got 30"},
+      {{"scheme", "newmark"}, "scheme must be euler, bdf2 or genalpha, got 'newmark'"},
+      {{"scheme", "genalpha", "1.5"}, "scheme genalpha rho_inf must be 0 to 1, got 1.5"},
+      {{"relax", "yes"}, "relax yes requires solver jacobi"},
+      {{"solver", "jacobi", "precond", "amg"},
+       "precond amg needs solver krylov (the jacobi sweeps use the blocks themselves)"}};
+  for (const auto &c : cases) {
+    StepOptions o;
+    const StepOptionsProblem p = read_words(c.first, o);
+    EXPECT_EQ(p.problem, c.second) << c.first[0];
+    EXPECT_EQ(p.missing, "") << c.first[0];
+  }
+}
+
+TEST(StepOptions, ReadingNamesTheCommandWhoseArgumentsRanOut)
+{
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"iterations"}, "fix sissm iterations"},
+      {{"tolerance", "1e-6", "scheme"}, "fix sissm scheme"},
+      {{"lagged", "solver", "krylov"}, "fix sissm lagged"},
+      {{"precond", "amg", "petsc"}, "fix sissm precond amg petsc"}};
+  for (const auto &c : cases) {
+    StepOptions o;
+    const StepOptionsProblem p = read_words(c.first, o);
+    EXPECT_EQ(p.missing, c.second);
+    EXPECT_EQ(p.problem, "");
+  }
+}
+
+TEST(StepOptions, WordsThatAreNoNumbersGoToTheReader)
+{
+  StepOptions o;
+  EXPECT_THROW(read_words({"iterations", "many"}, o), std::invalid_argument);
+  EXPECT_THROW(read_words({"relax", "maybe"}, o), std::invalid_argument);
+  EXPECT_THROW(read_words({"unconverged", "cutback", "9x"}, o), std::invalid_argument);
+}
+
+TEST(StepOptions, UnbentMembranesTakeBlockUnlessAmgWasAsked)
+{
+  StepOptions o;
+  EXPECT_EQ(settle_for_membranes(o, false, "int"), "");
+  EXPECT_EQ(o.precond, PrecondKind::amg);
+  EXPECT_EQ(settle_for_membranes(o, true, "int"),
+            "Fix sissm int: membranes without bending (pair_coeff ... membrane yes, no bend): "
+            "precond block (the default amg has no out-of-plane stiffness for them; precond amg "
+            "asks for it)\n");
+  EXPECT_EQ(o.precond, PrecondKind::block);
+  StepOptions asked;
+  asked.precond_given = true;
+  EXPECT_EQ(settle_for_membranes(asked, true, "int"), "");
+  EXPECT_EQ(asked.precond, PrecondKind::amg);
 }
 
 }    // namespace

@@ -375,4 +375,32 @@ TEST(TimeSchemes, MomentumBalanceOfTruncatedSteps)
   }
 }
 
+TEST(TimeSchemes, ResidualsOfTheGroupStopAtTheFirstNonFinite)
+{
+  const auto be = scheme("euler");
+  be->set_step(0.5);    // c = h^2 = 0.25
+  const int mask[3] = {1, 0, 1};
+  const double density[3] = {2.0, 3.0, 4.0};
+  Rows rows;
+  rows.n = 3;
+  rows.mask = mask;
+  rows.bit = 1;
+  rows.density = density;
+  double yhat_d[3][3] = {{1, 2, 3}, {0, 0, 0}, {1, 1, 1}};
+  double y_d[3][3] = {{0, 0, 0}, {0, 0, 0}, {1, 1, 1}};
+  double f_d[3][3] = {{4, 8, 12}, {1, 1, 1}, {1e200, 0, 0}};
+  double r_d[3][3] = {{9, 9, 9}, {9, 9, 9}, {9, 9, 9}};
+  double *yhat[3] = {yhat_d[0], yhat_d[1], yhat_d[2]}, *y[3] = {y_d[0], y_d[1], y_d[2]},
+         *f[3] = {f_d[0], f_d[1], f_d[2]}, *r[3] = {r_d[0], r_d[1], r_d[2]};
+  // row 2's residual 2.5e199 is finite, its square is not
+  EXPECT_EQ(be->residuals(rows, yhat, y, f, r), 2);
+  for (int k = 0; k < 3; k++) EXPECT_DOUBLE_EQ(r_d[0][k], 2.0 * (k + 1) + 0.25 * 4.0 * (k + 1));
+  EXPECT_EQ(r_d[1][0], 9.0);    // outside the group: untouched
+  f_d[2][0] = 1.0;
+  EXPECT_EQ(be->residuals(rows, yhat, y, f, r), -1);
+  EXPECT_DOUBLE_EQ(r_d[2][0], 0.25);
+  f_d[0][1] = std::nan("");
+  EXPECT_EQ(be->residuals(rows, yhat, y, f, r), 0);
+}
+
 }    // namespace
