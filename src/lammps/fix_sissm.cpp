@@ -1,16 +1,10 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix sissm (doc/theory.rst, "The implicit step"): per step, for the atoms of the group, the
-   implicit problem r_i(y) = rho_i (yhat_i - y_i) + c f_i(y) = 0 of the time scheme (keyword
-   scheme, src/core/solvers/time_scheme.h; backward Euler: c = h^2, yhat_i = y_i^n + h v_i^n),
-   solved by the SISSM sweeps (solver jacobi, solvers/jacobi.h) or Newton-Krylov (solver krylov,
-   solvers/newton_krylov.h), an iteration being one force evaluation. f is the exact peri/nosb
-   force density plus, with external implicit (default), the forces of the other fixes
-   re-evaluated at y (external lagged: taken at y^n, from the total force of the last
-   evaluation minus the pair part captured in pre_reverse, and moved into yhat as c fext / rho).
-   The solve runs in post_integrate, after every initial_integrate, so particles prescribed by
-   fix move or other integrators already sit at t^{n+1}.
+   fix sissm (doc/theory.rst, "The implicit step"; the time schemes: solvers/time_scheme.h; the
+   solvers: solvers/jacobi.h, solvers/newton_krylov.h). The solve runs in post_integrate, after
+   every initial_integrate, so particles prescribed by fix move or other integrators already sit
+   at t^{n+1}.
 ------------------------------------------------------------------------- */
 
 #include "fix_sissm.h"
@@ -20,7 +14,6 @@
 
 #include "implicit_forces.h"
 
-#include "linalg/exact_sum.h"
 #include "solvers/jacobi.h"
 #include "solvers/momentum.h"
 #include "solvers/newton_krylov.h"
@@ -37,7 +30,6 @@
 #include "update.h"
 
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -63,13 +55,6 @@ class ImplicitStep {
   ImplicitForces *forces_;
 };
 
-// the default preconditioner: amg where the build has PETSc (doc/fix_sissm.rst)
-#ifdef PERISISSM_HAVE_PETSC
-constexpr bool kDefaultAmg = true;
-#else
-constexpr bool kDefaultAmg = false;
-#endif
-
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
@@ -87,69 +72,19 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
   global_freq = 1;
   extvector = 0;
 
-  // the keywords (doc/fix_sissm.rst); their words, ranges and rules are solvers/step_options.h
-  using namespace PeriSISSM;
-  opt.precond = kDefaultAmg ? PrecondKind::amg : PrecondKind::block;
-  int iarg = 3;
-  while (iarg < narg) {
-    const std::string key = arg[iarg];
-    if (!is_step_keyword(key))
-      error->all(FLERR, "Illegal fix sissm command: unknown keyword '{}' (allowed: {})", key,
-                 utils::join_words(kStepKeywords, ", "));
-    if (iarg + 2 > narg || (key == "lagged" && is_step_keyword(arg[iarg + 1])))
-      utils::missing_cmd_args(FLERR, "fix sissm " + key, error);
-    const char *value = arg[iarg + 1];
-    iarg += 2;
-    auto choose = [&](const std::vector<std::string> &words) {
-      const int k = choice_index(value, words);
-      if (k < 0)
-        error->all(FLERR, "Illegal fix sissm command: {} must be {}, got '{}'", key,
-                   choice_text(words), value);
-      return k;
-    };
-    if (key == "iterations") {
-      opt.iterations = utils::inumeric(FLERR, value, false, lmp);
-    } else if (key == "tolerance") {
-      opt.tolerance = utils::numeric(FLERR, value, false, lmp);
-    } else if (key == "relax") {
-      opt.relax = utils::logical(FLERR, value, false, lmp);
-    } else if (key == "solver") {
-      opt.solver = (SolverKind) choose(kSolverWords);
-    } else if (key == "external") {
-      opt.implicit_external = choose(kExternalWords) == 0;
-    } else if (key == "lagged") {
-      // the fix IDs up to the next keyword
-      for (iarg--; iarg < narg && !is_step_keyword(arg[iarg]); iarg++)
-        opt.lagged.emplace_back(arg[iarg]);
-    } else if (key == "precond") {
-      opt.precond_given = true;
-      opt.precond = (PrecondKind) choose(kPrecondWords);
-      if (iarg < narg && strcmp(arg[iarg], "petsc") == 0) {
-        if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix sissm precond amg petsc", error);
-        if (opt.precond != PrecondKind::amg)
-          error->all(FLERR, "Illegal fix sissm command: petsc options need precond amg");
-        opt.petsc = arg[iarg + 1];
-        iarg += 2;
-      }
-    } else if (key == "unconverged") {
-      opt.retry.unconverged = (Unconverged) choose(kUnconvergedWords);
-      if (opt.retry.unconverged == Unconverged::cutback && iarg < narg && isdigit(arg[iarg][0])) {
-        value = arg[iarg++];
-        opt.retry.max_cutback = utils::inumeric(FLERR, value, false, lmp);
-      }
-    } else if (key == "scheme") {
-      opt.scheme = kSchemeWords[choose(kSchemeWords)];
-      if (opt.scheme == "genalpha" && iarg < narg &&
-          (isdigit(arg[iarg][0]) || arg[iarg][0] == '.' || arg[iarg][0] == '-')) {
-        value = arg[iarg++];
-        opt.rho_inf = utils::numeric(FLERR, value, false, lmp);
-      }
-    }
-    const std::string bad = value_problem(opt, key);
-    if (!bad.empty()) error->all(FLERR, "Illegal fix sissm command: {}, got {}", bad, value);
-  }
-  const std::string refused = settle(opt);
-  if (!refused.empty()) error->all(FLERR, "Illegal fix sissm command: {}", refused);
+  // the keywords (doc/fix_sissm.rst), read by solvers/step_options.h
+#ifndef PERISISSM_HAVE_PETSC
+  opt.precond = PrecondKind::block;    // the default amg needs PETSc (doc/fix_sissm.rst)
+#endif
+  auto read = [&](const std::string &w, PeriSISSM::WordKind kind) -> double {
+    if (kind == PeriSISSM::WordKind::integer) return utils::inumeric(FLERR, w, false, lmp);
+    if (kind == PeriSISSM::WordKind::real) return utils::numeric(FLERR, w, false, lmp);
+    return utils::logical(FLERR, w, false, lmp);
+  };
+  const PeriSISSM::StepOptionsProblem bad =
+      PeriSISSM::read_step_options({arg + 3, arg + narg}, read, opt);
+  if (!bad.missing.empty()) utils::missing_cmd_args(FLERR, bad.missing, error);
+  if (!bad.problem.empty()) error->all(FLERR, "Illegal fix sissm command: {}", bad.problem);
 
   scheme = PeriSISSM::make_time_scheme(opt.scheme, opt.rho_inf);
   ncols = scheme->history_columns();
@@ -218,20 +153,8 @@ void FixSissm::init()
     for (CollisionLimit *contact : adapting) contact->set_force_factor(scheme->force_factor());
   }
   forces->track_contact_motion(1);
-  // membranes without bending: the coarse level's matrix has no stiffness out of their plane
-  // but the mass (with bending, the hinges give it one), and amg lets such a flat membrane
-  // leave its plane (measured: the hanging strip of examples/membranes buckles sideways in the
-  // first step and then misses the tolerance; block keeps it in its plane), so the default is
-  // block there
-  if (!opt.precond_given && opt.precond == PrecondKind::amg && forces->has_unbent_membranes()) {
-    opt.precond = PrecondKind::block;
-    if (comm->me == 0)
-      utils::logmesg(lmp,
-                     "Fix sissm {}: membranes without bending (pair_coeff ... membrane yes, no "
-                     "bend): precond block (the default amg has no out-of-plane stiffness for "
-                     "them; precond amg asks for it)\n",
-                     id);
-  }
+  const std::string note = PeriSISSM::settle_for_membranes(opt, forces->has_unbent_membranes(), id);
+  if (!note.empty() && comm->me == 0) utils::logmesg(lmp, note);
   block_precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
   amg_precond.reset();
   if (opt.precond == PrecondKind::amg) amg_precond = make_amg();
@@ -242,11 +165,9 @@ void FixSissm::init()
 }
 
 /* ----------------------------------------------------------------------
-   collision-free steps (collision_limit.h): the positions at the start of a (sub-)step are
-   admissible; every later move of the group is limited so that no contact pair comes within
-   its thickness on the straight move from the last admissible positions. The contacts'
-   lagged friction is taken there too (begin_step, h the (sub-)step), and the stiffness of
-   those that adapt it is balanced at the first evaluation of the step (balance_first)
+   collision-free steps and lagged friction (collision_limit.h): the start of a (sub-)step, and
+   the limit of every later move; the stiffness of the contacts that adapt it is balanced at
+   the first evaluation of the step (balance_first)
 ------------------------------------------------------------------------- */
 
 void FixSissm::begin_path(double h)
@@ -348,11 +269,7 @@ void FixSissm::grow()
 
 void FixSissm::setup(int /*vflag*/)
 {
-  last_iterations = 0;
-  last_measure = 0.0;
-  last_substeps = 1;
-  last_newton = last_krylov = 0;
-  nsteps_run = iterations_run = unconverged_run = cutback_run = fallback_run = 0;
+  stats = PeriSISSM::StepStatistics();
   warned = warned_roundoff = warned_fallback = 0;
   block_first = 0;
 }
@@ -363,11 +280,8 @@ void FixSissm::setup(int /*vflag*/)
 
 void FixSissm::post_run()
 {
-  if (comm->me != 0 || nsteps_run == 0) return;
-  std::string text = fmt::format("Fix sissm {} run: {} steps, {:.6g} iterations per step, {} "
-                                 "unconverged, {} cut back, {} preconditioner switches",
-                                 id, nsteps_run, (double) iterations_run / nsteps_run,
-                                 unconverged_run, cutback_run, fallback_run);
+  if (comm->me != 0 || stats.steps == 0) return;
+  std::string text = stats.summary(id);
   if (amg_precond && !amg_precond->summary().empty()) text += "; " + amg_precond->summary();
   utils::logmesg(lmp, text + "\n");
 }
@@ -423,8 +337,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   } else {
     result = PeriSISSM::solve_jacobi(*system, opt.iterations, {rprev, dprev});
   }
-  last_newton += result.newton;
-  last_krylov += result.krylov;
+  stats.solved(result);
   if (!forces->group_coupled(groupbit)) {
     const PeriSISSM::MomentumBalance balance{h, scheme->force_factor(), scheme->name() == "euler"};
     PeriSISSM::balance_momentum(rows, *reductions, balance, x, yn, yhat, flag ? nullptr : fext,
@@ -441,11 +354,9 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
 }
 
 /* ----------------------------------------------------------------------
-   the step as the retry ladder drives it (solvers/step_retry.h). A redone step starts again
-   from y^n, v^n (kept in xstart, vstart). Cut back into n sub-steps, atoms outside the group
-   (held, or moved by fix move or another integrator, already at t^{n+1}) sit at
-   x^{n+1} - (1 - t) h v at the end t (a fraction of the step) of each sub-step, and at x^{n+1}
-   afterwards; the other fixes' forces are those of t^{n+1} throughout.
+   the step as the retry ladder drives it (solvers/step_retry.h): a redone step starts again
+   from y^n, v^n; the atoms outside the group sit where place_others() puts them at the end of
+   each sub-step, and at t^{n+1} afterwards; the other fixes' forces are those of t^{n+1}.
 ------------------------------------------------------------------------- */
 
 namespace LAMMPS_NS {
@@ -483,73 +394,38 @@ class SissmAttempts : public PeriSISSM::StepAttempts {
 
 void FixSissm::report_retries(const PeriSISSM::RetryOutcome &outcome)
 {
-  const PeriSISSM::SolveResult &result = outcome.result;
+  const bool now_block = precond == block_precond.get();
+  const PeriSISSM::RetryTexts text = PeriSISSM::retry_texts(outcome, context(), now_block);
   if (outcome.switched) {
-    if (outcome.switch_converged) block_first = precond == block_precond.get();
-    fallback_run++;
-    if (!warned_fallback && comm->me == 0)
-      error->warning(FLERR,
-                     "Fix sissm {}: step {} did not converge with precond {}; redone with the {} "
-                     "preconditioner ({}; the one that converged goes first from now on; "
-                     "counted in f_{}[9]; reported once per run)",
-                     id, update->ntimestep, precond == block_precond.get() ? "amg" : "block",
-                     precond == block_precond.get() ? "block" : "amg",
-                     outcome.switch_converged ? "converged" : "not converged either", id);
+    if (outcome.switch_converged) block_first = now_block;
+    stats.switches++;
+    if (!warned_fallback && comm->me == 0) error->warning(FLERR, text.warning);
     warned_fallback = 1;
   }
   if (!outcome.cut_back) return;
-  const int substeps = outcome.substeps;
-  if (outcome.cutback_failed)
-    error->all(FLERR,
-               "Fix sissm {}: step {} did not converge in {} iterations per step, not even as {} "
-               "sub-steps of {:.6g} (convergence measure {:.3g} > tolerance {:.3g}): raise "
-               "iterations, lower the time step, or accept unconverged steps with 'unconverged "
-               "warn'",
-               id, update->ntimestep, opt.iterations, substeps, dtv / substeps, result.measure,
-               result.tolerance);
-  cutback_run++;
-  if (comm->me == 0)
-    utils::logmesg(lmp,
-                   "Fix sissm {}: step {} did not converge in {} iterations; redone as {} "
-                   "sub-steps of {:.6g} (counted in f_{}[6])\n",
-                   id, update->ntimestep, opt.iterations, substeps, dtv / substeps, id);
+  if (outcome.cutback_failed) error->all(FLERR, text.error);
+  stats.cutback++;
+  if (comm->me == 0) utils::logmesg(lmp, text.note);
+}
+
+PeriSISSM::StepContext FixSissm::context() const
+{
+  return {id, update->ntimestep, opt.iterations, dtv};
 }
 
 /* ----------------------------------------------------------------------
-   the atoms outside the group (held, or moved by fix move or another integrator, already at
-   t^{n+1}) at the fraction t of the step: x^{n+1} - (1 - t) h v
+   the atoms outside the group at the fraction t of the step; the group back at y^n, v^n and
+   the scheme's history of the start of the step (solvers/step_start.h)
 ------------------------------------------------------------------------- */
 
 void FixSissm::place_others(double t)
 {
-  double **x = atom->x;
-  double **v = atom->v;
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    if (!(mask[i] & groupbit))
-      for (int k = 0; k < 3; k++) x[i][k] = xstart[i][k] - (1.0 - t) * dtv * v[i][k];
+  PeriSISSM::place_others(system->rows(), step_start(), atom->v, dtv, t, atom->x);
 }
-
-/* ----------------------------------------------------------------------
-   the group back at y^n, v^n and the scheme's history of the start of the step (kept in
-   xstart, vstart, hstart, state_start)
-------------------------------------------------------------------------- */
 
 void FixSissm::restore_start()
 {
-  double **x = atom->x;
-  double **v = atom->v;
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit) {
-      for (int k = 0; k < 3; k++) {
-        x[i][k] = xstart[i][k];
-        v[i][k] = vstart[i][k];
-      }
-      for (int k = 0; k < ncols; k++) hist[i][k] = hstart[i][k];
-    }
+  PeriSISSM::restore_start(system->rows(), step_start(), atom->x, atom->v, hist);
   if (!state_start.empty()) scheme->set_state(state_start.data());
 }
 
@@ -560,48 +436,25 @@ void FixSissm::post_integrate()
   grow();
   double **x = atom->x;
   double **v = atom->v;
-  double **f = atom->f;
-  int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const bool lagged = external_mode == PeriSISSM::ExternalMode::lagged;
   const bool mixed = external_mode == PeriSISSM::ExternalMode::mixed;
   PeriSISSM::Rows &rows = system->step_rows();
-  rows.n = nlocal;
-  rows.mask = mask;
-  rows.bit = groupbit;
-  rows.volume = atom->vfrac;
-  rows.density = atom->rmass;
+  rows = {nlocal, atom->mask, groupbit, atom->vfrac, atom->rmass, psize};
   // the particle sizes of the convergence measure, once per step rather than per iteration
   for (int i = 0; i < nlocal; i++) psize[i] = cbrt(atom->vfrac[i]);
-  rows.size = psize;
 
   // lagged: fint of ghosts belongs to their owners (short-range contact with newton on)
   if ((lagged || mixed) && force->newton_pair) comm->reverse_comm(this);
-  if (mixed) lagged_external_force();
-  if (lagged)
-    for (int i = 0; i < nlocal; i++)
-      for (int k = 0; k < 3; k++) flagged[i][k] = (mask[i] & groupbit) ? f[i][k] - fint[i][k] : 0.0;
-  if (xstart)
-    for (int i = 0; i < nlocal; i++) {
-      for (int k = 0; k < 3; k++) {
-        xstart[i][k] = x[i][k];
-        vstart[i][k] = v[i][k];
-      }
-      for (int k = 0; k < ncols; k++) hstart[i][k] = hist[i][k];
-    }
+  if (lagged || mixed) lagged_external_force();
+  if (xstart) PeriSISSM::keep_start(nlocal, x, v, hist, step_start());
   if (ncols > 0) {
-    // the force density at y^n starts the history of atoms that have none; an atom outside
-    // the group has none when it joins
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit)
-        for (int k = 0; k < 3; k++) fstart[i][k] = f[i][k];
-      else
-        hist[i][ncols - 1] = 0.0;
+    PeriSISSM::keep_start_force(rows, atom->f, fstart, hist, ncols);
     state_start.resize(scheme->state_size());
     if (!state_start.empty()) scheme->get_state(state_start.data());
   }
 
-  last_newton = last_krylov = 0;
+  stats.begin_step();
   // tolerance 0 asks for every step to use all its iterations: such a step is neither redone
   // nor refused
   opt.retry.fixed_count = opt.tolerance == 0.0;
@@ -624,35 +477,22 @@ void FixSissm::post_integrate()
   forces->check_motion(measure <= tol_step ? 1 : 0);
   // short-range contact: a result beyond what the candidates could follow is refused, and
   // the next step starts from a fresh neighbor list if this one moved atoms far
-  const std::string cause = (measure > tol_step)
-      ? fmt::format("this step stopped at the iteration limit with convergence measure {:.3g} "
-                    "above the tolerance {:.3g}, so the motion may be an artefact of the "
-                    "unconverged solve",
-                    measure, tol_step)
-      : "";
+  const std::string cause = measure > tol_step ? PeriSISSM::unconverged_cause(measure, tol_step)
+                                               : "";
   bool rebuild = forces->contact_end_of_step(cause);
   for (CollisionLimit *limit : limiters) rebuild = limit->rebuild_wanted() || rebuild;
   if (rebuild) next_reneighbor = update->ntimestep;
 
   const int evaluations = outcome.evaluations;
-  last_iterations = evaluations;
-  last_measure = measure;
-  last_substeps = outcome.substeps;
-  nsteps_run++;
-  iterations_run += evaluations;
   const PeriSISSM::StepVerdict verdict = PeriSISSM::step_verdict(opt.retry, measure, tol_step);
+  stats.end_step(evaluations, measure, outcome.substeps,
+                 verdict == PeriSISSM::StepVerdict::converged);
   if (verdict != PeriSISSM::StepVerdict::converged) {
-    unconverged_run++;
     if (verdict == PeriSISSM::StepVerdict::error)
-      error->all(FLERR,
-                 "Fix sissm {}: step {} stopped at {} iterations with convergence measure {:.3g} "
-                 "> tolerance {:.3g} (unconverged error)",
-                 id, update->ntimestep, evaluations, measure, tol_step);
+      error->all(FLERR, PeriSISSM::unconverged_error(context(), evaluations, measure, tol_step));
     if (!warned && comm->me == 0)
-      error->warning(FLERR,
-                     "Fix sissm: step {} stopped at {} iterations with convergence measure {:.3g} "
-                     "> tolerance {:.3g} (counted in f_{}[4]; reported once per run)",
-                     update->ntimestep, evaluations, measure, opt.tolerance, id);
+      error->warning(
+          FLERR, PeriSISSM::unconverged_warning(context(), evaluations, measure, opt.tolerance));
     warned = 1;
   }
 }
@@ -661,15 +501,7 @@ void FixSissm::post_integrate()
 
 double FixSissm::compute_vector(int n)
 {
-  if (n == 0) return last_iterations;
-  if (n == 1) return last_measure;
-  if (n == 2) return nsteps_run ? (double) iterations_run / nsteps_run : 0.0;
-  if (n == 3) return (double) unconverged_run;
-  if (n == 4) return last_substeps;
-  if (n == 5) return (double) cutback_run;
-  if (n == 6) return last_krylov;
-  if (n == 7) return last_newton;
-  return (double) fallback_run;
+  return stats.output(n);
 }
 
 /* ---------------------------------------------------------------------- */

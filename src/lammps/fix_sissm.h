@@ -1,14 +1,10 @@
 /* -*- c++ -*- ----------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix sissm: the semi-implicit successive substitution method, a per-particle Jacobi
-   fixed-point iteration whose fixed point is the implicit step of pair peri/nosb (backward
-   Euler, or the second-order BDF2 and generalized-alpha of keyword scheme), and its Krylov
-   acceleration (Newton steps solved by conjugate gradients preconditioned with the same
-   per-particle blocks or with PETSc's multigrid). The LAMMPS glue of the core's solvers
-   (src/core/solvers): it owns the per-atom storage and runs the step's retry ladder; the
-   nonlinear system the solvers see (fix_sissm_system.cpp) is its group's atoms, with the force
-   model behind the ImplicitForces interface of the pair style.
+   fix sissm (doc/fix_sissm.rst), the LAMMPS glue of the core's solvers (src/core/solvers): it
+   owns the per-atom storage and runs the step's retry ladder; the nonlinear system the solvers
+   see (fix_sissm_system.cpp) is its group's atoms, with the force model behind the
+   ImplicitForces interface of the pair style.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -25,6 +21,8 @@ FixStyle(sissm,FixSissm);
 #include "solvers/external_forces.h"
 #include "solvers/jacobi.h"
 #include "solvers/step_options.h"
+#include "solvers/step_report.h"
+#include "solvers/step_start.h"
 #include "solvers/time_scheme.h"
 
 #include <memory>
@@ -84,39 +82,25 @@ class FixSissm : public Fix {
   int ncols = 0;                // the scheme's per-atom history columns (0: none)
   double **hist = nullptr;      // the scheme's history per atom (grown with atom->nmax)
   int hist_from_restart = 1;    // 0: a restart file's history is of another scheme: not taken
-  // how the forces of the other fixes enter the step (decided in init, choose_external(), by
-  // the rule of solvers/external_forces.h): NONE there are none; IMPLICIT all re-evaluated at
-  // every iterate; MIXED those that add forces re-evaluated, the others lagged (their force of
-  // the evaluation that ended the previous step); LAGGED all lagged
+  // how the forces of the other fixes enter the step (solvers/external_forces.h; init)
   PeriSISSM::ExternalMode external_mode = PeriSISSM::ExternalMode::none;
   std::vector<class Fix *> implicit_fixes;    // re-evaluated at every iterate, in LAMMPS order
-  // contact that makes the step collision-free: every move of the atoms is limited by it
-  // (collision_limit.h)
-  std::vector<class CollisionLimit *> limiters;
-  // contact fixes re-evaluated at every iterate (lagged friction: begin_step), limiting or not
-  std::vector<class CollisionLimit *> contacts;
-  // contact fixes that adapt their stiffness to the step (kappa auto; among the contacts)
-  std::vector<class CollisionLimit *> adapting;
+  // contact fixes (collision_limit.h) re-evaluated at every iterate, and among them those that
+  // make the step collision-free (limiting every move) and those that adapt their stiffness
+  std::vector<class CollisionLimit *> contacts, limiters, adapting;
   int balance_first = 0;        // the next evaluation is the first of a (sub-)step: balance them
   int reach_cut = 0;            // the last evaluation's move was cut short by a contact's reach
   std::string external_note;    // what was last logged about them
   double dtv = 0.0;
   double tol_step = 1.0e-6;    // the tolerance of the current step (SissmSystem::step_tolerance())
 
-  // statistics (global vector): the last step's evaluations, measure, sub-steps (1: not cut
-  // back), Newton steps and Krylov iterations; the run's steps, evaluations, unconverged steps,
-  // steps cut back and steps redone with the other preconditioner (precond amg)
-  int last_iterations = 0, last_substeps = 1, last_newton = 0, last_krylov = 0;
-  double last_measure = 0.0;
-  bigint nsteps_run = 0, iterations_run = 0, unconverged_run = 0, cutback_run = 0, fallback_run = 0;
+  PeriSISSM::StepStatistics stats;    // the global vector (solvers/step_report.h)
   int block_first = 0;    // precond amg: the blocks converged the last step that amg did not
   // warnings already given in this run: unconverged, round-off floor, preconditioner switch
   int warned = 0, warned_roundoff = 0, warned_fallback = 0;
   int nmax = 0;
-  double **fint = nullptr;       // internal force density at y^n (captured in pre_reverse; lagged,
-                                 //   mixed)
-  double **fext = nullptr;       // force density of the other fixes at the last evaluation
-                                 //   (implicit, mixed: used by the momentum balance; lagged: zero)
+  double **fint = nullptr;    // lagged, mixed: the pair's force density at y^n (pre_reverse)
+  double **fext = nullptr;    // the other fixes' force density of the last evaluation (lagged: 0)
   double **flagged = nullptr;    // mixed: force density of the lagged fixes for this step
   double **yn = nullptr;         // y^n of owned atoms
   double **yhat = nullptr;       // predictor y^n + h v^n (+ h^2 f_ext / rho when lagged)
@@ -127,8 +111,7 @@ class FixSissm : public Fix {
          **zdir = nullptr, **pdir = nullptr, **sdir = nullptr;    // krylov vectors
   double *term = nullptr;                           // krylov: per-atom terms of a global sum
   double **moment = nullptr;                        // per-atom terms of the momentum balance
-  double **xstart = nullptr, **vstart = nullptr;    // cutback: y^n, v^n of the group; end
-                                                    //   positions of the others
+  double **xstart = nullptr, **vstart = nullptr;    // redone steps: y^n, v^n (others: end)
   double **hstart = nullptr;          // the history at the start of the step (redone steps)
   std::vector<double> state_start;    // the scheme's global state at the start of the step
   double **vn = nullptr, **fstart = nullptr;    // with history: v^n, the force density at y^n
@@ -150,7 +133,9 @@ class FixSissm : public Fix {
   PeriSISSM::SolveResult solve_step(double h, double t_end, double **flag);
   void place_others(double t);
   void restore_start();
+  PeriSISSM::StepStart step_start() const { return {xstart, vstart, hstart, ncols}; }
   void report_retries(const PeriSISSM::RetryOutcome &outcome);
+  PeriSISSM::StepContext context() const;    // what the log's texts say about the step
   std::unique_ptr<PeriSISSM::Preconditioner> make_amg();
 };
 

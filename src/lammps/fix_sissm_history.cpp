@@ -1,13 +1,9 @@
 /* ----------------------------------------------------------------------
-   PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
-
-   fix sissm: the per-atom history of multistep and generalized-alpha time schemes
-   (src/core/solvers/time_scheme.h): ncols doubles per atom whose last one says whether the atom
-   has a history (0: none; the scheme then starts it from the force density at y^n). It moves
-   with its atom between processes, and a restart file keeps it together with the scheme's
-   global state (the length of the last step), so that a run split by a restart continues as
-   if it had not been split. A restart file written with another scheme (or none) gives no
-   history: the atoms start again as at the first step, and the log says so.
+   PERI-SISSM: fix sissm, the per-atom history of the time scheme (solvers/time_scheme.h, its
+   columns and global state): it moves with its atom between processes and restart files keep
+   it, so that a run split by a restart continues as if it had not been split. A restart file
+   written with another scheme (or none) gives no history: the atoms start again as at the
+   first step, and the log says so.
 ------------------------------------------------------------------------- */
 
 #include "fix_sissm.h"

@@ -8,6 +8,7 @@
 #include "fix_sissm.h"
 #include "implicit_forces.h"
 
+#include "solvers/step_report.h"
 #include "solvers/step_tolerance.h"
 
 #include "atom.h"
@@ -15,8 +16,6 @@
 #include "error.h"
 #include "update.h"
 
-#include <cmath>
-#include <vector>
 
 using namespace LAMMPS_NS;
 
@@ -26,16 +25,12 @@ using namespace LAMMPS_NS;
 
 void WorldReductions::max(double *values, int n)
 {
-  std::vector<double> all(n);
-  MPI_Allreduce(values, all.data(), n, MPI_DOUBLE, MPI_MAX, world_);
-  for (int k = 0; k < n; k++) values[k] = all[k];
+  MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_MAX, world_);
 }
 
 void WorldReductions::sum(long long *values, int n)
 {
-  std::vector<long long> all(n);
-  MPI_Allreduce(values, all.data(), n, MPI_LONG_LONG, MPI_SUM, world_);
-  for (int k = 0; k < n; k++) values[k] = all[k];
+  MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_LONG_LONG, MPI_SUM, world_);
 }
 
 double WorldReductions::total_rows() const
@@ -78,7 +73,6 @@ void SissmSystem::evaluate(bool blocks)
   double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;
-  double *rho = atom->rmass;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -110,15 +104,10 @@ void SissmSystem::evaluate(bool blocks)
         }
   }
 
-  double **res = s.res;
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    s.scheme->residual(rho[i], s.yhat[i], x[i], f[i], res[i]);
-    const double r2 = res[i][0] * res[i][0] + res[i][1] * res[i][1] + res[i][2] * res[i][2];
-    if (!std::isfinite(r2))
-      s.error->one(FLERR, "Fix sissm: non-finite position or force of atom {} at step {}",
-                   atom->tag[i], s.update->ntimestep);
-  }
+  const int bad = s.scheme->residuals(rows_, s.yhat, x, f, s.res);
+  if (bad >= 0)
+    s.error->one(FLERR, "Fix sissm: non-finite position or force of atom {} at step {}",
+                 atom->tag[bad], s.update->ntimestep);
 
   // kappa auto: the barrier's stiffness balanced against the rest of the step's residual at
   // its first evaluation, which is redone when the stiffness changed
@@ -126,7 +115,7 @@ void SissmSystem::evaluate(bool blocks)
     s.balance_first = 0;
     bool changed = false;
     for (CollisionLimit *contact : s.adapting)
-      changed = contact->balance_stiffness(res, s.scheme->force_factor(), groupbit) || changed;
+      changed = contact->balance_stiffness(s.res, s.scheme->force_factor(), groupbit) || changed;
     if (changed) {
       // (the redo's move is empty: a cut of the first move still makes the iterate incomplete)
       const int incomplete = contact_incomplete_;
@@ -149,14 +138,10 @@ void SissmSystem::block(int i, double D[6]) const
 
 void SissmSystem::check_finite()
 {
-  Atom *atom = fix_->atom;
-  double **x = atom->x;
-  int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    if ((mask[i] & fix_->groupbit) && !std::isfinite(x[i][0] + x[i][1] + x[i][2]))
-      fix_->error->one(FLERR, "Fix sissm: non-finite position of atom {} at step {}", atom->tag[i],
-                       fix_->update->ntimestep);
+  const int bad = PeriSISSM::first_nonfinite(rows_, fix_->atom->x);
+  if (bad >= 0)
+    fix_->error->one(FLERR, "Fix sissm: non-finite position of atom {} at step {}",
+                     fix_->atom->tag[bad], fix_->update->ntimestep);
 }
 
 /* ----------------------------------------------------------------------
@@ -174,12 +159,7 @@ double SissmSystem::step_tolerance()
   s.tol_step = t.tolerance;
   if (t.roundoff_limited(asked) && !s.warned_roundoff && s.comm->me == 0)
     s.error->warning(FLERR,
-                     "Fix sissm: at step {} round-off in the atom coordinates (up to {:.3g} from "
-                     "the origin) limits the convergence measure to about {:.3g}, above the "
-                     "tolerance {:.3g}: steps that reach it count as converged (a body nearer "
-                     "the origin, or a smaller time step, allows a tighter tolerance; reported "
-                     "once per run)",
-                     s.update->ntimestep, t.reach, t.floor, asked);
+                     PeriSISSM::roundoff_warning(s.update->ntimestep, t.reach, t.floor, asked));
   if (t.roundoff_limited(asked)) s.warned_roundoff = 1;
   return s.tol_step;
 }

@@ -1,11 +1,9 @@
 /* -*- c++ -*- ----------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   The nonlinear system of fix sissm's step as the core's solvers see it
-   (PeriSISSM::NonlinearSystem, src/core/solvers/system.h): the unknowns are the positions of
-   the owned atoms of the group, one evaluation is a force evaluation of the pair style (and,
-   with external implicit, of the other fixes) followed by the time scheme's residual; and the
-   reductions the solvers need, over LAMMPS's world communicator.
+   The nonlinear system of fix sissm's step as the core's solvers see it (solvers/system.h):
+   the owned atoms of the group, one evaluation a force evaluation (fix_sissm_system.cpp); and
+   the reductions the solvers need, over LAMMPS's world communicator.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_FIX_SISSM_SYSTEM_H

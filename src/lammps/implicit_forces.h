@@ -1,10 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   What an implicit integrator (fix sissm) needs from the force model: one force evaluation
-   at the current positions with or without the SISSM blocks, bonds that do not break inside
-   a step, the contact candidates kept complete while the atoms move many times between
-   neighbor list builds, whether a group is coupled to the rest, and the blow-up guard.
+   What an implicit integrator (fix sissm) needs from the force model, each item below.
    pair_style peri/nosb implements it; fix sissm sees nothing else of the pair.
 ------------------------------------------------------------------------- */
 

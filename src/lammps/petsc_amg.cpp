@@ -47,14 +47,8 @@ void start_petsc(MPI_Comm world)
   check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
 }
 
-// The defaults, before the user's options (measured with examples/benchmarks/solver):
-// - no squared graph on the first level (-pc_gamg_square_graph 0): the bond stencil is wide
-//   already (a horizon of 3 spacings: ~90 partners), and squaring it coarsens too fast
-//   (examples/cantilever: 71 force evaluations for the static step against 113);
-// - weak couplings below 1% dropped from the aggregation graph (-pc_gamg_threshold 0.01) and a
-//   coarsest level of at most ~200 equations (-pc_gamg_coarse_eq_limit 200): CG iterations per
-//   Newton step of 8x8 beams 20 to 160 particles long grow by 1.00x (1.69x with PETSc's
-//   threshold and limit), for a set-up ~20% dearer.
+// The defaults, before the user's options (doc/fix_sissm.rst, "PETSc options", gives what was
+// measured with and without each)
 const char *const kDefaultOptions =
     "-pc_gamg_square_graph 0 -pc_gamg_threshold 0.01 -pc_gamg_coarse_eq_limit 200";
 
