@@ -1,33 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   What an implicit integrator (fix sissm) needs from a contact model to make its steps
-   collision-free: the largest fraction of a move of the atoms that keeps every contact pair
-   apart (continuous collision detection), and the contact's diagonal stiffness blocks for the
-   SISSM blocks. fix nosb/contact implements it; fix sissm finds it among the fixes whose
-   forces it re-evaluates at every iterate.
+   What an implicit integrator (fix sissm) needs from a contact model: collision-free steps
+   (continuous collision detection), the start of each step (lagged friction), the contact's
+   diagonal stiffness blocks for the SISSM blocks, and for a contact that adapts its stiffness
+   (kappa auto: IPC's adaptive barrier stiffness) its solver's iterates and residual. fix
+   nosb/contact implements it; fix sissm finds it among the fixes whose forces it re-evaluates
+   at every iterate.
 
-   The integrator keeps its atoms on a path of admissible positions: it marks the positions of
-   the start of a step admissible (begin_path()), and before every force evaluation, and at
-   the step's end, moves its atoms back along the straight line from the last admissible
-   positions to the current ones by the fraction limit_move() returns, which then become the
-   last admissible positions. Every position the integrator evaluates or ends a step at is then
-   connected to the step's start by straight moves on which no pair comes within the contact's
-   thickness.
-
-   Lagged friction needs the start of each step: the integrator calls begin_step() once at the
-   start of every (sub-)step solve, right before begin_path(), for every such contact whose force
-   it re-evaluates at every iterate (whether or not it limits the moves). The positions then
-   are the step's start x^n; the step lasts h.
-
-   A contact that adapts its stiffness to the step (kappa auto: IPC's adaptive barrier
-   stiffness) needs two more things of the integrator: which force evaluations are iterates of
-   its solver (next_iterate() before each; a probe of a Jacobian-vector product is none, and the
-   stiffness may change only at an iterate), and the residual of the first iterate of every
-   (sub-)step, against which the barrier's stiffness is balanced (balance_stiffness()). The
-   residual is r_i = rho_i (yhat_i - y_i) + c f_i (rho the mass density, f the force density of
-   everything the step includes, the contact too; c the scheme's force factor, h^2 for backward
-   Euler), so that -r_i V_i / c is the gradient of the step's incremental potential at atom i.
+   The integrator keeps its atoms on a path of admissible positions: begin_path() at a step's
+   start, limit_move() before every force evaluation and at the step's end. Every position it
+   evaluates or ends a step at is then connected to the step's start by straight moves on which
+   no pair comes within the contact's thickness.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_PERISISSM_COLLISION_LIMIT_H
@@ -40,10 +24,11 @@ class CollisionLimit {
   // false when this contact does not limit moves (then the calls below begin_step() are not
   // made)
   virtual bool limits_moves() const = 0;
-  // the start of an implicit (sub-)step of length h (> 0): the current positions (owned and
-  // ghost, current) are x^n, and the force evaluations up to the next begin_step() are the
-  // iterates of this step (and the one after it, at its result). Collective.
-  // c is the scheme's force factor (see above): the step's inertial scale is rho / c.
+  // the start of an implicit (sub-)step of length h (> 0), called right before begin_path()
+  // whether or not the contact limits moves: the current positions (owned and ghost, current)
+  // are x^n, and the force evaluations up to the next begin_step() are the iterates of this
+  // step (and the one after it, at its result). c is the scheme's force factor (h^2 for
+  // backward Euler): the step's inertial scale is rho / c. Collective.
   virtual void begin_step(double h, double c) = 0;
   // the current positions (owned and ghost, current) are admissible: the reference of the next
   // move. Collective.
@@ -73,12 +58,15 @@ class CollisionLimit {
   // at the integrator's init (every run): the force factor of its steps of the run's time step,
   // for the force evaluations before the first step
   virtual void set_force_factor(double c) = 0;
-  // the next force evaluation is at an iterate of the solver (not a probe): the contact may
-  // change its stiffness there. Collective.
+  // the next force evaluation is at an iterate of the solver (not a probe of a Jacobian-vector
+  // product): the contact may change its stiffness only there. Collective.
   virtual void next_iterate() = 0;
   // after the first evaluation of a (sub-)step: res the residual of the integrator's group
-  // (owned atoms of groupbit), c the force factor. Returns true (all ranks) when the
-  // stiffness changed: the evaluation must then be redone. Collective.
+  // (owned atoms of groupbit), r_i = rho_i (yhat_i - y_i) + c f_i (rho the mass density, f the
+  // force density of everything the step includes, the contact too), so that -r_i V_i / c is
+  // the gradient of the step's incremental potential at atom i; c the force factor. Returns
+  // true (all ranks) when the stiffness changed: the evaluation must then be redone.
+  // Collective.
   virtual bool balance_stiffness(double **res, double c, int groupbit) = 0;
 
  protected:

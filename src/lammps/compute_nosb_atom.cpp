@@ -1,21 +1,9 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   compute ID group nosb/atom
-
-   Per-atom array, from the state of pair peri/nosb at its last force evaluation (the current
-   positions during and at the end of a run) and the current bond families:
-     1 damage: 1 - (sum of omega = beta V_j over unbroken bonds) / (that sum over the initial
-       family), i.e. the omega-weighted broken fraction
-     2 W: strain energy density W(F) plus the particle's share of the stabilization energy
-       (what peri/nosb tallies per atom, so sum_i V_i W_i is the stored energy)
-     3 J = det F
-     4 von Mises equivalent of the Cauchy stress
-     5-10 Cauchy stress sigma = P F^T / J: xx yy zz xy xz yz
-     11 estimate of the particle's stable explicit time step (fix nve), at rest, from its
-       current bonds (FixNosbFamily::stable_time_steps; +inf for a particle without bonds)
-   For J < 1e-3 (collapsed or inverted particles) sigma = P F^T / 1e-3 (finite, continuous).
-   A particle whose shape tensor is singular reports F = I: W = 0, J = 1, zero stress.
+   compute ID group nosb/atom: per-atom damage, W, J, von Mises and Cauchy stress and stable
+   time step estimate (columns: core peri/particle.h nosb_atom_row(); doc/compute_nosb_atom.rst)
+   from the state of pair peri/nosb at its last force evaluation and the current bond families.
    Atoms outside the group get zeros.
 ------------------------------------------------------------------------- */
 
@@ -34,6 +22,7 @@
 #include "update.h"
 
 using namespace LAMMPS_NS;
+using namespace PeriSISSM::NosbAtom;    // the columns
 
 /* ---------------------------------------------------------------------- */
 
@@ -93,16 +82,10 @@ void ComputeNosbAtom::compute_peratom()
     for (int k = 0; k < NCOLUMNS; k++) v[k] = 0.0;
     if (!(mask[i] & groupbit)) continue;
     v[JACOBIAN] = 1.0;
-    if (!ready) continue;
-    v[DAMAGE] = family->damage(i);
-    v[DTSTABLE] = dtstable[i];
-    if (!family->kregular[i]) continue;
-    const double *F = pair->deformation_gradient(i);
-    v[ENERGY] = pair->energy_density(i);
-    double J;
-    PeriSISSM::cauchy_stress(pair->model().material(type[i]), F, &v[SXX], J);
-    v[JACOBIAN] = J;
-    v[VONMISES] = PeriSISSM::von_mises(&v[SXX]);
+    if (ready)
+      PeriSISSM::nosb_atom_row(pair->model().material(type[i]), family->kregular[i] != 0,
+                               pair->deformation_gradient(i), pair->energy_density(i),
+                               family->damage(i), dtstable[i], v);
   }
 }
 

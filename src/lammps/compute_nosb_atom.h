@@ -20,8 +20,6 @@ namespace LAMMPS_NS {
 
 class ComputeNosbAtom : public Compute {
  public:
-  enum { DAMAGE = 0, ENERGY, JACOBIAN, VONMISES, SXX, SYY, SZZ, SXY, SXZ, SYZ, DTSTABLE, NCOLUMNS };
-
   ComputeNosbAtom(class LAMMPS *, int, char **);
   ~ComputeNosbAtom() override;
   void init() override;

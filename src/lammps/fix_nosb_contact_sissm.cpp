@@ -1,12 +1,9 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix nosb/contact inside fix sissm's implicit steps (collision_limit.h): the start of a
-   (sub-)step (lagged friction at x^n, the force factor), kappa auto's balance and doubling at
-   the solver's iterates, the path of admissible positions (CCD over the candidates and the
-   candidates' reach) and the diagonal stiffness blocks. The rest of the fix (pairs, forces,
-   communication, restart, output) is in fix_nosb_contact.cpp; its header says how the pieces
-   fit together.
+   fix nosb/contact inside fix sissm's implicit steps (collision_limit.h says what each call
+   promises): lagged friction at x^n, kappa auto's balance and doubling, the path of admissible
+   positions and the diagonal stiffness blocks. The rest of the fix is in fix_nosb_contact.cpp.
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_contact.h"
@@ -46,7 +43,7 @@ void FixNosbContact::set_kappa_ip(double k)
 void FixNosbContact::adapt_at_iterate()
 {
   iterate_pending = 0;
-  const double gap = distances.smallest_gap(dmin);
+  const double gap = distances.smallest_gap(opt.dmin);
   double all;
   MPI_Allreduce(&gap, &all, 1, MPI_DOUBLE, MPI_MIN, world);
   const double k = stiffness.at_iterate(all);
@@ -64,7 +61,7 @@ bool FixNosbContact::balance_stiffness(double **res, double force_factor, int ig
   inertia_c = force_factor;
   const PeriSISSM::BalanceSums b =
       PeriSISSM::balance_sums(candidates, distances, atom->x, res, atom->vfrac, atom->mask,
-                              igroupbit, atom->nlocal, dhat, dmin);
+                              igroupbit, atom->nlocal, opt.dhat, opt.dmin);
   // sums over the atoms: res V . grad B, |grad B|^2; lagged friction pairs
   double local[3] = {b.res_dot_grad, b.grad2, (double) lagged.size()}, sums[3];
   MPI_Allreduce(local, sums, 3, MPI_DOUBLE, MPI_SUM, world);
@@ -84,28 +81,20 @@ void FixNosbContact::begin_step(double h, double c)
 {
   in_step = 1;
   step_h = h;
-  if (kappa_auto) {
+  if (opt.kappa_auto) {
     inertia_c = c;
     kappa = stiffness.value() / inertia_c;
     stiffness.begin_step();
   }
-  if (mu == 0.0) return;
+  if (opt.mu == 0.0) return;
   if (stale) build_candidates();
   build_lagged();
 }
 
 /* ----------------------------------------------------------------------
-   CollisionLimit (collision_limit.h): fix sissm's path of admissible positions.
-
-   The reference is the positions of the last admissible state, owned and ghost (the indices
-   of the ghosts do not change inside a step: no neighbor list build). A move from it to the
-   current positions is checked pair by pair with additive CCD (core contact/ccd.h: the
-   fraction returned keeps the pair's gap above 0.1 of its gap at the reference, so it never
-   reaches dmin on the straight move), over the candidates: a pair that is not a candidate was
-   farther than dmin + dhat + skin apart at the list build and cannot come within dmin + dhat
-   while no atom has moved skin/2 from there (the file's header), so the move is also limited
-   to that reach. The fraction is the minimum over all pairs and ranks; the owned atoms of the
-   integrator's group go back to it.
+   fix sissm's path (collision_limit.h): the reference holds owned and ghost positions (no list
+   build inside a step); a move is limited by CCD over the candidates (core path_limit.h) and
+   by the candidates' reach, skin/2 from the list build (core motion_tracker.h)
 ------------------------------------------------------------------------- */
 
 void FixNosbContact::begin_path()
@@ -128,7 +117,7 @@ double FixNosbContact::limit_move(int groupbit)
   const int nlocal = atom->nlocal;
 
   // pairs: the largest fraction that no candidate pair contradicts
-  const double t_pairs = PeriSISSM::path_limit(candidates, xref, x, dmin, &distances);
+  const double t_pairs = PeriSISSM::path_limit(candidates, xref, x, opt.dmin, &distances);
 
   // reach: no atom of the group farther than skin/2 from the list build
   const double R = MotionTracker::error_distance(neighbor->skin) * (1.0 - 1.0e-9);
@@ -157,20 +146,14 @@ double FixNosbContact::limit_move(int groupbit)
 
 void FixNosbContact::reach_error(const char *integrator)
 {
-  error->all(FLERR,
-             "Fix nosb/contact {}: {} step {} needs atom {} to move farther than half the "
-             "neighbor skin ({:.6g}) from where it was at the last neighbor list build (it was "
-             "{:.6g} from there at the start of the move): the contact candidates cannot follow "
-             "a step that far; use a larger neighbor skin (a step may move the atoms by 3/8 of "
-             "it at least: the lists are built again after a step that moved an atom skin/8) or "
-             "a smaller time step",
-             id, integrator, update->ntimestep, reach_atom, 0.5 * neighbor->skin, reach_moved);
+  error->all(FLERR, "Fix nosb/contact {}: {}", id,
+             MotionTracker::reach_error(integrator, update->ntimestep, reach_atom, neighbor->skin,
+                                        reach_moved));
 }
 
 /* ----------------------------------------------------------------------
    at the end of an implicit step: a new neighbor list before the next step once an atom has
-   moved skin/8 from the last build, so that every step may move the atoms by 3/8 of the skin
-   at least (fix sissm builds it right after its step, before the forces of that step)
+   moved skin/8 (motion_tracker.h; fix sissm builds it before the forces of that step)
 ------------------------------------------------------------------------- */
 
 bool FixNosbContact::rebuild_wanted()
@@ -184,18 +167,17 @@ bool FixNosbContact::rebuild_wanted()
 }
 
 /* ----------------------------------------------------------------------
-   the barrier's diagonal stiffness blocks of the owned vertices at the current positions:
-   the 3x3 diagonal blocks of each active pair's Hessian projected to positive semi-definite,
-   divided by the vertex's volume (the force is a density), added to block (xx yy zz xy xz yz)
+   the barrier's and the friction's diagonal stiffness blocks of the owned vertices at the
+   current positions (barrier_potential.h, friction_potential.h)
 ------------------------------------------------------------------------- */
 
 void FixNosbContact::add_blocks(double **block)
 {
   // (the distances of the last force evaluation: these positions, as fix sissm calls this right
   // after post_force)
-  PeriSISSM::barrier_blocks(candidates, distances, atom->x, atom->vfrac, {kappa, dhat, dmin},
-                            block);
+  PeriSISSM::barrier_blocks(candidates, distances, atom->x, atom->vfrac,
+                            {kappa, opt.dhat, opt.dmin}, block);
   // the friction's (positive semi-definite) blocks at the current slip of the step
-  if (!(mu > 0.0) || !in_step || lagged_generation != generation) return;
-  PeriSISSM::friction_blocks(lagged, atom->x, {mu, epsv * step_h}, atom->vfrac, block);
+  if (!(opt.mu > 0.0) || !in_step || lagged_generation != generation) return;
+  PeriSISSM::friction_blocks(lagged, atom->x, {opt.mu, opt.epsv * step_h}, atom->vfrac, block);
 }

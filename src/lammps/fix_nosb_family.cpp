@@ -1,25 +1,10 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix nosb/family: the bond families of pair_style peri/nosb.
-
-   Families are built once, at the setup of the first run or minimization after the pair style
-   is defined (after the neighbor list build, before the first force evaluation, so step 0
-   already has the right energy): partner j is in the family of i when |x_j - x_i| <= horizon
-   of their types, with the positions at that moment taken as the reference configuration
-   (x0 = x for every atom). Families are stored by atom tag and sorted by tag, so that every
-   per-particle sum runs in the same order whatever the number of MPI ranks. A broken bond has
-   tag 0 and stays broken; broken slots are dropped when the atom migrates. Per bond the fix
-   keeps the weight omega = w beta V_j (pair peri/nosb); the reference bond xi = X_j - X_i is
-   x0_j - x0_i (minimum image in the box of the creation). Per atom: K^-1 (zeros if
-   singular), the regular flag, the initial family weight (damage reference), the largest
-   eigenvalue of the initial K (singularity test) and the atom's own ID. Everything migrates
-   with the atoms and is kept in restart files. Local indices of the partners (closest image)
-   are refreshed after every neighbor list build; a partner that no longer exists (deleted or
-   lost atom) counts as a broken bond, one that exists beyond the ghost cutoff is an error.
-   The LAMMPS-free parts: core peri/family_build.h (partners, weights), peri/family_ids.h
-   (partners by ID), peri/family_records.h (exchange and restart records).
-
+   fix nosb/family: the bond families of pair_style peri/nosb (doc/pair_peri_nosb.rst, "Bond
+   families and reference configuration"; what is stored: fix_nosb_family.h). The LAMMPS-free
+   parts: core peri/family_build.h (partners, weights), peri/family_ids.h (partners by ID),
+   peri/family_records.h (exchange and restart records), peri/family_messages.h (texts).
    Blow-up guard and stable time step: fix_nosb_family_guard.cpp.
 ------------------------------------------------------------------------- */
 
@@ -30,6 +15,7 @@
 
 #include "peri/family_build.h"
 #include "peri/family_ids.h"
+#include "peri/family_messages.h"
 #include "peri/family_records.h"
 #include "peri/model.h"
 #include "peri/stable_step.h"
@@ -177,11 +163,9 @@ void FixNosbFamily::min_post_neighbor()
 void FixNosbFamily::build_families()
 {
   double **x = atom->x;
-  double **x0 = atom->x0;
   int *type = atom->type;
   tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
 
   neighbor->build_one(list);
 
@@ -192,70 +176,41 @@ void FixNosbFamily::build_families()
   const int *mesh = meshfix ? meshfix->mesh_ids() : nullptr;
   const double *thick = meshfix ? meshfix->thicknesses() : nullptr;
   std::vector<std::vector<std::pair<tagint, int>>> fam(nlocal);
+  int maxone = 0;
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
     PeriSISSM::gather_partners(*model, i, list->firstneigh[i], list->numneigh[i], NEIGHMASK, x[0],
                                type, tag, mesh, fam[i]);
     const tagint twice = PeriSISSM::order_family(fam[i]);
-    if (twice)
-      error->one(FLERR,
-                 "Pair peri/nosb: atom {} appears twice in the bond family of atom {}: the "
-                 "periodic box is shorter than two horizons",
-                 twice, tag[i]);
+    if (twice) error->one(FLERR, PeriSISSM::partner_twice_message(twice, tag[i]));
+    maxone = std::max(maxone, (int) fam[i].size());
   }
-
-  int maxone = 0;
-  for (int i = 0; i < nlocal; i++) maxone = std::max(maxone, (int) fam[i].size());
   MPI_Allreduce(&maxone, &maxpartner, 1, MPI_INT, MPI_MAX, world);
   maxpartner = std::max(maxpartner, 1);
   resize_bond_slots();
 
-  // the reference configuration is the current one, in the current box
+  // the reference configuration is the current one, in the current box; the reference
+  // normals of the membranes from the mesh in it
 
-  box.periodic[0] = domain->xperiodic;
-  box.periodic[1] = domain->yperiodic;
-  box.periodic[2] = domain->zperiodic;
-  box.box[0] = domain->xprd;
-  box.box[1] = domain->yprd;
-  box.box[2] = domain->zprd;
-  box.box[3] = domain->triclinic ? domain->yz : 0.0;
-  box.box[4] = domain->triclinic ? domain->xz : 0.0;
-  box.box[5] = domain->triclinic ? domain->xy : 0.0;
-  for (int i = 0; i < nall; i++) {
-    x0[i][0] = x[i][0];
-    x0[i][1] = x[i][1];
-    x0[i][2] = x[i][2];
-  }
-
-  // reference normals of the membranes, from the mesh in the reference configuration
+  const int tri = domain->triclinic;
+  box = {{domain->xperiodic, domain->yperiodic, domain->zperiodic},
+         {domain->xprd, domain->yprd, domain->zprd, tri ? domain->yz : 0.0, tri ? domain->xz : 0.0,
+          tri ? domain->xy : 0.0}};
+  std::copy(x[0], x[0] + 3 * (nlocal + atom->nghost), atom->x0[0]);
   if (meshfix && model->any_membrane()) meshfix->set_reference_normals();
-  const PeriSISSM::Families fview = view();
 
-  bigint nbonds = 0, nsingular = 0;
-  for (int i = 0; i < nlocal; i++) {
-    const int b = PeriSISSM::store_family(*model, rows(), i, tag[i], fam[i], x0[0], box, type,
-                                          atom->vfrac, thick);
-    if (b >= 0)
-      error->one(FLERR, "Pair peri/nosb: atoms {} and {} are at the same position", tag[i],
-                 tag[fam[i][b].second]);
-    PeriSISSM::update_shape(fview, x0[0], box, i, model->reference_normal(fview, type[i], i));
-    nbonds += npartner[i];
-    if (!kregular[i]) nsingular++;
-  }
+  bigint one[2] = {0, 0}, all[2];
+  const std::pair<int, int> same = PeriSISSM::store_families(
+      *model, rows(), view(), fam, tag, atom->x0[0], box, type, atom->vfrac, thick, one[0], one[1]);
+  if (same.first >= 0)
+    error->one(FLERR, PeriSISSM::same_position_message(tag[same.first], tag[same.second]));
   built = 1;
 
   tagint tagmax = 0;
   for (int i = 0; i < nlocal; i++) tagmax = std::max(tagmax, tag[i]);
   MPI_Allreduce(&tagmax, &tagmax0, 1, MPI_LMP_TAGINT, MPI_MAX, world);
-
-  bigint all[2], one[2] = {nbonds, nsingular};
   MPI_Allreduce(one, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (comm->me == 0)
-    utils::logmesg(lmp,
-                   "Peridynamic bond families (peri/nosb):\n"
-                   "  total # of bonds = {}\n  bonds/atom = {:.8g}\n"
-                   "  atoms with a singular shape tensor = {}\n",
-                   all[0], atom->natoms ? (double) all[0] / atom->natoms : 0.0, all[1]);
+  if (comm->me == 0) utils::logmesg(lmp, PeriSISSM::family_summary(all[0], atom->natoms, all[1]));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -270,18 +225,14 @@ void FixNosbFamily::attach(const PeriSISSM::Model *m, std::function<void()> rebu
 
 PeriSISSM::Families FixNosbFamily::view()
 {
-  PeriSISSM::Families fam;
-  fam.npartner = npartner;
-  fam.jlocal = jlocal;
-  fam.omega = omega;
-  fam.kinv = kinv;
-  fam.kregular = kregular;
-  fam.lamref = lamref;
-  if (model && model->any_membrane()) {
-    MeshView *meshfix = MeshView::find(lmp);
-    if (meshfix) fam.normal = meshfix->reference_normals();
-  }
-  return fam;
+  MeshView *meshfix = (model && model->any_membrane()) ? MeshView::find(lmp) : nullptr;
+  return {npartner,
+          jlocal,
+          omega,
+          kinv,
+          kregular,
+          lamref,
+          meshfix ? meshfix->reference_normals() : nullptr};
 }
 
 /* ---------------------------------------------------------------------- */
@@ -320,11 +271,7 @@ void FixNosbFamily::refresh_local_indices()
   flags[1] = (int) reused.size();
   int flags_all[2];
   MPI_Allreduce(flags, flags_all, 2, MPI_INT, MPI_MAX, world);
-  if (flags_all[0])
-    error->all(FLERR,
-               "Pair peri/nosb: atom IDs changed after the bond families were built (bonds "
-               "are stored by atom ID): use delete_atoms ... compress no, and do not "
-               "renumber atoms (reset_atoms id) once a peri/nosb run has been done");
+  if (flags_all[0]) error->all(FLERR, PeriSISSM::renumbered_message());
   if (flags_all[1]) break_reused(reused);
 
   std::vector<std::pair<int, int>> missing;    // (atom, slot) whose partner is not here
@@ -380,10 +327,7 @@ void FixNosbFamily::break_reused(const std::vector<tagint> &reused)
   int nbroken = PeriSISSM::break_bonds_to(rows(), atom->nlocal, all, reshape), nbroken_all;
   MPI_Allreduce(&nbroken, &nbroken_all, 1, MPI_INT, MPI_SUM, world);
   if (comm->me == 0 && nbroken_all)
-    error->warning(FLERR,
-                   "Pair peri/nosb: {} new atoms reuse IDs of deleted atoms; the {} bond ends "
-                   "to those IDs count as broken",
-                   all.size(), nbroken_all);
+    error->warning(FLERR, PeriSISSM::reused_ids_message(all.size(), nbroken_all));
 }
 
 /* ----------------------------------------------------------------------
@@ -408,17 +352,22 @@ void FixNosbFamily::resolve_missing(const std::vector<std::pair<int, int>> &miss
     if (j >= 0 && j < atom->nlocal) own[k] = 1;
   }
   MPI_Allreduce(own.data(), exists.data(), (int) all.size(), MPI_INT, MPI_MAX, world);
-  for (int k = 0; k < nme; k++)
-    if (exists[first + k]) missing_partner(missing[k].first, all[first + k]);
+  for (int k = 0; k < nme; k++) {
+    if (!exists[first + k]) continue;
+    error->one(FLERR,
+               "Pair peri/nosb: bond partner atom {} of atom {} is neither a local nor a ghost "
+               "atom on this MPI rank at step {}: the bond is longer than the ghost cutoff {}; "
+               "increase it with comm_modify cutoff (or the neighbor skin), unless the body is "
+               "flying apart: time step dt = {:.4g}, estimated stable time step of peri/nosb "
+               "{:.4g} at the start of the run (compute nosb/atom column 11)",
+               all[first + k], atom->tag[missing[k].first], update->ntimestep,
+               comm->get_comm_cutoff(), update->dt, dtstable0);
+  }
   PeriSISSM::break_missing(rows(), missing, reshape);
 
   int nbroken_all;
   MPI_Allreduce(&nme, &nbroken_all, 1, MPI_INT, MPI_SUM, world);
-  if (comm->me == 0)
-    error->warning(FLERR,
-                   "Pair peri/nosb: {} bond ends lost their partner atom (deleted or lost); "
-                   "those bonds count as broken",
-                   nbroken_all);
+  if (comm->me == 0) error->warning(FLERR, PeriSISSM::lost_partners_message(nbroken_all));
 }
 
 /* ----------------------------------------------------------------------
@@ -430,19 +379,6 @@ int FixNosbFamily::local_index(tagint jtag) const
 {
   if (jtag <= 0 || jtag > atom->map_tag_max) return -1;
   return atom->map(jtag);
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixNosbFamily::missing_partner(int i, tagint jtag)
-{
-  error->one(FLERR,
-             "Pair peri/nosb: bond partner atom {} of atom {} is neither a local nor a ghost "
-             "atom on this MPI rank at step {}: the bond is longer than the ghost cutoff {}; "
-             "increase it with comm_modify cutoff (or the neighbor skin), unless the body is "
-             "flying apart: time step dt = {:.4g}, estimated stable time step of peri/nosb {:.4g} "
-             "at the start of the run (compute nosb/atom column 11)",
-             jtag, atom->tag[i], update->ntimestep, comm->get_comm_cutoff(), update->dt, dtstable0);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -473,8 +409,7 @@ void FixNosbFamily::grow_arrays(int nmax)
 
 /* ----------------------------------------------------------------------
    the per-atom arrays as the core's records see them (core peri/family_records.h); an atom
-   created after the families exist has no bonds; exchange and restart records hold the
-   unbroken bonds and the per-atom data
+   created after the families exist has no bonds
 ------------------------------------------------------------------------- */
 
 PeriSISSM::FamilyArrays<tagint> FixNosbFamily::rows() const
@@ -502,9 +437,7 @@ int FixNosbFamily::unpack_exchange(int nlocal, double *buf)
   return PeriSISSM::unpack_family(rows(), nlocal, buf);
 }
 
-/* ----------------------------------------------------------------------
-   global state: whether the families exist, the largest family, the reference box
-------------------------------------------------------------------------- */
+/* ---------------------------------------------------------------------- */
 
 void FixNosbFamily::write_restart(FILE *fp)
 {

@@ -57,18 +57,14 @@ class FixNosbFamily : public Fix {
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
 
-  // blow-up guard (all ranks): stop with an error naming the step, the worst atom and the
-  // likely cause when an owned atom has a non-finite position, velocity or force, or the atoms
-  // have moved farther than LAMMPS can follow (beyond one periodic image, or spread beyond
-  // what its neighbor bins can index). Called every step in post_integrate, or by an
-  // integrator that moves the atoms later in the step (fix sissm) right after it has, telling
-  // whether its step converged (1), did not (0), or -1 (explicit integrators); after a call
-  // with 0 or 1 the check of post_integrate is left to that integrator until the next init.
+  // blow-up guard (all ranks; doc/pair_peri_nosb.rst "Blow-ups end in an error"): every step
+  // in post_integrate, or by an integrator that moves the atoms later in the step (fix sissm)
+  // right after it has, telling whether its step converged (1) or not (0; -1: explicit
+  // integrators, the default); after such a call the check of post_integrate is left to that
+  // integrator until the next init
   void check_motion(int converged = -1);
-  // estimate of the stable explicit time step of every owned atom (all ranks; dt[nlocal]):
-  //   dt_i = f sqrt(2 rho_i / d_i),  d_i = sum_j omega_ij (s_i + s_j),
-  //   s_i = kappa_i (lambda + 2 mu) + C_i / 2,  kappa_i = tr(K_i^-1) / 3
-  // (the SISSM block of the linearized material at rest); +infinity without stiffness
+  // estimate of the stable explicit time step of every owned atom (all ranks; dt[nlocal];
+  // core peri/stable_step.h); +infinity without stiffness
   void stable_time_steps(double *dt);
   // smallest stable_time_steps() over all atoms (all ranks)
   double min_stable_time_step();
@@ -85,9 +81,8 @@ class FixNosbFamily : public Fix {
   double damage(int i) const;
 
   // state (read by pair peri/nosb, compute nosb/atom and integrators)
-  // The reference bond is not stored: xi = x0_j - x0_i (x0 = positions when the families
-  // were built), with the minimum image convention in periodic boxes (the x0 of a periodic
-  // ghost image is not shifted).
+  // The reference bond xi = x0_j - x0_i is not stored (x0: positions when the families were
+  // built; minimum image in box, core peri/family.h ReferenceBox).
   int built;           // 1 once families exist (built at the first run, kept in restarts)
   int maxpartner;      // largest family (bond slots per atom)
   int *npartner;       // bond slots of each atom (broken ones included until migration)
@@ -118,8 +113,6 @@ class FixNosbFamily : public Fix {
   double *sdiag;               // per atom s_i of stable_time_steps() (owned and ghosts)
   int integrator_checks;       // 1: an integrator has called check_motion(0 or 1) in this run
   double dtstable0;            // min_stable_time_step() at the setup of the run
-  std::string likely_cause(int converged);
-  void missing_partner(int i, tagint jtag);
   int local_index(tagint) const;
   PeriSISSM::FamilyArrays<tagint> rows() const;    // the per-atom arrays (core peri/)
 };

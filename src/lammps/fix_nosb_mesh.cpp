@@ -1,23 +1,11 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix nosb/mesh: the triangles of the meshes read by read_mesh.
-
-   Per atom: the mesh id (0 = not a mesh vertex), the mesh's thickness, the triangles at the
-   atom (at most MAXTRI, each as the IDs of its other two vertices in the triangle's
-   orientation) and the reference unit normal normal0. Everything migrates with the atoms and
-   is kept in restart files; mesh id, thickness and triangles also reach the ghost atoms by
-   border communication (at every neighbor list build), so that the other vertices of a
-   triangle can be looked up by ID wherever the atom is. A deck without read_mesh has no such
-   fix and pays nothing.
-
-   At every init (before each run, and before write_data, write_restart, ...): atom IDs must be
-   those the triangles were stored with (renumbering is an error), and a triangle with a vertex
-   that no longer exists (delete_atoms, lost atoms), or whose ID now belongs to an atom of
-   another mesh, is dropped by the vertices that still have it.
-
-   Per-atom records (exchange, restart, border): core mesh/vertex_records.h. Data files
-   (write_data, read_data ... fix): fix_nosb_mesh_data.cpp.
+   fix nosb/mesh: the triangles of the meshes read by read_mesh, per atom (what is kept and
+   when, deleted atoms, restart and data files: doc/read_mesh.rst). At every init the atom IDs
+   must be those the triangles were stored with, and triangles that lost a vertex are dropped.
+   Per-atom records (exchange, restart, border, output): core mesh/vertex_records.h. Data
+   files: fix_nosb_mesh_data.cpp.
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_mesh.h"
@@ -25,6 +13,7 @@
 
 #include "mesh/lost_vertices.h"
 #include "mesh/mesh_geometry.h"
+#include "mesh/mesh_requirements.h"
 #include "mesh/vertex_records.h"
 
 #include "atom.h"
@@ -44,33 +33,21 @@ using namespace LAMMPS_NS;
 static constexpr int NGLOBAL = 3;
 static constexpr int RESTART_VERSION = 1;
 // columns of the per-atom array: mesh, thickness, ntri, normal0 x y z
-static constexpr int NOUTPUT = 6;
+static constexpr int NOUTPUT = PeriSISSM::kVertexOutputs;
 static constexpr auto kBorder = PeriSISSM::VertexRecord::kBorder;
 
 /* ---------------------------------------------------------------------- */
 
 FixNosbMesh::FixNosbMesh(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), nmesh(0), ntriangles(0), owntag(nullptr), output(nullptr),
-    normals_at_setup(0), data_header(0), data_ntriangles(0), data_nread(0), data_mesh_offset(0),
-    data_first_row(0)
+    normals_at_setup(0)
 {
-  if (narg != 3)
-    error->all(FLERR, "Illegal fix nosb/mesh command: no arguments expected, got '{}'", arg[3]);
-  if (igroup != 0)
-    error->all(FLERR,
-               "Fix nosb/mesh must be defined for group all (it holds every mesh of the "
-               "deck), got group {}",
-               arg[1]);
-  if (!atom->tag_enable || atom->map_style == Atom::MAP_NONE)
-    error->all(FLERR,
-               "Fix nosb/mesh requires atom IDs and an atom map: use atom_modify map "
-               "array (or hash) before the box is created");
-  for (const auto &other : modify->get_fix_by_style("^nosb/mesh$"))
-    if (other != this)
-      error->all(FLERR,
-                 "Fix nosb/mesh {}: fix {} of that style exists already; a deck has one "
-                 "(it holds every mesh)",
-                 id, other->id);
+  std::string other;
+  for (const auto &fix : modify->get_fix_by_style("^nosb/mesh$"))
+    if (fix != this && other.empty()) other = fix->id;
+  const std::string unmet = PeriSISSM::mesh_fix_unmet(
+      {arg, arg + narg}, igroup == 0, atom->tag_enable && atom->map_style != Atom::MAP_NONE, other);
+  if (!unmet.empty()) error->all(FLERR, unmet);
 
   restart_global = 1;
   restart_peratom = 1;
@@ -158,7 +135,7 @@ void FixNosbMesh::init()
 {
   check_ids();
   drop_lost_triangles();
-  data_rows.clear();
+  data.rows.clear();
 }
 
 /* ---------------------------------------------------------------------- */
@@ -170,9 +147,9 @@ void FixNosbMesh::setup(int /*vflag*/)
 
 /* ---------------------------------------------------------------------- */
 
-void FixNosbMesh::min_setup(int /*vflag*/)
+void FixNosbMesh::min_setup(int vflag)
 {
-  if (normals_at_setup) normals_where_missing();
+  setup(vflag);
 }
 
 /* ----------------------------------------------------------------------
@@ -219,9 +196,10 @@ void FixNosbMesh::set_vertex(int i, int meshid, double t, int n, const tagint (*
 
 void FixNosbMesh::vertex_normals(double **x, double **n)
 {
+  // the image of jtag closest to x[i] (with the positions x)
   auto position = [&](int i, tagint jtag) -> const double * {
-    const int j = closest_image(i, jtag, x);
-    return j < 0 ? nullptr : x[j];
+    const int j = local_index(jtag);
+    return j < 0 ? nullptr : x[PeriSISSM::closest_image(x[i], x, j, atom->sametag)];
   };
   const auto bad = PeriSISSM::vertex_normals(rows(), atom->nlocal, atom->tag, x, position, n);
   const tagint bad_atom = bad.first ? bad.first : MAXTAGINT;
@@ -269,16 +247,6 @@ void FixNosbMesh::normals_where_missing()
   for (int i = 0; i < nlocal; i++) refresh_output(i);
   memory->destroy(n);
   comm->forward_comm(this);
-}
-
-/* ----------------------------------------------------------------------
-   the image of atom jtag closest to x[i] (positions x), -1 if neither owned nor ghost
-------------------------------------------------------------------------- */
-
-int FixNosbMesh::closest_image(int i, tagint jtag, double **x) const
-{
-  const int j = local_index(jtag);
-  return j < 0 ? -1 : PeriSISSM::closest_image(x[i], x, j, atom->sametag);
 }
 
 /* ----------------------------------------------------------------------
@@ -342,8 +310,8 @@ void FixNosbMesh::drop_lost_triangles()
   for (int i = 0; i < nlocal; i++)
     if (mesh[i]) refresh_output(i);
 
-  const bigint before = ntriangles;
-  count_triangles();
+  const bigint before = ntriangles, owned = owned_triangles();
+  MPI_Allreduce(&owned, &ntriangles, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   if (comm->me == 0 && ntriangles < before)
     error->warning(FLERR,
                    "Fix nosb/mesh: {} mesh triangles lost a vertex (deleted or lost atoms) and "
@@ -355,40 +323,16 @@ void FixNosbMesh::drop_lost_triangles()
    a triangle is written (and counted) by its vertex with the smallest ID
 ------------------------------------------------------------------------- */
 
-int FixNosbMesh::writes_triangle(int i, int k) const
-{
-  return PeriSISSM::writes_triangle(atom->tag[i], tri[i][k][0], tri[i][k][1]);
-}
-
-/* ---------------------------------------------------------------------- */
-
 int FixNosbMesh::owned_triangles() const
 {
-  int n = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mesh[i])
-      for (int k = 0; k < ntri[i]; k++) n += writes_triangle(i, k);
-  return n;
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixNosbMesh::count_triangles()
-{
-  bigint n = owned_triangles();
-  MPI_Allreduce(&n, &ntriangles, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  return PeriSISSM::count_written_triangles(rows(), atom->nlocal, atom->tag);
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixNosbMesh::refresh_output(int i)
 {
-  output[i][0] = mesh[i];
-  output[i][1] = thickness[i];
-  output[i][2] = ntri[i];
-  output[i][3] = normal0[i][0];
-  output[i][4] = normal0[i][1];
-  output[i][5] = normal0[i][2];
+  PeriSISSM::output_row(rows(), i, output[i]);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -437,7 +381,7 @@ void FixNosbMesh::copy_arrays(int i, int j, int /*delflag*/)
 
 void FixNosbMesh::set_arrays(int i)
 {
-  if (data_rows.erase(i)) return;
+  if (data.rows.erase(i)) return;
   PeriSISSM::clear_vertex(rows(), i);
   refresh_output(i);
 }
@@ -467,20 +411,14 @@ int FixNosbMesh::unpack_exchange(int nlocal, double *buf)
 
 int FixNosbMesh::pack_border(int n, int *list, double *buf)
 {
-  const auto a = rows();
-  int m = 0;
-  for (int l = 0; l < n; l++) m += PeriSISSM::pack_vertex(a, list[l], &buf[m], kBorder);
-  return m;
+  return PeriSISSM::pack_vertices(rows(), n, list, buf, kBorder);
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixNosbMesh::unpack_border(int n, int first, double *buf)
 {
-  const auto a = rows();
-  int m = 0;
-  for (int i = first; i < first + n; i++) m += PeriSISSM::unpack_vertex(a, i, &buf[m], kBorder);
-  return m;
+  return PeriSISSM::unpack_vertices(rows(), n, first, buf, kBorder);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -545,21 +483,14 @@ int FixNosbMesh::size_restart(int i)
 int FixNosbMesh::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
   int m = 0;
-  for (int l = 0; l < n; l++) {
-    const int j = list[l];
-    buf[m++] = normal0[j][0];
-    buf[m++] = normal0[j][1];
-    buf[m++] = normal0[j][2];
-  }
+  for (int l = 0; l < n; l++)
+    for (int d = 0; d < 3; d++) buf[m++] = normal0[list[l]][d];
   return m;
 }
 
 void FixNosbMesh::unpack_forward_comm(int n, int first, double *buf)
 {
   int m = 0;
-  for (int i = first; i < first + n; i++) {
-    normal0[i][0] = buf[m++];
-    normal0[i][1] = buf[m++];
-    normal0[i][2] = buf[m++];
-  }
+  for (int i = first; i < first + n; i++)
+    for (int d = 0; d < 3; d++) normal0[i][d] = buf[m++];
 }

@@ -18,11 +18,7 @@ FixStyle(nosb/mesh,FixNosbMesh);
 #include "fix.h"
 #include "mesh_view.h"
 
-#include <unordered_set>
-
-namespace PeriSISSM {
-template <class Id> struct VertexArrays;
-}
+#include "mesh/data_triangles.h"
 
 namespace LAMMPS_NS {
 
@@ -69,21 +65,16 @@ class FixNosbMesh : public Fix, public MeshView {
 
   // the deck's mesh fix, nullptr if none (a lookup: it defines and deletes no fix)
   static FixNosbMesh *find(class LAMMPS *);
-  // find(); if the deck has no mesh fix but the restart file read last holds the data of one
-  // as NOSB_MESH (LAMMPS keeps them until the first run or init), define it again ("NOSB_MESH
-  // all nosb/mesh", which takes its data from the file) and return it. Called by pair
-  // peri/nosb's init, before the fixes' init, so that a run split by write_restart and
-  // read_restart keeps its meshes without the fix being re-specified.
+  // find(); if the deck has none but the restart file read last holds one as NOSB_MESH (LAMMPS
+  // keeps its data until the first run or init), define it again and return it (MeshView's
+  // restore: pair peri/nosb's init calls it before the fixes' init).
   static FixNosbMesh *restore(class LAMMPS *);
 
-  // angle-weighted unit vertex normal of every owned mesh atom from the positions x (owned and
-  // ghost rows, as atom->x): n_i = sum over the triangles (i, a, b) at i of the triangle's unit
-  // normal (x_a - x_i) x (x_b - x_i) / |...| times its interior angle at i, normalized; the
-  // other vertices are looked up by ID with atom->map, each at its image closest to x_i (as
-  // Domain::closest_image, with the positions x). n[i] = 0 for non-mesh atoms.
-  // Collective: a vertex that is neither owned nor a ghost on a rank is an error on all ranks
-  // naming the atom and the vertex (the ghost cutoff is shorter than the mesh's edges).
-  // Inputs: x (nlocal + nghost rows). Outputs: n (nlocal rows).
+  // angle-weighted unit vertex normal (core mesh/mesh_geometry.h) of every owned mesh atom, the
+  // other vertices looked up by ID with atom->map, each at its image closest to x_i; n[i] = 0
+  // for non-mesh atoms. Collective: a vertex that is neither owned nor a ghost on a rank is an
+  // error on all ranks naming the atom and the vertex (the ghost cutoff is shorter than the
+  // mesh's edges). Inputs: x (nlocal + nghost rows, as atom->x). Outputs: n (nlocal rows).
   void vertex_normals(double **x, double **n);
   // normal0 := vertex_normals(atom->x) (collective; called when the bond families are built)
   void set_reference_normals() override;
@@ -99,25 +90,17 @@ class FixNosbMesh : public Fix, public MeshView {
   bigint ntriangles;    // number of triangles of all meshes (all ranks)
 
  protected:
-  tagint *owntag;            // the atom's ID when its triangles were stored (detects renumbering)
-  double **output;           // per-atom array: mesh, thickness, ntri, normal0 x y z (owned rows)
-  int normals_at_setup;      // fix_modify normals yes: set missing normal0 at each run's setup
-  int data_header;           // read_data: 1 once the header line of this read was seen
-  bigint data_ntriangles;    // read_data: triangles announced by the header
-  bigint data_nread;         // read_data: section lines read so far
-  int data_mesh_offset;      // read_data: added to the mesh ids of the data file
-  int data_first_row;        // read_data: atoms from this row on are new (no data yet)
-  std::unordered_set<int> data_rows;    // read_data: rows set by the section (set_arrays)
+  tagint *owntag;          // the atom's ID when its triangles were stored (detects renumbering)
+  double **output;         // per-atom array: mesh, thickness, ntri, normal0 x y z (owned rows)
+  int normals_at_setup;    // fix_modify normals yes: set missing normal0 at each run's setup
+  PeriSISSM::DataSectionRead data;    // read_data: the read of the section under way
 
   PeriSISSM::VertexArrays<tagint> rows() const;    // the per-atom arrays (core mesh/)
   void refresh_output(int i);
   int local_index(tagint) const;
-  int closest_image(int i, tagint jtag, double **x) const;
   void check_ids();
   void drop_lost_triangles();
   int owned_triangles() const;    // triangles this rank writes (writes_triangle)
-  void count_triangles();
-  int writes_triangle(int i, int k) const;
   void normals_where_missing();
 };
 

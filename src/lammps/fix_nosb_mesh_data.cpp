@@ -1,10 +1,9 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix nosb/mesh, data files: write_data writes the triangles as a section "Mesh Triangles"
-   (one line per triangle: ID, mesh id, thickness, the three vertex IDs in the triangle's
-   orientation), announced by the header line "N mesh triangles"; read_data ... fix NOSB_MESH
-   "mesh triangles" "Mesh Triangles" reads it back (doc/read_mesh.rst).
+   fix nosb/mesh, data files: the header line "N mesh triangles" and the section "Mesh
+   Triangles" (core mesh/data_triangles.h; doc/read_mesh.rst), written by write_data and read
+   by read_data ... fix NOSB_MESH "mesh triangles" "Mesh Triangles".
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_mesh.h"
@@ -13,10 +12,9 @@
 
 #include "atom.h"
 #include "error.h"
-#include "tokenizer.h"
 
 #include <algorithm>
-#include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -52,19 +50,7 @@ void FixNosbMesh::write_data_section_size(int /*mth*/, int &nx, int &ny)
 
 void FixNosbMesh::write_data_section_pack(int /*mth*/, double **buf)
 {
-  int n = 0;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!mesh[i]) continue;
-    for (int k = 0; k < ntri[i]; k++) {
-      if (!writes_triangle(i, k)) continue;
-      buf[n][0] = mesh[i];
-      buf[n][1] = thickness[i];
-      buf[n][2] = ubuf(atom->tag[i]).d;
-      buf[n][3] = ubuf(tri[i][k][0]).d;
-      buf[n][4] = ubuf(tri[i][k][1]).d;
-      n++;
-    }
-  }
+  PeriSISSM::pack_written_triangles(rows(), atom->nlocal, atom->tag, buf);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -92,108 +78,65 @@ void FixNosbMesh::write_data_section(int /*mth*/, FILE *fp, int n, double **buf,
 void FixNosbMesh::read_data_header(char *line)
 {
   try {
-    ValueTokenizer values(line);
-    data_ntriangles = values.next_bigint();
-  } catch (TokenizerException &e) {
-    error->all(FLERR, "Fix nosb/mesh: invalid mesh triangles line in the data file header: '{}'",
-               utils::trim(line));
+    data.start(line, nmesh, atom->nlocal);
+  } catch (std::invalid_argument &e) {
+    error->all(FLERR, e.what());
   }
-  if (data_ntriangles < 0)
-    error->all(FLERR, "Fix nosb/mesh: negative number of mesh triangles in the data file: '{}'",
-               utils::trim(line));
-  data_header = 1;
-  data_nread = 0;
-  data_mesh_offset = nmesh;
-  data_first_row = atom->nlocal;
-  data_rows.clear();
 }
 
 /* ---------------------------------------------------------------------- */
 
 bigint FixNosbMesh::read_data_skip_lines(char *keyword)
 {
-  if (!data_header)
+  if (!data.open)
     error->all(FLERR,
                "Fix nosb/mesh: the data file's {} section needs its header line 'N mesh "
                "triangles': read it with read_data ... fix {} \"mesh triangles\" \"{}\"",
                keyword, id, keyword);
-  if (data_nread == data_ntriangles) data_header = 0;    // an empty section
-  return data_ntriangles;
+  data.read(0);    // closes the read of an empty section
+  return data.announced;
 }
 
 /* ----------------------------------------------------------------------
-   lines "ID mesh thickness v1 v2 v3": each owned vertex stores the triangle rotated to start
-   at it; every vertex must be an atom (of the data file: IDs get the read_data offset)
+   lines "ID mesh thickness v1 v2 v3" (core mesh/data_triangles.h): each owned vertex stores the
+   triangle rotated to start at it; every vertex must be an atom (of the data file: IDs get the
+   read_data offset)
 ------------------------------------------------------------------------- */
 
 void FixNosbMesh::read_data_section(char *keyword, int n, char *buf, tagint id_offset)
 {
-  const int nlocal = atom->nlocal;
-  tagint *tag = atom->tag;
+  std::vector<PeriSISSM::DataTriangle> triangles;
+  try {
+    triangles =
+        PeriSISSM::parse_data_triangles(buf, n, keyword, id_offset, data.mesh_offset, MAXTAGINT);
+  } catch (std::invalid_argument &e) {
+    error->all(FLERR, e.what());
+  }
   const auto a = rows();
   std::vector<int> owned(3 * n, 0), owned_all(3 * n);
-  std::vector<tagint> vertices(3 * n);
-  std::vector<std::string> lines(n);
   int meshmax = nmesh;
-
   for (int l = 0; l < n; l++) {
-    char *next = strchr(buf, '\n');
-    if (!next) error->all(FLERR, "Unexpected end of file while reading data section {}", keyword);
-    *next = '\0';
-    lines[l] = utils::trim(buf);
-    int meshid = 0;
-    double t = 0.0;
-    tagint v[3];
-    try {
-      ValueTokenizer values(utils::trim_comment(buf));
-      if (values.count() != 6)
-        error->all(FLERR,
-                   "Fix nosb/mesh: line '{}' of the {} section of the data file has {} values "
-                   "instead of 6 (ID mesh thickness v1 v2 v3)",
-                   lines[l], keyword, values.count());
-      values.next_tagint();
-      meshid = values.next_int();
-      t = values.next_double();
-      for (int c = 0; c < 3; c++) v[c] = values.next_tagint() + id_offset;
-    } catch (TokenizerException &e) {
-      error->all(FLERR, "Fix nosb/mesh: invalid line '{}' in the {} section of the data file: {}",
-                 lines[l], keyword, e.what());
-    }
-    if (meshid < 1 || !(t > 0.0) || v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
-      error->all(FLERR,
-                 "Fix nosb/mesh: invalid line '{}' in the {} section of the data file: the mesh "
-                 "id must be >= 1, the thickness > 0 and the three vertex IDs distinct",
-                 lines[l], keyword);
-    meshid += data_mesh_offset;
-    meshmax = std::max(meshmax, meshid);
-
+    const PeriSISSM::DataTriangle &t = triangles[l];
+    const tagint v[3] = {(tagint) t.v[0], (tagint) t.v[1], (tagint) t.v[2]};
+    meshmax = std::max(meshmax, t.mesh);
     for (int c = 0; c < 3; c++) {
-      vertices[3 * l + c] = v[c];
       const int i = local_index(v[c]);
-      if (i < 0 || i >= nlocal) continue;
+      if (i < 0 || i >= atom->nlocal) continue;
       owned[3 * l + c] = 1;
-      if (i >= data_first_row && !data_rows.count(i)) {    // new atom of this read_data
-        mesh[i] = 0;
-        ntri[i] = 0;
-      }
-      if (mesh[i] && mesh[i] != meshid)
+      const auto stored = PeriSISSM::store_data_corner(
+          a, i, atom->tag[i], v, c, t.mesh, t.thickness, data.first_row, data.rows, MAXTRI);
+      if (stored == PeriSISSM::DataCorner::kOtherMesh)
         error->one(FLERR,
                    "Fix nosb/mesh: atom {} is a vertex of mesh {} and of mesh {} (line '{}' of "
                    "the {} section of the data file)",
-                   tag[i], mesh[i], meshid, lines[l], keyword);
-      mesh[i] = meshid;
-      thickness[i] = t;
-      owntag[i] = tag[i];
-      normal0[i][0] = normal0[i][1] = normal0[i][2] = 0.0;
-      if (!PeriSISSM::add_corner(a, i, v, c, MAXTRI))
+                   atom->tag[i], mesh[i], t.mesh, t.line, keyword);
+      if (stored == PeriSISSM::DataCorner::kFull)
         error->one(FLERR,
                    "Fix nosb/mesh: atom {} is in more than {} triangles of the {} section of the "
                    "data file",
-                   tag[i], MAXTRI, keyword);
+                   atom->tag[i], MAXTRI, keyword);
       refresh_output(i);
-      data_rows.insert(i);
     }
-    buf = next + 1;
   }
 
   // every vertex is an atom on exactly one rank
@@ -204,10 +147,9 @@ void FixNosbMesh::read_data_section(char *keyword, int n, char *buf, tagint id_o
       error->all(FLERR,
                  "Fix nosb/mesh: vertex {} of line '{}' of the {} section of the data file is no "
                  "atom of the deck (vertex IDs are atom IDs of the data file)",
-                 vertices[k], lines[k / 3], keyword);
+                 triangles[k / 3].v[k % 3], triangles[k / 3].line, keyword);
 
   nmesh = meshmax;
   ntriangles += n;
-  data_nread += n;
-  if (data_nread == data_ntriangles) data_header = 0;
+  data.read(n);
 }

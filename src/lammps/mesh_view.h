@@ -2,11 +2,9 @@
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
    What the styles that use the meshes of read_mesh (pair peri/nosb's membranes and bending,
-   the bond-family fix, fix nosb/contact) read of them: per local atom (owned or ghost rows,
-   indexed as atom->x) its mesh id, its mesh's thickness, the triangles at it and its reference
-   normal. fix nosb/mesh keeps the data and implements it; the readers see nothing else of the
-   fix. The arrays are the fix's per-atom arrays: a pointer taken from them is valid until the
-   atom arrays grow.
+   the bond-family fix, fix nosb/contact) read of them, per local atom (owned and ghost rows, as
+   atom->x). fix nosb/mesh keeps the data and implements it; the readers see nothing else of
+   it. The arrays are its per-atom arrays: a pointer taken from them is valid until they grow.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_PERISISSM_MESH_VIEW_H

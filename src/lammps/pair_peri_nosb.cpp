@@ -1,21 +1,13 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   pair_style peri/nosb: the LAMMPS glue of the core's peridynamic model (src/core/peri):
-   coefficients, mixing and restart (pair_peri_nosb_coeff.cpp, material files in
-   pair_peri_nosb_material.cpp); per-atom state arrays and their halo exchange; the
-   contact candidates from the neighbor list; energy and virial accounting. The model itself
-   (doc/theory.rst): elastic term (peri/elastic.h), stabilization (peri/stabilization.h),
-   breaking rule (peri/breaking.h), short-range contact (peri/contact.h), evaluated in the order
-   of peri/forces.h. E = sum_i V_i W_i + stabilization energy; forces are the exact force
-   densities f_k = -(1/V_k) dE/dy_k; pe tallies sum_i (W_i + stabilization energy density), as
-   the built-in PERI styles tally densities.
-
-   The model's choices (influence function and partial volumes, singular shape tensors, when
-   bonds break, contact only between particles not bonded, the per-atom virial, several types)
-   are stated in doc/pair_peri_nosb.rst, sections "Bond families and reference configuration",
-   "Singular shape tensors", "Bond breaking", "Contact", "Energy and virial" and "Several atom
-   types".
+   pair_style peri/nosb: the LAMMPS glue of the core's peridynamic model (src/core/peri, terms
+   evaluated in the order of peri/forces.h; doc/theory.rst, doc/pair_peri_nosb.rst): coefficients
+   and restart (pair_peri_nosb_coeff.cpp, material files in pair_peri_nosb_material.cpp), the
+   per-atom state and its halo exchange, contact candidates (pair_peri_nosb_contact.cpp), the
+   bending term (pair_peri_nosb_bending.cpp), energy and virial tallies. Forces are the force
+   densities f_k = -(1/V_k) dE/dy_k and pe tallies sum_i (W_i + stabilization energy density),
+   as the built-in PERI styles tally densities.
 ------------------------------------------------------------------------- */
 
 #include "pair_peri_nosb.h"
@@ -27,6 +19,7 @@
 #include "materials/moduli.h"
 #include "membrane/bending.h"
 #include "peri/bond_stiffness.h"
+#include "peri/box_check.h"
 #include "peri/breaking.h"
 #include "peri/coefficients.h"
 #include "peri/contact.h"
@@ -58,13 +51,12 @@ using namespace LAMMPS_NS;
 /* ---------------------------------------------------------------------- */
 
 PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
-    Pair(lmp), family(nullptr), cut(nullptr), contactflag(nullptr),
-    coeffs(new PeriSISSM::CoefficientTable), model_(new PeriSISSM::Model), any_bend(0),
-    meshfix(nullptr), hinges_stale(1), any_break(0), any_contact(0), external_breaking(0),
-    block_rows(nullptr), contact_groupbit(0), contact_crossings(0), hmax(0.0),
-    contact_margin(0.0), track_motion(0), follow_explicit(0), state_nlocal(-1), nmax(0),
-    gstate(nullptr), hstate(nullptr), kstate(nullptr), wdens(nullptr), s0_new(nullptr),
-    cnormal(nullptr), cols(nullptr), comm_fields(nullptr), comm_nfields(0)
+    Pair(lmp), family(nullptr), coeffs(new PeriSISSM::CoefficientTable),
+    model_(new PeriSISSM::Model), any_bend(0), meshfix(nullptr), hinges_stale(1), any_break(0),
+    any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
+    contact_crossings(0), state_nlocal(-1), nmax(0), gstate(nullptr), hstate(nullptr),
+    kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), cols(nullptr),
+    comm_fields(nullptr), comm_nfields(0)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;    // forces are densities: f.r is not the virial
@@ -91,8 +83,6 @@ PairPeriNosb::~PairPeriNosb()
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
-    memory->destroy(cut);
-    memory->destroy(contactflag);
   }
 }
 
@@ -106,8 +96,6 @@ void PairPeriNosb::allocate()
   for (int i = 0; i < n; i++)
     for (int j = 0; j < n; j++) setflag[i][j] = 0;
   memory->create(cutsq, n, n, "pair:cutsq");
-  memory->create(cut, n, n, "pair:cut");
-  memory->create(contactflag, n, n, "pair:contactflag");
   coeffs->resize(atom->ntypes);
 }
 
@@ -137,35 +125,26 @@ void PairPeriNosb::init_style()
   check_membranes();
   hinges_stale = 1;    // bending moduli, types or meshes may have changed since the last run
 
-  // every bond partner must have one image within reach: a periodic box at least two horizons
-  // wide in each periodic direction (checked here at every run, since change_box can shrink
-  // or create a periodic direction after the families exist; the closest image of a partner
-  // would then be the wrong one)
+  // every bond partner must have one image within reach (core peri/box_check.h)
 
-  const int n = atom->ntypes;
-  double cutmax = 0.0;
-  for (int i = 1; i <= n; i++)
-    for (int j = 1; j <= n; j++) cutmax = std::max(cutmax, cut[i][j]);
   const bool tri = domain->triclinic;
   const PeriSISSM::ReferenceBox now{{0, 0, 0},
                                     {domain->xprd, domain->yprd, domain->zprd,
                                      tri ? domain->yz : 0.0, tri ? domain->xz : 0.0,
                                      tri ? domain->xy : 0.0}};
-  double width[3];
-  now.face_distances(width);
   const int periodicity[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
-  for (int d = 0; d < 3; d++)
-    if (periodicity[d] && width[d] < 2.0 * cutmax)
-      error->all(FLERR,
-                 "Pair style peri/nosb: the periodic box is {:.8g} wide in {}, shorter than two "
-                 "horizons (2 x {:.8g}): enlarge the box or make that direction non-periodic",
-                 width[d], "xyz"[d], cutmax);
+  const std::string narrow =
+      PeriSISSM::periodic_box_problem(now, periodicity, coeffs->largest_horizon());
+  if (!narrow.empty()) error->all(FLERR, narrow);
 
-  // largest particle size, for the contact range
+  // contact reaches 1.35 x the largest particle size; the neighbor list, the smallest horizon of
+  // the type pairs with contact
 
-  double hone = 0.0;
+  double hone = 0.0, hmax;
   for (int i = 0; i < atom->nlocal; i++) hone = std::max(hone, cbrt(atom->vfrac[i]));
   MPI_Allreduce(&hone, &hmax, 1, MPI_DOUBLE, MPI_MAX, world);
+  follower.reach = 1.35 * hmax;
+  follower.horizon = coeffs->smallest_contact_horizon();
 
   // the bond-family fix, created once (or recreated from a restart file)
 
@@ -198,10 +177,7 @@ void PairPeriNosb::init_style()
   MPI_Allreduce(&fused_here, &fused_all, 1, MPI_INT, MPI_MIN, world);
   PeriSISSM::set_fused_passes(fused_all != 0);
   if (!passes_reported && comm->me == 0)
-    utils::logmesg(lmp, "Pair peri/nosb: bond passes {}\n",
-                   PeriSISSM::fused_passes()
-                       ? "with fused multiply-add (x86-64-v3; PERI_SISSM_PASSES=plain: without)"
-                       : "without fused multiply-add");
+    utils::logmesg(lmp, "Pair peri/nosb: bond passes {}\n", PeriSISSM::fused_passes_description());
   passes_reported = 1;
 }
 
@@ -214,23 +190,19 @@ void PairPeriNosb::check_membranes()
 {
   // (asked for in every deck: after read_restart, restore() defines the mesh fix of the file
   // again before LAMMPS discards its data)
-  MeshView *mesh = MeshView::restore(lmp);
-  meshfix = mesh;
+  meshfix = MeshView::restore(lmp);
   const int n = atom->ntypes;
   bend.resize(n + 1, 0.0);
-  bend_auto_factor.assign(n + 1, 0.0);
-  any_bend = 0;
-  for (int t = 1; t <= n; t++) {
-    if (bend[t] == 0.0) continue;
-    any_bend = 1;
-    bend_auto_factor[t] = PeriSISSM::bending_factor(coeffs->at(t, t).moduli);
-  }
+  bend_auto_factor = coeffs->bending_factors(bend);
+  any_bend = std::any_of(bend.begin() + 1, bend.end(), [](double b) {
+    return b != 0.0;
+  });
   if (!model_->any_membrane()) return;
   tagint bad = 0;
   int badtype = 0;
   for (int i = 0; i < atom->nlocal && !bad; i++) {
     if (!model_->membrane(atom->type[i])) continue;
-    if (!mesh || mesh->mesh_of(i) == 0) {
+    if (!meshfix || meshfix->mesh_of(i) == 0) {
       bad = atom->tag[i];
       badtype = atom->type[i];
     }
@@ -253,29 +225,26 @@ void PairPeriNosb::check_membranes()
 
 bool PairPeriNosb::has_unbent_membranes() const
 {
-  if (!model_ || !model_->any_membrane()) return false;
-  for (int t = 1; t <= atom->ntypes; t++)
-    if (coeffs->at(t, t).membrane && (t >= (int) bend.size() || bend[t] == 0.0)) return true;
-  return false;
+  return model_ && model_->any_membrane() && coeffs->any_unbent_membrane(bend);
 }
 
 /* ---------------------------------------------------------------------- */
 
 void PairPeriNosb::grow_peratom()
 {
+  if (atom->nmax > nmax) {
+    using PeriSISSM::ParticleFields;
+    nmax = atom->nmax;
+    memory->grow(kstate, nmax * ParticleFields::NK, "pair:kstate");
+    memory->grow(gstate, nmax * ParticleFields::NG, "pair:gstate");
+    memory->grow(hstate, nmax * 9, "pair:hstate");
+    memory->grow(cols, nmax * ParticleFields::NCOLS, "pair:cols");
+    memory->grow(wdens, nmax, "pair:wdens");
+    memory->grow(s0_new, nmax, "pair:s0_new");
+    memory->destroy(cnormal);
+  }
   if (model_->any_membrane() && !cnormal && nmax > 0)
     memory->create(cnormal, 3 * nmax, "pair:cnormal");
-  if (atom->nmax <= nmax) return;
-  using PeriSISSM::ParticleFields;
-  nmax = atom->nmax;
-  memory->grow(kstate, nmax * ParticleFields::NK, "pair:kstate");
-  memory->grow(gstate, nmax * ParticleFields::NG, "pair:gstate");
-  memory->grow(hstate, nmax * 9, "pair:hstate");
-  memory->grow(cols, nmax * ParticleFields::NCOLS, "pair:cols");
-  memory->grow(wdens, nmax, "pair:wdens");
-  memory->grow(s0_new, nmax, "pair:s0_new");
-  memory->destroy(cnormal);
-  if (model_->any_membrane()) memory->create(cnormal, 3 * nmax, "pair:cnormal");
 }
 
 /* ----------------------------------------------------------------------
@@ -346,11 +315,7 @@ void PairPeriNosb::compute(int eflag, int vflag)
   fields.smin_new = s0_new;
   fields.normal = cnormal;
   fields.cols = cols;
-  PeriSISSM::Virial vir;
-  if (vflag_either) {
-    if (vflag_global) vir.global = virial;
-    if (vflag_atom) vir.peratom = vatom;
-  }
+  const PeriSISSM::Virial vir = virial_tallies();
   NosbHalo halo(this);
   broke.clear();
   PeriSISSM::evaluate_bond_terms(*model_, p, family->view(), family->box, mode, block_rows, fields,
@@ -359,13 +324,9 @@ void PairPeriNosb::compute(int eflag, int vflag)
   if (any_contact && block_rows) add_contact_blocks();
   if (any_bend && meshfix) compute_bending();
 
-  if (eflag_either) {
-    const int nlocal = atom->nlocal;
-    for (int i = 0; i < nlocal; i++) {
-      if (eflag_global) eng_vdwl += wdens[i];
-      if (eflag_atom) eatom[i] += wdens[i];
-    }
-  }
+  if (eflag_either)
+    PeriSISSM::tally_energy_densities(atom->nlocal, wdens, eflag_global ? &eng_vdwl : nullptr,
+                                      eflag_atom ? eatom : nullptr);
   state_nlocal = atom->nlocal;
 }
 
@@ -374,13 +335,6 @@ void PairPeriNosb::compute(int eflag, int vflag)
 bool PairPeriNosb::state_current() const
 {
   return gstate && state_nlocal == atom->nlocal;
-}
-
-/* ---------------------------------------------------------------------- */
-
-const double *PairPeriNosb::deformation_gradient(int i) const
-{
-  return gstate + PeriSISSM::ParticleFields::NG * i;
 }
 
 /* ----------------------------------------------------------------------
@@ -467,11 +421,9 @@ double PairPeriNosb::memory_usage()
   using PeriSISSM::ParticleFields;
   double bytes = (double) nmax *
       (ParticleFields::NG + ParticleFields::NK + 9 + 2 + ParticleFields::NCOLS) * sizeof(double);
-  bytes += (double) (shortlist.first.capacity() + shortlist.neigh.capacity()) * sizeof(int);
-  bytes += (double) contact_blocks.capacity() * sizeof(double);
-  bytes += 3.0 * (double) (at_build.size() + at_choice.size()) * sizeof(double);
-  bytes += (double) hinges.capacity() * sizeof(Hinge);
+  bytes += follower.bytes() + (double) contact_blocks.capacity() * sizeof(double);
+  bytes += (double) hinges.capacity() * sizeof(PeriSISSM::Hinge);
   const double n = atom->ntypes + 1;
-  bytes += n * n * (sizeof(PeriSISSM::PairCoefficients) + sizeof(double) + 2.0 * sizeof(int));
+  bytes += n * n * (sizeof(PeriSISSM::PairCoefficients) + sizeof(double) + sizeof(int));
   return bytes;
 }

@@ -20,8 +20,8 @@ PairStyle(peri/nosb,PairPeriNosb);
 #include "bond_partners.h"
 #include "implicit_forces.h"
 
-#include "contact/motion_tracker.h"
 #include "peri/contact_candidates.h"
+#include "peri/fields.h"
 
 #include <memory>
 #include <string>
@@ -30,8 +30,6 @@ PairStyle(peri/nosb,PairPeriNosb);
 namespace PeriSISSM {
 class Model;
 class CoefficientTable;
-struct HaloField;
-struct Particles;
 struct MaterialEntry;
 struct Hinge;
 }    // namespace PeriSISSM
@@ -62,7 +60,10 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   // true when compute() has filled the per-atom state of the current owned atoms
   bool state_current() const;
   // F (row-major 3x3) of owned atom i at the last compute() (the identity if its K is singular)
-  const double *deformation_gradient(int i) const;
+  const double *deformation_gradient(int i) const
+  {
+    return gstate + PeriSISSM::ParticleFields::NG * i;
+  }
   // W(F) + stabilization energy density of owned atom i (what pe tallies per atom)
   double energy_density(int i) const { return wdens[i]; }
   class FixNosbFamily *family;
@@ -88,9 +89,6 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   bool were_partners(int a, int b) const override;
 
  protected:
-  // per type pair, from coeffs at init (mixed and mirrored): horizon and contact flag
-  double **cut;
-  int **contactflag;
   // the coefficients of pair_coeff per type pair (mixed and mirrored in init_style)
   std::unique_ptr<PeriSISSM::CoefficientTable> coeffs;
   std::unique_ptr<PeriSISSM::Model> model_;    // the core's view of coeffs (init_style)
@@ -98,14 +96,13 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   std::vector<double> material_density;
   std::vector<std::string> material_name;
   // per type: bending modulus of pair_coeff I I ... bend (0 = none, -1 = auto), and for auto
-  // E / (12 (1 - nu^2)) of its material (set at init; D = that times the thickness cubed)
+  // coeffs->bending_factors() (set at init; D = that times the thickness cubed)
   std::vector<double> bend, bend_auto_factor;
   int any_bend;
   class MeshView *meshfix;    // the meshes (read_mesh), null if none
   // the hinges of the bending term with an owned vertex here, each once per rank (straddling
   // ones on every rank; core membrane/bending.h)
-  using Hinge = PeriSISSM::Hinge;
-  std::vector<Hinge> hinges;
+  std::vector<PeriSISSM::Hinge> hinges;
   int hinges_stale;    // local indices may have changed: build the list again
   // summary flags
   int any_break, any_contact;
@@ -114,25 +111,12 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   double **block_rows;        // not null: compute() also sums the SISSM blocks into these rows
   int contact_groupbit;       // contact pairs crossing this group's boundary are counted
   bigint contact_crossings;
-  double hmax;    // largest particle size V^(1/3) (contact range)
-  PeriSISSM::ContactShortList
-      shortlist;                   // the contact candidates (core peri/contact_candidates.h)
-  bigint contact_lastcall = -1;    // neighbor->lastcall when the candidates were chosen
-  bool contact_list_current() const;
+  PeriSISSM::ContactFollower follower;    // the contact candidates (peri/contact_candidates.h)
+  void choose_contacts(double margin);
+  double motion_since(double *moved, tagint *worst);
   std::vector<double> contact_blocks;    // SISSM blocks of the contact pairs, 6 per owned and
                                          //   ghost atom (compute_contact with blocks)
   void add_contact_blocks();
-  double contact_margin;    // the candidates hold the pairs within contact_reach() + this
-  int track_motion;         // keep the positions below (fix sissm)
-  int follow_explicit;      // explicit runs: narrow candidates, chosen again as atoms move
-  // positions of owned and ghost atoms at the last neighbor list build and when the candidates
-  // were chosen (core contact/motion_tracker.h)
-  PeriSISSM::MotionTracker at_build, at_choice;
-  double contact_reach() const;    // largest contact range, 1.35 hmax
-  void follow_motion_explicit();
-  double motion_since(const PeriSISSM::MotionTracker &since, double *moved, tagint *worst);
-  bool contact_reachable(double moved) const;
-  double contact_horizon() const;
   int state_nlocal;    // nlocal when compute() last filled the per-atom state
 
   // per-atom results of the last compute() (owned atoms; ghosts as communicated), rows of
@@ -156,14 +140,17 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   void configure_model();
   void check_membranes();
   PeriSISSM::Particles particles() const;
+  // where the virial of this evaluation goes (ev_init's flags)
+  PeriSISSM::Virial virial_tallies()
+  {
+    return {vflag_global ? virial : nullptr, vflag_atom ? vatom : nullptr};
+  }
   void grow_peratom();
   void compute_contact(int, int);
   void compute_bending();
   void build_hinges();
   double bending_modulus(int i) const;
-  void build_contact_list(double margin);
   void neighbor_rebuilt();
-  bool bonded(int i, tagint jtag) const;
   friend class NosbHalo;
   friend class NosbContactPairs;
   friend class NosbHingeMesh;

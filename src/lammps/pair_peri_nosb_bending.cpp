@@ -2,11 +2,9 @@
    PERI-SISSM: pair_style peri/nosb, the bending term of membranes (pair_coeff ... bend D|auto).
 
    The hinge list and its pass are the core's (membrane/bending.h); this file gives it the
-   meshes of read_mesh (fix nosb/mesh) as this rank holds them, and the bending modulus of each
-   type. The list is built again only after a neighbor list build (atoms migrated or were
-   sorted) or a new run's init, since evaluating the hinges is cheap next to finding their
-   vertices and rest shape. A hinge's other vertices are ghost atoms (the ghost cutoff covers
-   the mesh's edges: read_mesh checks it).
+   meshes of read_mesh as this rank holds them (a hinge's other vertices are ghost atoms) and
+   the bending moduli. The list is built again only after a neighbor list build or a new run's
+   init: evaluating the hinges is cheap next to finding their vertices and rest shape.
 ------------------------------------------------------------------------- */
 
 #include "pair_peri_nosb.h"
@@ -38,10 +36,8 @@ double PairPeriNosb::bending_modulus(int i) const
 }
 
 /* ----------------------------------------------------------------------
-   the meshes of this rank for the core's hinge list: triangles of fix nosb/mesh, atoms found
-   by ID at their image closest to a given atom; the owned vertices of a type with bending take
-   shares of their hinges (one of a type without takes no share even of a hinge whose edge's
-   ends give it a modulus)
+   the meshes of this rank for the core's hinge list (membrane/bending.h HingeMesh); an owned
+   vertex of a type without bending takes no share even of a hinge whose edge's ends bend
 ------------------------------------------------------------------------- */
 
 namespace LAMMPS_NS {
@@ -105,10 +101,7 @@ void PairPeriNosb::compute_bending()
   PeriSISSM::BendingEnergy energy;
   if (eflag_global) energy.total = &eng_vdwl;
   if (eflag_atom) energy.per_particle = eatom;
-  PeriSISSM::Virial vir;
-  if (vflag_global) vir.global = virial;
-  if (vflag_atom) vir.peratom = vatom;
-  PeriSISSM::bending_pass(hinges, particles(), block_rows, energy, vir);
+  PeriSISSM::bending_pass(hinges, particles(), block_rows, energy, virial_tallies());
 }
 
 /* ----------------------------------------------------------------------

@@ -1,11 +1,8 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: pair_style peri/nosb, its coefficients.
 
-   pair_coeff lines read by the core (src/core/peri/coefficient_line.h) into its table of
-   type-pair coefficients (peri/coefficients.h), which mixes the pairs not given, configures
-   the model and writes and reads the restart section;
-   the critical stretch of the G0 keyword (from the particle spacing, summed over all ranks);
-   the coefficients in restart files.
+   pair_coeff lines read by the core (peri/coefficient_line.h) into its table of type-pair
+   coefficients (peri/coefficients.h: mixing, the model, G0, the restart section).
 ------------------------------------------------------------------------- */
 
 #include "pair_peri_nosb.h"
@@ -92,9 +89,8 @@ void PairPeriNosb::coeff(int narg, char **arg)
 }
 
 /* ----------------------------------------------------------------------
-   G0 keyword: the critical stretch of each type pair set with G0, from its own pair_coeff line
-   (K, G, Cs, horizon) and the particle spacing of its two types (pair_spacing); logged when it
-   is first set or changes
+   G0 keyword: the critical stretch of the type pairs set with G0 from the particle spacing of
+   their types (core CoefficientTable::set_s00_from_g0); logged when it is first set or changes
 ------------------------------------------------------------------------- */
 
 void PairPeriNosb::s00_from_fracture_energy()
@@ -106,31 +102,19 @@ void PairPeriNosb::s00_from_fracture_energy()
   PeriSISSM::add_spacing_sums(atom->nlocal, atom->vfrac, atom->type, local);
   MPI_Allreduce(local.data(), total.data(), 2 * (n + 1), MPI_DOUBLE, MPI_SUM, world);
 
-  for (int i = 1; i <= n; i++) {
-    for (int j = i; j <= n; j++) {
-      PeriSISSM::PairCoefficients &c = coeffs->at(i, j);
-      if (!coeffs->given(i, j) || c.g0 <= 0.0) continue;
-      double h = 0.0;
-      if (!PeriSISSM::pair_spacing(total, i, j, h))
-        error->all(FLERR,
-                   "pair_coeff peri/nosb G0 {} for types {} {}: no particles to take the "
-                   "particle spacing from",
-                   c.g0, i, j);
-      const double s00 =
-          PeriSISSM::s00_from_fracture_energy(c.g0, c.moduli.k, c.moduli.g, c.cs, c.horizon, h);
-      if (s00 != c.s00 && comm->me == 0)
-        utils::logmesg(lmp,
-                       "peri/nosb: types {} {}: G0 = {:.6g} gives s00 = {:.6g} (K = {:.6g}, "
-                       "G = {:.6g}, Cs = {:.6g}, horizon = {:.6g} = {:.5g} h)\n",
-                       i, j, c.g0, s00, c.moduli.k, c.moduli.g, c.cs, c.horizon, c.horizon / h);
-      c.s00 = s00;
-    }
-  }
+  std::string log;
+  int bad_i = 0, bad_j = 0;
+  const bool spaced = coeffs->set_s00_from_g0(total, log, bad_i, bad_j);
+  if (comm->me == 0 && !log.empty()) utils::logmesg(lmp, log);
+  if (!spaced)
+    error->all(FLERR,
+               "pair_coeff peri/nosb G0 {} for types {} {}: no particles to take the particle "
+               "spacing from",
+               coeffs->at(bad_i, bad_j).g0, bad_i, bad_j);
 }
 
 /* ----------------------------------------------------------------------
-   the coefficients of all type pairs (G0, mixing, mirror) and the model they configure; the
-   per-type-pair horizon and contact flag for init_one and the contact candidates
+   the coefficients of all type pairs (G0, mixing, mirror) and the model they configure
 ------------------------------------------------------------------------- */
 
 void PairPeriNosb::configure_model()
@@ -139,12 +123,6 @@ void PairPeriNosb::configure_model()
   check_material_density();      // types whose K and G came from a material file
   coeffs->complete();
   coeffs->configure(*model_);
-  const int n = atom->ntypes;
-  for (int i = 1; i <= n; i++)
-    for (int j = 1; j <= n; j++) {
-      cut[i][j] = coeffs->at(i, j).horizon;
-      contactflag[i][j] = coeffs->at(i, j).contact ? 1 : 0;
-    }
   any_break = coeffs->any_break() ? 1 : 0;
   any_contact = coeffs->any_contact() ? 1 : 0;
 }
@@ -154,7 +132,7 @@ void PairPeriNosb::configure_model()
 double PairPeriNosb::init_one(int i, int j)
 {
   if (setflag[i][j] == 0) did_mix = true;
-  return cut[i][j];
+  return coeffs->at(i, j).horizon;
 }
 
 /* ----------------------------------------------------------------------

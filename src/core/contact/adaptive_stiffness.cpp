@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 using Eigen::Vector3d;
 
@@ -44,6 +45,16 @@ double SceneExtent::diagonal() const
   double diag2 = 0.0;
   for (int d = 0; d < 3; d++) diag2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
   return std::sqrt(diag2);
+}
+
+std::string SceneExtent::error() const
+{
+  if (diagonal() > 0.0 && mean_mass() > 0.0) return "";
+  char numbers[64];
+  std::snprintf(numbers, sizeof(numbers), "%.6g, the mean mass %.6g", diagonal(), mean_mass());
+  return std::string("kappa auto needs a group of atoms with mass that spans a box (its "
+                     "diagonal ") +
+      numbers + ")";
 }
 
 double AdaptiveStiffness::balanced(double res_dot_grad, double grad2) const

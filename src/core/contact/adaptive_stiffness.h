@@ -21,6 +21,7 @@
 #include "contact/candidate_distances.h"
 
 #include <cmath>
+#include <string>
 
 namespace PeriSISSM {
 
@@ -64,6 +65,8 @@ struct SceneExtent {
   void add(const double *x, double m);
   double diagonal() const;
   double mean_mass() const { return mass[0] / mass[1]; }    // NaN without atoms
+  // why kappa auto cannot use these scales (a diagonal or a mean mass not > 0); empty if it can
+  std::string error() const;
 };
 
 // The sums of the balance over the owned atoms i < nlocal with (mask[i] & groupbit):

@@ -1,10 +1,22 @@
 #include "contact/barrier_potential.h"
 
 #include <algorithm>
+#include <cstdio>
 
 using Eigen::Vector3d;
 
 namespace PeriSISSM {
+
+std::string too_close_error(const Candidate &c, double distance, double dmin)
+{
+  std::string atoms = std::to_string(c.tag[0]);
+  for (int k = 1; k < c.nv(); k++) atoms += " " + std::to_string(c.tag[k]);
+  char numbers[96];
+  std::snprintf(numbers, sizeof(numbers), "%.6g apart, not more than dmin = %.6g", distance, dmin);
+  return std::string("the ") + c.stencil().name() + " pair of atoms " + atoms + " is " + numbers +
+      ": the barrier is infinite there (the primitives came through the barrier: use a larger "
+      "kappa, a smaller time step or a larger dhat)";
+}
 
 BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
                             const CandidateDistances &distances, const double *const *x,

@@ -15,6 +15,8 @@
 
 #include "contact/candidate_distances.h"
 
+#include <string>
+
 namespace PeriSISSM {
 
 // What one pass over the candidates found (this rank)
@@ -34,6 +36,10 @@ BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
                             const CandidateDistances &distances, const double *const *x,
                             const double *volume, const BarrierParameters &prm, double mindist,
                             double **f);
+
+// The error for the pair too_close of a tally at the given distance: named by kind and IDs,
+// with dmin (the barrier is infinite there)
+std::string too_close_error(const Candidate &c, double distance, double dmin);
 
 // The 3x3 diagonal blocks of the PSD-projected Hessians of the pairs within dmin + dhat
 // (distances valid at x), divided by each owned vertex's volume, added to block (xx yy zz xy xz

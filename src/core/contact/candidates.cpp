@@ -2,15 +2,70 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 using Eigen::Vector3d;
 
 namespace PeriSISSM {
 
+namespace {
+
+  // a number as printf's %.6g (LAMMPS's {:.6g})
+  std::string g6(double v)
+  {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.6g", v);
+    return buf;
+  }
+
+}    // namespace
+
 CandidateRange::CandidateRange(double dmin, double dhat, double edge0, double skin)
 {
   longest_edge = edge0 > 0.0 ? std::max(kEdgeFactor * edge0, edge0 + 2.0 * skin) : 0.0;
   list_cutoff = dmin + dhat + 1.5 * longest_edge;
+}
+
+std::string missing_vertex_error(std::int64_t atom)
+{
+  return "a vertex of a triangle of atom " + std::to_string(atom) +
+      " is neither owned nor a ghost atom here: the ghost cutoff is too short for the mesh "
+      "(comm_modify cutoff)";
+}
+
+std::vector<ContactRole> contact_roles(int n, const int *mask, int groupbit, const int *mesh)
+{
+  std::vector<ContactRole> role(n, ContactRole::kNone);
+  for (int i = 0; i < n; i++)
+    if (mask[i] & groupbit)
+      role[i] = (mesh && mesh[i]) ? ContactRole::kMeshVertex : ContactRole::kParticle;
+  return role;
+}
+
+std::string CandidateRange::ghost_cutoff_error(double have, double edge0, double skin) const
+{
+  const double needed = ghost_cutoff(skin);
+  if (!(have < needed)) return "";
+  const std::string start =
+      "the ghost cutoff " + g6(have) + " is shorter than a contact pair needs: ";
+  const std::string end = "; set comm_modify cutoff " + g6(needed) + " or more";
+  if (longest_edge == 0.0)
+    return start + "dmin + dhat + skin = " + g6(needed) +
+        " (the other particle of a pair with an owned one must be a ghost atom)" + end;
+  return start + "dmin + dhat + skin + 2.5 x max(" + g6(kEdgeFactor) + " x the longest edge (" +
+      g6(edge0) + "), that edge + 2 skin) = " + g6(needed) +
+      " (the other vertices of a pair with an owned vertex must be ghost atoms)" + end;
+}
+
+std::string CandidateRange::edge_error(double edge, double skin) const
+{
+  if (covers(edge, skin)) return "";
+  return "a mesh edge is " + g6(edge) +
+      " long, more than the contact candidates of this run allow (the longest edge at the "
+      "run's start, the larger of " +
+      g6(kEdgeFactor) +
+      " x it and it + 2 skin, less the neighbor skin: " + g6(longest_edge - skin) +
+      "): start a new run (which measures the edges again) or use a smaller neighbor skin";
 }
 
 namespace {

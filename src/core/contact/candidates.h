@@ -33,6 +33,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace PeriSISSM {
@@ -69,6 +70,10 @@ struct NeighborView {
   int neighmask = ~0;
 };
 
+// The roles of atoms 0 .. n - 1: none outside the group (!(mask[i] & groupbit)), in it mesh
+// vertices (mesh[i] != 0; mesh nullptr: there are none) and particles (the others)
+std::vector<ContactRole> contact_roles(int n, const int *mask, int groupbit, const int *mesh);
+
 // The atoms of one rank: nlocal owned then ghosts, nall in all
 struct ContactAtoms {
   int nlocal = 0;
@@ -97,6 +102,8 @@ struct ContactAtoms {
 // atoms (0: none).
 std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list, double reach,
                              std::vector<Candidate> &candidates);
+// The error for the atom find_candidates() returned: a triangle vertex missing from the atoms
+std::string missing_vertex_error(std::int64_t atom);
 
 // The ranges of the broad phase for a run with contact range r = dmin + dhat and neighbor skin
 // s, from the longest mesh edge L0 at the run's start (0: no mesh edges): the edges are assumed
@@ -114,6 +121,11 @@ struct CandidateRange {
   CandidateRange(double dmin, double dhat, double edge0, double skin);
   double ghost_cutoff(double skin) const { return list_cutoff + skin + longest_edge; }
   bool covers(double edge, double skin) const { return !(edge + skin > longest_edge); }
+  // The error for a ghost cutoff have < ghost_cutoff(skin), the longest edge at the run's start
+  // edge0 (0: none) and what comm_modify cutoff needs; empty when have is long enough.
+  std::string ghost_cutoff_error(double have, double edge0, double skin) const;
+  // The error for a measured edge that covers() refuses; empty when it is covered.
+  std::string edge_error(double edge, double skin) const;
 };
 
 }    // namespace PeriSISSM

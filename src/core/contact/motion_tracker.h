@@ -19,6 +19,8 @@
 #ifndef PERISISSM_CONTACT_MOTION_TRACKER_H
 #define PERISISSM_CONTACT_MOTION_TRACKER_H
 
+#include <cstdint>
+#include <string>
 #include <vector>
 
 namespace PeriSISSM {
@@ -30,6 +32,12 @@ class MotionTracker {
   static double error_distance(double skin) { return 0.5 * skin; }
   static double request_distance(double skin) { return 0.25 * skin; }
   static double rebuild_distance(double skin) { return 0.125 * skin; }
+  // the errors of a contact model for an atom (by ID) that moved `moved` (> error_distance())
+  // since the neighbor list build at step `build`, and for an implicit step of `integrator` that
+  // needs an atom beyond error_distance(skin) (from: its distance at the start of the move)
+  static std::string moved_error(std::int64_t atom, double moved, std::int64_t build);
+  static std::string reach_error(const std::string &integrator, std::int64_t step,
+                                 std::int64_t atom, double skin, double from);
 
   // pairs chosen again between builds: the margin m = skin/4 they are chosen with
   static double follow_margin(double skin) { return 0.25 * skin; }

@@ -46,4 +46,10 @@ bool fused_passes()
   return chosen_passes == 1;
 }
 
+const char *fused_passes_description()
+{
+  return fused_passes() ? "with fused multiply-add (x86-64-v3; PERI_SISSM_PASSES=plain: without)"
+                        : "without fused multiply-add";
+}
+
 }    // namespace PeriSISSM

@@ -46,6 +46,8 @@ void set_fused_passes(bool fused);
 // True when the bond passes run their fused version: the choice of set_fused_passes(), or
 // fused_passes_available() until one is made.
 bool fused_passes();
+// Which version fused_passes() runs, in words for the log.
+const char *fused_passes_description();
 
 }    // namespace PeriSISSM
 

@@ -1,7 +1,9 @@
 /* PERI-SISSM core: material parameter files (see material_file.h). */
 #include "materials/material_file.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
@@ -150,6 +152,75 @@ MaterialEntry convert_material(const MaterialEntry &entry, const std::string &fr
   out.density *= unit_size(*src, 1, -3, 0) / unit_size(*dst, 1, -3, 0);
   out.g0 *= unit_size(*src, 1, 0, -2) / unit_size(*dst, 1, 0, -2);
   return out;
+}
+
+std::string read_material_entry(const std::string &text, const std::string &file,
+                                const std::string &path, const std::string &name,
+                                const std::string &units, MaterialEntry &entry, std::string &log)
+{
+  try {
+    const MaterialFile parsed = parse_material_file(text, file);
+    if (!parsed.date.empty())
+      log += "Reading material file " + path + " with DATE: " + parsed.date + "\n";
+    const MaterialEntry *hit = parsed.find(name);
+    if (!hit)
+      return "pair_coeff peri/nosb material: no material '" + name + "' in " + file +
+          " (it has: " + parsed.names() + ")";
+    entry = convert_material(*hit, parsed.units, units);
+    if (parsed.units != units)
+      log += "Material " + name + " converted from " + parsed.units + " to " + units + " units\n";
+  } catch (std::runtime_error &e) {
+    return "pair_coeff peri/nosb material " + file + " " + name + ": " + e.what();
+  }
+  log += material_summary(entry, name, file);
+  return "";
+}
+
+std::string material_summary(const MaterialEntry &entry, const std::string &name,
+                             const std::string &file)
+{
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), ": K = %.6g, G = %.6g, density = %.6g", entry.bulk, entry.shear,
+                entry.density);
+  std::string text = "Material " + name + " from " + file + buf;
+  if (entry.g0 > 0.0) {
+    std::snprintf(buf, sizeof(buf), ", G0 = %.6g", entry.g0);
+    text += buf;
+  }
+  if (!entry.source.empty()) text += "\n  source: " + entry.source;
+  return text + "\n";
+}
+
+void density_ranges(int n, const double *rho, const int *type, int ntypes, std::vector<double> &lo,
+                    std::vector<double> &hi)
+{
+  lo.assign(ntypes + 1, INFINITY);
+  hi.assign(ntypes + 1, -INFINITY);
+  for (int i = 0; i < n; i++) {
+    lo[type[i]] = std::min(lo[type[i]], rho[i]);
+    hi[type[i]] = std::max(hi[type[i]], rho[i]);
+  }
+}
+
+std::vector<std::pair<int, std::string>> density_warnings(const std::vector<double> &density,
+                                                          const std::vector<double> &lo,
+                                                          const std::vector<double> &hi,
+                                                          const std::vector<std::string> &name)
+{
+  std::vector<std::pair<int, std::string>> warnings;
+  for (int t = 1; t < (int) density.size(); t++) {
+    const double rho = density[t];
+    if (!(rho > 0.0) || lo[t] > hi[t]) continue;    // no file, or no atoms of this type
+    const double tol = 1.0e-6 * rho;
+    if (std::fabs(lo[t] - rho) <= tol && std::fabs(hi[t] - rho) <= tol) continue;
+    char buf[512];
+    std::snprintf(buf, sizeof(buf),
+                  "Pair peri/nosb: atoms of type %d have density (rmass) %.6g ... %.6g, but their "
+                  "material %s has %.6g (set type %d density %.6g)",
+                  t, lo[t], hi[t], name[t].c_str(), rho, t, rho);
+    warnings.emplace_back(t, buf);
+  }
+  return warnings;
 }
 
 }    // namespace PeriSISSM

@@ -19,6 +19,7 @@
 #define PERISISSM_CORE_MATERIAL_FILE_H
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace PeriSISSM {
@@ -51,6 +52,34 @@ MaterialFile parse_material_file(const std::string &text, const std::string &fil
 // micro, nano; throws std::runtime_error naming the styles otherwise)
 MaterialEntry convert_material(const MaterialEntry &entry, const std::string &from,
                                const std::string &to);
+
+// The entry NAME of material file FILE (its text, found at path) converted to unit style
+// `units`, for pair_coeff peri/nosb material.
+// Outputs: entry; log: the lines for the log, in order up to an error (the file's DATE, a unit
+// conversion, material_summary()). Returns "" or the error message (the file cannot be parsed,
+// it has no entry NAME, the units cannot be converted).
+std::string read_material_entry(const std::string &text, const std::string &file,
+                                const std::string &path, const std::string &name,
+                                const std::string &units, MaterialEntry &entry, std::string &log);
+
+// The log line of an entry read for pair_coeff: "Material NAME from FILE: K = .., G = ..,
+// density = ..[, G0 = ..]" (6 digits), then its source on a second line when it has one.
+std::string material_summary(const MaterialEntry &entry, const std::string &name,
+                             const std::string &file);
+
+// The range lo[t] .. hi[t] of the densities of n particles (rho, types 1 .. ntypes) per type t
+// (vectors of ntypes + 1; lo > hi for a type without particles).
+void density_ranges(int n, const double *rho, const int *type, int ntypes, std::vector<double> &lo,
+                    std::vector<double> &hi);
+
+// The warnings for types whose atoms have another density than their material's.
+// Inputs:  per type t (index 0 unused): density[t] of its material (<= 0: none), the range
+//          lo[t] .. hi[t] of its atoms' densities (lo > hi: no atoms), name[t] of the material.
+// Outputs: (t, warning) for each type with an atom farther than 1e-6 density[t] from it.
+std::vector<std::pair<int, std::string>> density_warnings(const std::vector<double> &density,
+                                                          const std::vector<double> &lo,
+                                                          const std::vector<double> &hi,
+                                                          const std::vector<std::string> &name);
 
 }    // namespace PeriSISSM
 

@@ -4,7 +4,9 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -143,6 +145,19 @@ TriangleMesh parse_obj(const std::string &text, const std::string &filename)
     }
   }
   return mesh;
+}
+
+TriangleMesh read_obj_file(const std::string &filename)
+{
+  FILE *fp = fopen(filename.c_str(), "rb");
+  if (!fp)
+    throw std::runtime_error("cannot open mesh file " + filename + ": " + std::strerror(errno));
+  std::string text;
+  char chunk[65536];
+  size_t n;
+  while ((n = fread(chunk, 1, sizeof(chunk), fp)) > 0) text.append(chunk, n);
+  fclose(fp);
+  return parse_obj(text, filename);
 }
 
 }    // namespace PeriSISSM

@@ -24,6 +24,11 @@ namespace PeriSISSM {
 // Outputs: the vertices and triangles with their line numbers.
 TriangleMesh parse_obj(const std::string &text, const std::string &filename);
 
+// parse_obj of the file's contents. Throws std::runtime_error ("cannot open mesh file NAME:
+// <system error>") when the file cannot be opened.
+// Inputs: filename (the path). Outputs: the vertices and triangles with their line numbers.
+TriangleMesh read_obj_file(const std::string &filename);
+
 }    // namespace PeriSISSM
 
 #endif

@@ -148,4 +148,30 @@ vertex_triangles(int nvertex, const std::vector<std::array<int, 3>> &triangles)
   return at;
 }
 
+std::vector<double> pack_mesh(const TriangleMesh &mesh)
+{
+  std::vector<double> buf = {(double) mesh.vertices.size(), (double) mesh.triangles.size()};
+  for (const auto &v : mesh.vertices) buf.insert(buf.end(), v.begin(), v.end());
+  buf.insert(buf.end(), mesh.vertex_line.begin(), mesh.vertex_line.end());
+  for (const auto &t : mesh.triangles) buf.insert(buf.end(), t.begin(), t.end());
+  buf.insert(buf.end(), mesh.triangle_line.begin(), mesh.triangle_line.end());
+  return buf;
+}
+
+TriangleMesh unpack_mesh(const std::vector<double> &buf)
+{
+  TriangleMesh mesh;
+  const size_t nv = (size_t) buf[0], nt = (size_t) buf[1];
+  size_t m = 2;
+  mesh.vertices.resize(nv);
+  for (auto &v : mesh.vertices)
+    for (auto &c : v) c = buf[m++];
+  for (size_t k = 0; k < nv; k++) mesh.vertex_line.push_back((int) buf[m++]);
+  mesh.triangles.resize(nt);
+  for (auto &t : mesh.triangles)
+    for (auto &c : t) c = (int) buf[m++];
+  for (size_t k = 0; k < nt; k++) mesh.triangle_line.push_back((int) buf[m++]);
+  return mesh;
+}
+
 }    // namespace PeriSISSM

@@ -42,6 +42,30 @@ void check_mesh(const TriangleMesh &mesh, const std::string &filename,
 std::vector<std::vector<std::array<int, 2>>>
 vertex_triangles(int nvertex, const std::vector<std::array<int, 3>> &triangles);
 
+// The triangles at a vertex as the IDs of their other two vertices in the triangle's
+// orientation, vertex j of the mesh having the ID first + j.
+// Inputs: at (the vertex's list of vertex_triangles), triangles, first.
+// Outputs: others (one row per triangle of at). Returns the number of triangles.
+template <class Id>
+int corner_ids(const std::vector<std::array<int, 2>> &at,
+               const std::vector<std::array<int, 3>> &triangles, Id first, Id (*others)[2])
+{
+  int n = 0;
+  for (const auto &corner : at) {
+    const auto &t = triangles[corner[0]];
+    others[n][0] = first + t[(corner[1] + 1) % 3];
+    others[n][1] = first + t[(corner[1] + 2) % 3];
+    n++;
+  }
+  return n;
+}
+
+// The mesh as one array of doubles (to send it whole): the numbers of vertices and triangles,
+// then the vertices, their lines, the triangles and their lines (integers are exact as doubles).
+std::vector<double> pack_mesh(const TriangleMesh &mesh);
+// Inputs: buf from pack_mesh. Outputs: the mesh.
+TriangleMesh unpack_mesh(const std::vector<double> &buf);
+
 }    // namespace PeriSISSM
 
 #endif

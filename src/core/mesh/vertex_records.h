@@ -112,6 +112,25 @@ int unpack_vertex(const VertexArrays<Id> &a, int i, const double *buf,
   return m;
 }
 
+// pack_vertex of the rows list[0..n-1], one record after the other. Returns the doubles written.
+template <class Id>
+int pack_vertices(const VertexArrays<Id> &a, int n, const int *list, double *buf, VertexRecord kind)
+{
+  int m = 0;
+  for (int l = 0; l < n; l++) m += pack_vertex(a, list[l], &buf[m], kind);
+  return m;
+}
+
+// unpack_vertex of n records into the rows first..first+n-1. Returns the doubles read.
+template <class Id>
+int unpack_vertices(const VertexArrays<Id> &a, int n, int first, const double *buf,
+                    VertexRecord kind)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) m += unpack_vertex(a, i, &buf[m], kind);
+  return m;
+}
+
 // Row i keeps, in their order, the triangles whose other two vertices are both set (an ID 0
 // marks a vertex that no longer exists). Returns the number kept (= ntri[i]).
 template <class Id> int keep_complete_triangles(const VertexArrays<Id> &a, int i)
@@ -150,6 +169,50 @@ template <class Id> int fill_missing_normals(const VertexArrays<Id> &a, int nrow
 template <class Id> bool writes_triangle(Id me, Id a, Id b)
 {
   return me < a && me < b;
+}
+
+// The triangles rows 0..nrows-1 (IDs tag) write (writes_triangle). Returns their number.
+template <class Id> int count_written_triangles(const VertexArrays<Id> &a, int nrows, const Id *tag)
+{
+  int n = 0;
+  for (int i = 0; i < nrows; i++)
+    if (a.mesh[i])
+      for (int k = 0; k < a.ntri[i]; k++)
+        n += writes_triangle(tag[i], a.tri[i][k][0], a.tri[i][k][1]);
+  return n;
+}
+
+// The triangles rows 0..nrows-1 (IDs tag) write, in the order of the rows and their triangles,
+// one row of buf each: mesh id, thickness and the three vertex IDs (id_bits) from the writing
+// vertex on in the triangle's orientation. Returns the rows of buf filled.
+template <class Id>
+int pack_written_triangles(const VertexArrays<Id> &a, int nrows, const Id *tag, double *const *buf)
+{
+  int n = 0;
+  for (int i = 0; i < nrows; i++) {
+    if (!a.mesh[i]) continue;
+    for (int k = 0; k < a.ntri[i]; k++) {
+      if (!writes_triangle(tag[i], a.tri[i][k][0], a.tri[i][k][1])) continue;
+      buf[n][0] = a.mesh[i];
+      buf[n][1] = a.thickness[i];
+      buf[n][2] = id_bits(tag[i]);
+      buf[n][3] = id_bits(a.tri[i][k][0]);
+      buf[n][4] = id_bits(a.tri[i][k][1]);
+      n++;
+    }
+  }
+  return n;
+}
+
+// values of a row of fix nosb/mesh's per-atom output: mesh id, thickness, ntri, normal0
+constexpr int kVertexOutputs = 6;
+// Inputs: row i. Outputs: out (kVertexOutputs values).
+template <class Id> void output_row(const VertexArrays<Id> &a, int i, double *out)
+{
+  out[0] = a.mesh[i];
+  out[1] = a.thickness[i];
+  out[2] = a.ntri[i];
+  for (int d = 0; d < 3; d++) out[3 + d] = a.normal0[i][d];
 }
 
 // Row i gets triangle v (three vertex IDs in the triangle's orientation) in which it is corner

@@ -4,9 +4,12 @@
 
 #include "linalg/constants.h"
 #include "materials/material.h"
+#include "peri/breaking.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstdio>
 
 namespace PeriSISSM {
 
@@ -105,6 +108,66 @@ bool CoefficientTable::any_contact() const
     for (int j = i; j < n_; j++)
       if (at(i, j).contact) return true;
   return false;
+}
+
+double CoefficientTable::largest_horizon() const
+{
+  double most = 0.0;
+  for (int i = 1; i < n_; i++)
+    for (int j = 1; j < n_; j++) most = std::max(most, at(i, j).horizon);
+  return most;
+}
+
+double CoefficientTable::smallest_contact_horizon() const
+{
+  double least = DBL_MAX;
+  for (int i = 1; i < n_; i++)
+    for (int j = i; j < n_; j++)
+      if (at(i, j).contact) least = std::min(least, at(i, j).horizon);
+  return least;
+}
+
+std::vector<double> CoefficientTable::bending_factors(const std::vector<double> &bend) const
+{
+  std::vector<double> factor(n_, 0.0);
+  for (int t = 1; t < n_; t++)
+    if (bend[t] != 0.0) factor[t] = bending_factor(at(t, t).moduli);
+  return factor;
+}
+
+bool CoefficientTable::any_unbent_membrane(const std::vector<double> &bend) const
+{
+  for (int t = 1; t < n_; t++)
+    if (at(t, t).membrane && (t >= (int) bend.size() || bend[t] == 0.0)) return true;
+  return false;
+}
+
+bool CoefficientTable::set_s00_from_g0(const std::vector<double> &sums, std::string &log,
+                                       int &bad_i, int &bad_j)
+{
+  for (int i = 1; i < n_; i++) {
+    for (int j = i; j < n_; j++) {
+      PairCoefficients &c = at(i, j);
+      if (!given(i, j) || c.g0 <= 0.0) continue;
+      double h = 0.0;
+      if (!pair_spacing(sums, i, j, h)) {
+        bad_i = i;
+        bad_j = j;
+        return false;
+      }
+      const double s00 = s00_from_fracture_energy(c.g0, c.moduli.k, c.moduli.g, c.cs, c.horizon, h);
+      if (s00 != c.s00) {
+        char line[256];
+        std::snprintf(line, sizeof(line),
+                      "peri/nosb: types %d %d: G0 = %.6g gives s00 = %.6g (K = %.6g, G = %.6g, "
+                      "Cs = %.6g, horizon = %.6g = %.5g h)\n",
+                      i, j, c.g0, s00, c.moduli.k, c.moduli.g, c.cs, c.horizon, c.horizon / h);
+        log += line;
+      }
+      c.s00 = s00;
+    }
+  }
+  return true;
 }
 
 void CoefficientTable::configure(Model &model) const

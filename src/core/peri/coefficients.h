@@ -81,6 +81,21 @@ class CoefficientTable {
   bool any_break() const;
   bool any_g0() const;    // a given pair sets its s00 from G0
   bool any_contact() const;
+  // of the completed table: the largest horizon; the smallest horizon of the pairs with contact
+  // (DBL_MAX when none has contact)
+  double largest_horizon() const;
+  double smallest_contact_horizon() const;
+  // per type t (bend[t], 1 <= t <= ntypes: its bending modulus, 0 none, -1 auto): the factor
+  // bending_factor() of its line t t where bend[t] != 0, else 0 (index 0 unused)
+  std::vector<double> bending_factors(const std::vector<double> &bend) const;
+  // a membrane type (line t t) without bending (bend[t] == 0, or t beyond bend)
+  bool any_unbent_membrane(const std::vector<double> &bend) const;
+
+  // The G0 keyword: in the order i <= j, each given pair with g0 > 0 gets s00 =
+  // s00_from_fracture_energy() of its K, G, Cs, horizon and pair_spacing(sums, i, j); log gets a
+  // line per pair whose s00 changes. False (bad_i, bad_j: that pair) when a pair has no particles
+  // to take the spacing from; the pairs before it are set.
+  bool set_s00_from_g0(const std::vector<double> &sums, std::string &log, int &bad_i, int &bad_j);
 
   // the model of the completed table: per type the material (make_material(moduli)), Cs,
   // bulk_modulus() and membrane flag of the line I I; per pair horizon, contact and

@@ -13,6 +13,7 @@
 #include "peri/model.h"
 
 #include <cmath>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -66,6 +67,29 @@ int store_family(const Model &model, const FamilyArrays<Id> &a, int i, Id ownid,
     a.vinit[i] += a.omega[i][b];
   }
   return -1;
+}
+
+// Rows 0..n-1 (n = fam.size()) take the partners fam[i] as their families (store_family) and
+// their shape tensors (update_shape through view, with the reference normals of model).
+// Inputs: IDs tag, x0, box, types, volumes vfrac, thicknesses (null: no membranes).
+// Outputs: bonds (slots stored) and singular (rows with a singular K) are added to.
+// Returns (-1, -1), or at the first row with a partner at its position (store_family) that row
+// and the partner's local row (the rows after it are not stored).
+template <class Id>
+std::pair<int, int>
+store_families(const Model &model, const FamilyArrays<Id> &a, const Families &view,
+               const std::vector<std::vector<std::pair<Id, int>>> &fam, const Id *tag,
+               const double *x0, const ReferenceBox &box, const int *type, const double *vfrac,
+               const double *thickness, int64_t &bonds, int64_t &singular)
+{
+  for (int i = 0; i < (int) fam.size(); i++) {
+    const int b = store_family(model, a, i, tag[i], fam[i], x0, box, type, vfrac, thickness);
+    if (b >= 0) return {i, fam[i][b].second};
+    update_shape(view, x0, box, i, model.reference_normal(view, type[i], i));
+    bonds += a.npartner[i];
+    if (!a.kregular[i]) singular++;
+  }
+  return {-1, -1};
 }
 
 }    // namespace PeriSISSM

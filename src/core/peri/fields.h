@@ -90,6 +90,24 @@ inline void unpack_halo_rows(const HaloField *fields, int nfields, int n, int fi
     }
 }
 
+// The reverse message of one field (width doubles per particle, rows): the rows of the ghost
+// particles first .. first + n - 1 into buf (as many doubles as the return value), ...
+inline int pack_reverse_rows(const double *rows, int width, int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++)
+    for (int k = 0; k < width; k++) buf[m++] = rows[(long long) width * i + k];
+  return m;
+}
+
+// ... added to the rows of their owners list[0 .. n-1].
+inline void add_reverse_rows(double *rows, int width, int n, const int *list, const double *buf)
+{
+  int m = 0;
+  for (int ii = 0; ii < n; ii++)
+    for (int k = 0; k < width; k++) rows[(long long) width * list[ii] + k] += buf[m++];
+}
+
 // Where virial contributions go (either may be null).
 struct Virial {
   double *global = nullptr;      // 6 doubles: xx yy zz xy xz yz

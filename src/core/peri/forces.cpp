@@ -8,6 +8,14 @@
 
 namespace PeriSISSM {
 
+void tally_energy_densities(int n, const double *w, double *total, double *peratom)
+{
+  for (int i = 0; i < n; i++) {
+    if (total) *total += w[i];
+    if (peratom) peratom[i] += w[i];
+  }
+}
+
 void evaluate_bond_terms(const Model &model, const Particles &p, const Families &fam,
                          const ReferenceBox &box, int mode, double **block, ParticleFields &fields,
                          Halo &halo, const Virial &virial, std::vector<int> &broke)

@@ -34,6 +34,11 @@ void evaluate_bond_terms(const Model &model, const Particles &p, const Families 
                          const ReferenceBox &box, int mode, double **block, ParticleFields &fields,
                          Halo &halo, const Virial &virial, std::vector<int> &broke);
 
+// The potential energy tallied per particle (W plus its stabilization energy density, as the
+// built-in PERI styles tally densities): w[0 .. n - 1] summed in order into *total and added to
+// peratom[i]; either may be null.
+void tally_energy_densities(int n, const double *w, double *total, double *peratom);
+
 }    // namespace PeriSISSM
 
 #endif    // PERISISSM_PERI_FORCES_H

@@ -141,4 +141,18 @@ double von_mises(const double s[6])
   return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }
 
+void nosb_atom_row(const Material &material, bool regular, const double F[9], double w,
+                   double damage, double dtstable, double row[NosbAtom::NCOLUMNS])
+{
+  using namespace NosbAtom;
+  for (int k = 0; k < NCOLUMNS; k++) row[k] = 0.0;
+  row[JACOBIAN] = 1.0;
+  row[DAMAGE] = damage;
+  row[DTSTABLE] = dtstable;
+  if (!regular) return;
+  row[ENERGY] = w;
+  cauchy_stress(material, F, &row[SXX], row[JACOBIAN]);
+  row[VONMISES] = von_mises(&row[SXX]);
+}
+
 }    // namespace PeriSISSM

@@ -103,6 +103,31 @@ double cauchy_stress(const Material &material, const double F[9], double sigma[6
 //   sqrt( ((sxx-syy)^2 + (syy-szz)^2 + (szz-sxx)^2)/2 + 3 (sxy^2 + sxz^2 + syz^2) ).
 double von_mises(const double sigma[6]);
 
+// The per-atom columns of compute nosb/atom (doc/compute_nosb_atom.rst) of one particle:
+// damage, W, J = det F, von Mises, Cauchy stress xx yy zz xy xz yz, stable explicit time step.
+namespace NosbAtom {
+  enum Column {
+    DAMAGE = 0,
+    ENERGY,
+    JACOBIAN,
+    VONMISES,
+    SXX,
+    SYY,
+    SZZ,
+    SXY,
+    SXZ,
+    SYZ,
+    DTSTABLE,
+    NCOLUMNS
+  };
+}
+// Inputs:  the material of its type; whether its shape tensor is regular; F (row-major 3x3) and
+//          w, its energy density, at the last evaluation (read only when regular); its damage
+//          and stable time step.
+// Outputs: row[NosbAtom::NCOLUMNS]; a singular particle reports W = 0, J = 1 and zero stress.
+void nosb_atom_row(const Material &material, bool regular, const double F[9], double w,
+                   double damage, double dtstable, double row[NosbAtom::NCOLUMNS]);
+
 }    // namespace PeriSISSM
 
 #endif    // PERISISSM_PERI_PARTICLE_H

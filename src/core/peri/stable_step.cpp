@@ -3,6 +3,7 @@
 #include "peri/stable_step.h"
 
 #include "materials/material.h"
+#include "peri/model.h"
 
 #include <cmath>
 #include <limits>
@@ -20,6 +21,16 @@ double stable_time_step(double rho, double d)
 {
   return (d > 0.0) ? kStableStepSafety * std::sqrt(2.0 * rho / d)
                    : std::numeric_limits<double>::infinity();
+}
+
+void stable_step_stiffnesses(const Model &model, int n, const int *type, const double *const *kinv,
+                             const int *kregular, double *s)
+{
+  for (int i = 0; i < n; i++)
+    s[i] = kregular[i] ? stable_step_stiffness(model.material(type[i]), kinv[i],
+                                               model.stabilization_modulus(type[i], kinv[i]),
+                                               model.membrane(type[i]))
+                       : 0.0;
 }
 
 }    // namespace PeriSISSM

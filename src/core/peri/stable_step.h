@@ -17,6 +17,7 @@
 namespace PeriSISSM {
 
 class Material;
+class Model;
 
 // bisected fix nve limit / sqrt(2 rho / d), smallest value of the scene, ranged from 1.44
 // (two-layer plate, Cs = 0.5) to 2.12 (impact deck, Cs = 0.5) over the calibration scenes,
@@ -48,6 +49,22 @@ double stable_step_coupling(int n, const Id *partner, const double *omega, const
     if (j >= 0) d += omega[b] * (s[i] + s[j]);
   }
   return d;
+}
+
+// s of rows 0..n-1: stable_step_stiffness with the row's material, stabilization modulus and
+// membrane flag (model, types) when its shape tensor is regular (kregular), else 0.
+void stable_step_stiffnesses(const Model &model, int n, const int *type, const double *const *kinv,
+                             const int *kregular, double *s);
+
+// dt of rows 0..n-1: stable_time_step(rho_i, d_i), d_i from stable_step_coupling over the row's
+// bond slots (npartner, partner, omega) with s and locate as there.
+template <class Id, class Locate>
+void stable_time_steps(int n, const double *rho, const int *npartner, const Id *const *partner,
+                       const double *const *omega, const double *s, Locate locate, double *dt)
+{
+  for (int i = 0; i < n; i++)
+    dt[i] = stable_time_step(rho[i],
+                             stable_step_coupling(npartner[i], partner[i], omega[i], s, i, locate));
 }
 
 }    // namespace PeriSISSM

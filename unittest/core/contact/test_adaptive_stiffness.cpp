@@ -152,6 +152,20 @@ TEST(AdaptiveStiffness, SceneExtent)
   SceneExtent empty;
   EXPECT_TRUE(std::isnan(empty.mean_mass()));
   EXPECT_FALSE(empty.diagonal() > 0.0 && empty.mean_mass() > 0.0);
+  EXPECT_EQ(one.error(), "");
+  EXPECT_NE(empty.error(), "");
+  // atoms without mass, or all at one point: the scales are unusable, the error says which
+  SceneExtent massless, point;
+  massless.add(x[0], 0.0);
+  massless.add(x[3], 0.0);
+  EXPECT_EQ(massless.error(),
+            "kappa auto needs a group of atoms with mass that spans a box (its "
+            "diagonal 11.3578, the mean mass 0)");
+  point.add(x[1], 2.0);
+  point.add(x[1], 4.0);
+  EXPECT_EQ(point.error(),
+            "kappa auto needs a group of atoms with mass that spans a box (its "
+            "diagonal 0, the mean mass 3)");
   for (int d = 0; d < 3; d++) {
     EXPECT_EQ(std::min(one.lo[d], empty.lo[d]), one.lo[d]);
     EXPECT_EQ(std::max(one.hi[d], empty.hi[d]), one.hi[d]);

@@ -121,6 +121,22 @@ TEST(BarrierPotential, ForcesAreMinusTheGradientOfTheEnergy)
   EXPECT_LE(dist[stop.too_close], thick.dmin);
 }
 
+// The error of a pair within dmin names its kind, its IDs in canonical order and both numbers
+TEST(BarrierPotential, TooCloseErrorNamesThePair)
+{
+  Candidate pt{StencilType::kPointTriangle, {7, 2, 3, 11}, {0, 1, 2, 3}};
+  EXPECT_EQ(too_close_error(pt, 0.000123456789, 0.0005),
+            "the " + std::string(pt.stencil().name()) +
+                " pair of atoms 7 2 3 11 is 0.000123457 apart, not more than dmin = 0.0005: the "
+                "barrier is infinite there (the primitives came through the barrier: use a larger "
+                "kappa, a smaller time step or a larger dhat)");
+  Candidate pp{StencilType::kPointPoint, {4, 9, 0, 0}, {0, 1, -1, -1}};
+  const std::string e = too_close_error(pp, 0.0, 1e-7);
+  EXPECT_NE(e.find(" pair of atoms 4 9 is 0 apart, not more than dmin = 1e-07:"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find(pp.stencil().name()), std::string::npos);
+}
+
 TEST(BarrierPotential, BlocksAreTheProjectedHessiansDiagonalBlocks)
 {
   Scene s = scene();

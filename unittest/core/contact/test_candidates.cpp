@@ -202,6 +202,9 @@ TEST(Candidates, ReportsAMissingTriangleVertex)
   };
   std::vector<Candidate> found;
   EXPECT_EQ(find_candidates(atoms, s.list(), 0.5, found), s.tag[12]);
+  EXPECT_EQ(missing_vertex_error(1234567890123),
+            "a vertex of a triangle of atom 1234567890123 is neither owned nor a ghost atom here: "
+            "the ghost cutoff is too short for the mesh (comm_modify cutoff)");
 }
 
 // The run's ranges: Lmax the larger of 1.5 L0 and L0 + 2 skin (0 without edges), the list
@@ -240,4 +243,46 @@ TEST(Candidates, RangeOfARun)
     for (std::size_t k = 0; k < from_near.size(); k++)
       EXPECT_EQ(key_of(from_near[k]), key_of(from_all[k]));
   }
+}
+
+// The errors of a run's ranges: a ghost cutoff shorter than ghost_cutoff() (and only then),
+// without and with mesh edges, and an edge that covers() refuses, with the numbers that say
+// what to change
+TEST(Candidates, RangeErrors)
+{
+  const CandidateRange none(0.01, 0.1, 0.0, 0.2);    // needs 0.31
+  EXPECT_EQ(none.ghost_cutoff_error(0.32, 0.0, 0.2), "");
+  EXPECT_EQ(none.ghost_cutoff_error(0.3, 0.0, 0.2),
+            "the ghost cutoff 0.3 is shorter than a contact pair needs: dmin + dhat + skin = "
+            "0.31 (the other particle of a pair with an owned one must be a ghost atom); set "
+            "comm_modify cutoff 0.31 or more");
+  // edge 0.02 x sqrt 2, skin 0.005: Lmax = 1.5 x 0.0282843 = 0.0424264, needs 0.012 + 2.5 Lmax
+  const double edge0 = 0.02 * std::sqrt(2.0);
+  const CandidateRange cloth(0.0005, 0.0065, edge0, 0.005);
+  EXPECT_EQ(cloth.ghost_cutoff_error(0.1181, edge0, 0.005), "");
+  EXPECT_EQ(cloth.ghost_cutoff_error(0.118, edge0, 0.005),
+            "the ghost cutoff 0.118 is shorter than a contact pair needs: dmin + dhat + skin + "
+            "2.5 x max(1.5 x the longest edge (0.0282843), that edge + 2 skin) = 0.118066 (the "
+            "other vertices of a pair with an owned vertex must be ghost atoms); set comm_modify "
+            "cutoff 0.118066 or more");
+  const CandidateRange small(0.01, 0.1, 2.0, 0.2);    // Lmax 3: edges up to 2.8
+  EXPECT_EQ(small.edge_error(2.75, 0.2), "");
+  EXPECT_EQ(small.edge_error(2.85, 0.2),
+            "a mesh edge is 2.85 long, more than the contact candidates of this run allow (the "
+            "longest edge at the run's start, the larger of 1.5 x it and it + 2 skin, less the "
+            "neighbor skin: 2.8): start a new run (which measures the edges again) or use a "
+            "smaller neighbor skin");
+}
+
+// The roles: outside the group none, in it mesh vertices where mesh is nonzero, else particles
+TEST(Candidates, Roles)
+{
+  const int mask[5] = {1, 3, 2, 3, 1};
+  const int mesh[5] = {0, 4, 4, 0, 7};
+  using R = ContactRole;
+  EXPECT_EQ(contact_roles(5, mask, 2, mesh),
+            (std::vector<R>{R::kNone, R::kMeshVertex, R::kMeshVertex, R::kParticle, R::kNone}));
+  EXPECT_EQ(contact_roles(5, mask, 1, nullptr),
+            (std::vector<R>{R::kParticle, R::kParticle, R::kNone, R::kParticle, R::kParticle}));
+  EXPECT_TRUE(contact_roles(0, mask, 1, mesh).empty());
 }

@@ -230,3 +230,20 @@ TEST(MotionTracker, Followable)
     EXPECT_EQ(MotionTracker::followable(reach, 3.0, 2.0),
               MotionTracker::reachable(reach, 0.5, 1.0, 3.0, 2.0));
 }
+
+// The errors name the atom, the distances (as %.6g) and the steps
+TEST(MotionTracker, ErrorTexts)
+{
+  EXPECT_EQ(MotionTracker::moved_error(42, 0.0123456789, 300),
+            "atom 42 moved 0.0123457 since the last neighbor list build at step 300, more than "
+            "half the neighbor skin: contact pairs may be missing; let LAMMPS rebuild the lists "
+            "when needed (neigh_modify every 1 delay 0 check yes), use a larger skin or a smaller "
+            "time step");
+  EXPECT_EQ(MotionTracker::reach_error("fix sissm", 1200, 7, 0.003, 0.00125),
+            "fix sissm step 1200 needs atom 7 to move farther than half the neighbor skin "
+            "(0.0015) from where it was at the last neighbor list build (it was 0.00125 from "
+            "there at the start of the move): the contact candidates cannot follow a step that "
+            "far; use a larger neighbor skin (a step may move the atoms by 3/8 of it at least: "
+            "the lists are built again after a step that moved an atom skin/8) or a smaller "
+            "time step");
+}

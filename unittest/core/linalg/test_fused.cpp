@@ -26,3 +26,14 @@ TEST(FusedPasses, TheSetterOverridesDetection)
   PeriSISSM::set_fused_passes(before);
   EXPECT_EQ(PeriSISSM::fused_passes(), before);
 }
+
+TEST(FusedPasses, DescriptionNamesTheVersionRun)
+{
+  const bool before = PeriSISSM::fused_passes();
+  PeriSISSM::set_fused_passes(false);
+  EXPECT_STREQ(PeriSISSM::fused_passes_description(), "without fused multiply-add");
+  PeriSISSM::set_fused_passes(true);
+  const std::string fused = PeriSISSM::fused_passes_description();
+  EXPECT_EQ(fused.rfind("with fused multiply-add (x86-64-v3", 0) == 0, PeriSISSM::x86_64_v3());
+  PeriSISSM::set_fused_passes(before);
+}

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 using namespace PeriSISSM;
 
@@ -148,3 +149,77 @@ TEST(MaterialFile, ShippedFileIsComplete)
   }
 }
 #endif
+
+TEST(MaterialFile, SummaryForTheLog)
+{
+  const MaterialFile f = parse_material_file(kFile, "test.nosb");
+  EXPECT_EQ(material_summary(*f.find("steel"), "steel", "test.nosb"),
+            "Material steel from test.nosb: K = 1.75e+11, G = 8.0769e+10, density = 7850\n"
+            "  source: EN 1993-1-1\n");
+  EXPECT_EQ(material_summary(*f.find("bare"), "bare", "x"),
+            "Material bare from x: K = 1, G = 2, density = 3, G0 = 4\n");
+}
+
+TEST(MaterialFile, DensityWarningsOutsideOneInAMillion)
+{
+  // types 1..4: no file; within 1e-6 rho; one atom off; no atoms
+  const std::vector<double> rho = {0.0, 0.0, 1000.0, 1000.0, 1000.0};
+  const std::vector<double> lo = {0.0, 5.0, 1000.0 - 9.0e-4, 1000.0, 1.0 / 0.0};
+  const std::vector<double> hi = {0.0, 7.0, 1000.0 + 9.0e-4, 1000.0 + 2.0e-3, -1.0 / 0.0};
+  const std::vector<std::string> names = {"", "", "glass", "steel", "foam"};
+  const auto w = density_warnings(rho, lo, hi, names);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].first, 3);
+  EXPECT_EQ(w[0].second,
+            "Pair peri/nosb: atoms of type 3 have density (rmass) 1000 ... 1000, but their "
+            "material steel has 1000 (set type 3 density 1000)");
+  const std::vector<double> at = {0.0, 6.0, 1000.0009, 1000.002, 1.0 / 0.0};
+  const auto again = density_warnings(rho, at, hi, names);    // type 3 alone: 1000.002 again
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].first, 3);
+  const std::vector<double> low = {0.0, 0.0, 999.0, 1000.0, 1.0 / 0.0};
+  EXPECT_EQ(density_warnings(rho, low, low, names)[0].second.substr(0, 75),
+            "Pair peri/nosb: atoms of type 2 have density (rmass) 999 ... 999, but their");
+}
+
+TEST(MaterialFile, EntryForPairCoeffWithLogAndErrors)
+{
+  MaterialEntry e;
+  std::string log;
+  EXPECT_EQ(read_material_entry(kFile, "t.nosb", "/p/t.nosb", "glass", "si", e, log), "");
+  EXPECT_EQ(e.bulk, 3.8889e10);
+  EXPECT_EQ(log,
+            "Reading material file /p/t.nosb with DATE: 2026-11-24\n" +
+                material_summary(e, "glass", "t.nosb"));
+  log.clear();
+  EXPECT_EQ(read_material_entry(kFile, "t.nosb", "/p/t.nosb", "glass", "cgs", e, log), "");
+  EXPECT_DOUBLE_EQ(e.bulk, 3.8889e11);    // Pa to barye
+  EXPECT_NE(log.find("\nMaterial glass converted from si to cgs units\nMaterial glass from"),
+            std::string::npos)
+      << log;
+  log.clear();
+  EXPECT_EQ(read_material_entry(kFile, "t.nosb", "/p/t.nosb", "iron", "si", e, log),
+            "pair_coeff peri/nosb material: no material 'iron' in t.nosb (it has: steel, glass, "
+            "bare)");
+  EXPECT_EQ(log, "Reading material file /p/t.nosb with DATE: 2026-11-24\n");
+  const std::string units = read_material_entry(kFile, "t.nosb", "", "steel", "metal", e, log);
+  EXPECT_EQ(units.rfind("pair_coeff peri/nosb material t.nosb steel: ", 0), 0u) << units;
+  const std::string bad = read_material_entry("x 1 2\n", "b.nosb", "", "x", "si", e, log);
+  EXPECT_EQ(bad.rfind("pair_coeff peri/nosb material b.nosb x: ", 0), 0u) << bad;
+}
+
+TEST(MaterialFile, DensityRangesPerType)
+{
+  const double rho[5] = {3.0, 1.0, 2.0, 5.0, 4.0};
+  const int type[5] = {1, 1, 3, 1, 3};
+  std::vector<double> lo, hi;
+  density_ranges(5, rho, type, 3, lo, hi);
+  ASSERT_EQ(lo.size(), 4u);
+  EXPECT_EQ(lo[1], 1.0);
+  EXPECT_EQ(hi[1], 5.0);
+  EXPECT_GT(lo[2], hi[2]);    // no particles of type 2
+  EXPECT_EQ(lo[3], 2.0);
+  EXPECT_EQ(hi[3], 4.0);
+  density_ranges(0, rho, type, 3, lo, hi);
+  EXPECT_GT(lo[1], hi[1]);
+}

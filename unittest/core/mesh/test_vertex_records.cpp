@@ -1,7 +1,8 @@
 // Per-atom records of mesh vertices (fix nosb/mesh): the exchange and border layouts field by
 // field, round trips for 32- and 64-bit IDs (IDs beyond 2^53 exactly), non-mesh rows, copies,
 // dropping triangles that lost a vertex, the one corner that writes a triangle, the rotation of
-// a triangle to start at its vertex, and the vertex normal with a missing vertex.
+// a triangle to start at its vertex, the vertex normal with a missing vertex, the triangles
+// written to data files and the per-atom output.
 #include "mesh/mesh_geometry.h"
 #include "mesh/vertex_records.h"
 #include "vertex_storage.h"
@@ -255,4 +256,64 @@ TEST(VertexRecords, MissingNormalsAreFilledOnlyWhereAllThreeAreZero)
   for (int d = 0; d < 3; d++) EXPECT_EQ(s.normal[2][d], 0.0);
   EXPECT_EQ(fill_missing_normals(s.arrays(), 4, n), 1);
   EXPECT_EQ(s.normal[3][1], 0.8);
+}
+
+TEST(VertexRecords, WrittenTrianglesAreCountedAndPackedOnceFromTheirSmallestId)
+{
+  // the square 1-2-3-4 as triangles (1 2 3) and (1 3 4), every corner storing its triangles;
+  // row 4 is a plain atom; 64-bit IDs beyond 2^53 for vertex 4
+  using Id = int64_t;
+  const Id big = (Id(1) << 60) + 1;
+  const Id tag[5] = {1, 2, 3, big, 9};
+  const Id triangles[2][3] = {{1, 2, 3}, {1, 3, big}};
+  Storage<Id> s(5);
+  const auto a = s.arrays();
+  for (const auto &t : triangles)
+    for (int c = 0; c < 3; c++) {
+      const int i = t[c] == big ? 3 : (int) t[c] - 1;
+      s.mesh[i] = 2;
+      s.thickness[i] = 0.25;
+      ASSERT_TRUE(add_corner(a, i, t, c, kMaxTri));
+    }
+  EXPECT_EQ(count_written_triangles(a, 5, tag), 2);
+  EXPECT_EQ(count_written_triangles(a, 1, tag), 2);    // row 0 (ID 1) writes both
+  EXPECT_EQ(count_written_triangles(a, 0, tag), 0);
+
+  std::vector<std::array<double, 5>> rows(4);
+  double *buf[4] = {rows[0].data(), rows[1].data(), rows[2].data(), rows[3].data()};
+  ASSERT_EQ(pack_written_triangles(a, 5, tag, buf), 2);
+  for (int n = 0; n < 2; n++) {
+    EXPECT_EQ(buf[n][0], 2.0);
+    EXPECT_EQ(buf[n][1], 0.25);
+    for (int c = 0; c < 3; c++) EXPECT_EQ(bits_id<Id>(buf[n][2 + c]), triangles[n][c]);
+  }
+}
+
+TEST(VertexRecords, OutputRowIsMeshThicknessTrianglesAndNormal)
+{
+  Storage<int> s(1);
+  fill(s, 0, 5, 10);
+  double out[kVertexOutputs];
+  output_row(s.arrays(), 0, out);
+  const double expect[kVertexOutputs] = {3.0, 0.01, 3.0, 0.6, -0.8, 0.0};
+  for (int c = 0; c < kVertexOutputs; c++) EXPECT_EQ(out[c], expect[c]);
+}
+
+TEST(VertexRecords, BorderRecordsOfAListGoOneAfterTheOtherIntoConsecutiveRows)
+{
+  // rows 0 and 2 are mesh vertices, row 1 is not; list 2, 1, 0 into rows 3, 4, 5
+  Storage<int> s(6);
+  fill(s, 0, 5, 10);
+  fill(s, 2, 6, 20);
+  s.ntri[2] = 1;
+  for (int i = 3; i < 6; i++) s.mesh[i] = 9;
+  const int list[3] = {2, 1, 0};
+  std::vector<double> buf(3 * (kVertexScalars + 2 * kMaxTri), -1.0);
+  const auto a = s.arrays();
+  const int m = pack_vertices(a, 3, list, buf.data(), VertexRecord::kBorder);
+  EXPECT_EQ(m, (kVertexBorderScalars + 2) + 1 + (kVertexBorderScalars + 6));
+  EXPECT_EQ(unpack_vertices(a, 3, 3, buf.data(), VertexRecord::kBorder), m);
+  expect_same_row(s, 2, 3, false);
+  EXPECT_EQ(s.mesh[4], 0);
+  expect_same_row(s, 0, 5, false);
 }

@@ -2,8 +2,11 @@
 // the G0 keyword, the model a completed table configures, and the restart section.
 #include "peri/coefficients.h"
 
+#include "peri/breaking.h"
+
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -281,4 +284,75 @@ TEST(Coefficients, RestartSectionProblemsAreNamed)
   EXPECT_NE(read_coefficients_restart(reader(unknown, at), table, bend)
                 .find("names model 'lineax', which this build does not have"),
             std::string::npos);
+}
+
+TEST(Coefficients, HorizonsOfTheCompletedTable)
+{
+  CoefficientTable t;
+  t.resize(3);
+  t.set(1, 1, line("linear", 2.0, 1.0, 0.3, 0.01, 0.25));
+  t.set(2, 2, line("linear", 2.0, 1.0, 0.5, 0.01, 0.25));
+  PairCoefficients c = line("linear", 2.0, 1.0, 0.2, 0.01, 0.25);
+  c.contact = false;
+  t.set(3, 3, c);
+  c.horizon = 0.9;
+  t.set(1, 3, c);    // the largest horizon, without contact
+  t.complete();
+  EXPECT_EQ(t.largest_horizon(), 0.9);
+  EXPECT_EQ(t.smallest_contact_horizon(), 0.3);
+  for (int i = 1; i <= 3; i++)
+    for (int j = 1; j <= 3; j++) t.at(i, j).contact = false;
+  EXPECT_EQ(t.smallest_contact_horizon(), DBL_MAX);
+}
+
+TEST(Coefficients, BendingFactorsAndUnbentMembranes)
+{
+  CoefficientTable t;
+  t.resize(3);
+  PairCoefficients m = line("linear", 2.0, 1.0, 0.3, 0.01, 0.25);
+  m.membrane = true;
+  t.set(1, 1, m);
+  t.set(2, 2, line("neohookean", 4.0, 3.0, 0.5, 0.02, 0.5));
+  t.set(3, 3, m);
+  t.complete();
+  const std::vector<double> bend = {0.0, -1.0, 0.0, 2.5};
+  const std::vector<double> f = t.bending_factors(bend);
+  ASSERT_EQ(f.size(), 4u);
+  EXPECT_EQ(f[1], bending_factor(t.at(1, 1).moduli));
+  EXPECT_GT(f[1], 0.0);
+  EXPECT_EQ(f[2], 0.0);
+  EXPECT_EQ(f[3], bending_factor(t.at(3, 3).moduli));
+  EXPECT_FALSE(t.any_unbent_membrane(bend));
+  EXPECT_TRUE(t.any_unbent_membrane({0.0, -1.0, 0.0, 0.0}));
+  EXPECT_TRUE(t.any_unbent_membrane({0.0, -1.0}));    // type 3 beyond the list: no bending
+}
+
+TEST(Coefficients, CriticalStretchFromFractureEnergy)
+{
+  CoefficientTable t;
+  t.resize(2);
+  PairCoefficients g = line("linear", 2.0, 1.0, 0.3, 0.0, 0.25);
+  g.g0 = 5.0;
+  t.set(1, 1, g);
+  t.set(2, 2, line("linear", 2.0, 1.0, 0.3, 0.01, 0.25));
+  // type 1: 4 particles of V^(1/3) sum 0.4 (h = 0.1); type 2: none
+  std::vector<double> sums = {0.4, 4.0, 0.4, 4.0, 0.0, 0.0};
+  std::string log;
+  int bi = 0, bj = 0;
+  ASSERT_TRUE(t.set_s00_from_g0(sums, log, bi, bj));
+  const double s00 = s00_from_fracture_energy(5.0, 2.0, 1.0, kDefaultCs, 0.3, 0.1);
+  EXPECT_EQ(t.at(1, 1).s00, s00);
+  EXPECT_EQ(t.at(2, 2).s00, 0.01);    // given without G0: kept
+  EXPECT_NE(log.find("types 1 1: G0 = 5 gives s00 = "), std::string::npos) << log;
+  EXPECT_NE(log.find("horizon = 0.3 = 3 h)\n"), std::string::npos) << log;
+  log.clear();
+  ASSERT_TRUE(t.set_s00_from_g0(sums, log, bi, bj));
+  EXPECT_EQ(log, "");    // unchanged: not logged again
+  // no particles at all: the pair is named
+  g.g0 = 7.0;
+  t.set(1, 2, g);
+  sums.assign(6, 0.0);
+  EXPECT_FALSE(t.set_s00_from_g0(sums, log, bi, bj));
+  EXPECT_EQ(bi, 1);
+  EXPECT_EQ(bj, 1);
 }

@@ -112,3 +112,63 @@ TEST(FamilyBuild, APartnerAtTheSamePositionIsReportedBySlot)
                          (const double *) nullptr),
             1);
 }
+
+TEST(FamilyBuild, StoredFamiliesGetTheirShapeTensorsAndAreCounted)
+{
+  const Model model = two_type_model();
+  // row 0 at the origin with partners along x, y, z (regular K); rows 1 and 3 with one partner
+  // each, row 2 with none (singular)
+  const double x0[12] = {0, 0, 0, 0.9, 0, 0, 0, 0.9, 0, 0, 0, 0.9};
+  const int type[4] = {1, 1, 1, 1};
+  const int64_t tag[4] = {10, 11, 12, 13};
+  const double vfrac[4] = {1.0, 0.5, 0.25, 0.125};
+  const ReferenceBox box;
+  using Partners = std::vector<std::pair<int64_t, int>>;
+  const std::vector<Partners> fam = {{{11, 1}, {12, 2}, {13, 3}}, {{10, 0}}, {}, {{10, 0}}};
+
+  FamilyStorage<int64_t> s(4), t(4);
+  const auto view = [](FamilyStorage<int64_t> &f) {
+    Families v;
+    v.npartner = f.npartner.data();
+    v.jlocal = f.jlocal.data();
+    v.omega = f.omega.data();
+    v.kinv = f.kinv.data();
+    v.kregular = f.kregular.data();
+    v.lamref = f.lamref.data();
+    return v;
+  };
+  int64_t bonds = 2, singular = 1;    // added to
+  const std::pair<int, int> none = {-1, -1};
+  EXPECT_EQ(store_families(model, s.arrays(), view(s), fam, tag, x0, box, type, vfrac,
+                           (const double *) nullptr, bonds, singular),
+            none);
+  EXPECT_EQ(bonds, 2 + 5);
+  EXPECT_EQ(singular, 1 + 3);
+
+  // the same as storing and shaping each row alone
+  for (int i = 0; i < 4; i++) {
+    store_family(model, t.arrays(), i, tag[i], fam[i], x0, box, type, vfrac,
+                 (const double *) nullptr);
+    update_shape(view(t), x0, box, i);
+  }
+  EXPECT_EQ(s.kregular, t.kregular);
+  EXPECT_EQ(s.kregular, (std::vector<int>{1, 0, 0, 0}));
+  EXPECT_EQ(s.kinv_data, t.kinv_data);
+  EXPECT_EQ(s.lamref, t.lamref);
+  EXPECT_EQ(s.omega_data, t.omega_data);
+  EXPECT_EQ(s.owntag, (std::vector<int64_t>{10, 11, 12, 13}));
+  EXPECT_GT(s.kinv[0][0], 0.0);
+
+  // row 3 moved onto row 1, its partner: reported with the partner's row, rows after it not
+  // stored
+  const double same[12] = {0, 0, 0, 0.9, 0, 0, 0, 0.9, 0, 0.9, 0, 0};
+  const std::vector<Partners> fam2 = {{{11, 1}, {12, 2}}, {{13, 3}}, {}, {{10, 0}}};
+  FamilyStorage<int64_t> u(4);
+  bonds = singular = 0;
+  const std::pair<int, int> at = {1, 3};
+  EXPECT_EQ(store_families(model, u.arrays(), view(u), fam2, tag, same, box, type, vfrac,
+                           (const double *) nullptr, bonds, singular),
+            at);
+  EXPECT_EQ(bonds, 2);
+  EXPECT_EQ(u.owntag[3], 0);
+}

@@ -794,3 +794,26 @@ TEST(FirstPiola, SmallStrainLimitIsLinearElasticity)
 }
 
 }    // namespace
+
+// The row of compute nosb/atom: Cauchy stress, its von Mises equivalent, J and W of a regular
+// particle; a singular one keeps damage and time step with J = 1 and nothing else.
+TEST(NosbAtomRow, RegularAndSingularParticles)
+{
+  using namespace PeriSISSM::NosbAtom;
+  const auto m = PeriSISSM::make_material("neohookean", 2.0, 3.0);
+  const double F[9] = {1.1, 0.05, 0.0, 0.0, 0.9, 0.02, 0.01, 0.0, 1.05};
+  double row[NCOLUMNS], s[6], J;
+  PeriSISSM::cauchy_stress(*m, F, s, J);
+  PeriSISSM::nosb_atom_row(*m, true, F, 0.75, 0.25, 3.5e-7, row);
+  EXPECT_EQ(row[DAMAGE], 0.25);
+  EXPECT_EQ(row[ENERGY], 0.75);
+  EXPECT_EQ(row[JACOBIAN], J);
+  EXPECT_NE(J, 1.0);
+  for (int k = 0; k < 6; k++) EXPECT_EQ(row[SXX + k], s[k]);
+  EXPECT_EQ(row[VONMISES], PeriSISSM::von_mises(s));
+  EXPECT_GT(row[VONMISES], 0.0);
+  EXPECT_EQ(row[DTSTABLE], 3.5e-7);
+  PeriSISSM::nosb_atom_row(*m, false, F, 0.75, 0.5, 1.0 / 0.0, row);
+  const double singular[NCOLUMNS] = {0.5, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0 / 0.0};
+  for (int k = 0; k < NCOLUMNS; k++) EXPECT_EQ(row[k], singular[k]) << "column " << k;
+}

@@ -340,3 +340,20 @@ TEST(Contact, PairForceAndBlockAreDerivatives)
 }
 
 }    // namespace
+
+// pe of the bond terms: the densities summed in order into the total and added per particle,
+// each sink optional.
+TEST(EnergyTally, DensitiesIntoTotalAndPerParticle)
+{
+  const double w[3] = {1.5, -0.25, 1.0e-17};
+  double total = 2.0, per[3] = {1.0, 1.0, 1.0};
+  PeriSISSM::tally_energy_densities(3, w, &total, per);
+  EXPECT_EQ(total, ((2.0 + 1.5) - 0.25) + 1.0e-17);
+  EXPECT_EQ(per[0], 2.5);
+  EXPECT_EQ(per[1], 0.75);
+  EXPECT_EQ(per[2], 1.0 + 1.0e-17);
+  PeriSISSM::tally_energy_densities(3, w, nullptr, per);
+  EXPECT_EQ(per[0], 4.0);
+  PeriSISSM::tally_energy_densities(3, w, &total, nullptr);
+  EXPECT_EQ(total, (((2.0 + 1.5) - 0.25) + 1.0e-17 + 1.5) - 0.25 + 1.0e-17);
+}
