@@ -16,7 +16,6 @@
 #include "error.h"
 #include "update.h"
 
-
 using namespace LAMMPS_NS;
 
 /* ----------------------------------------------------------------------

@@ -188,8 +188,7 @@ TEST(ContactPass, BlocksAreTheDiagonalStiffnessWithoutItsTransversePart)
                               x[3 * i + 2] - x[3 * j + 2]);
     const double dist = del.norm();
     const double d = PeriSISSM::contact_distance(2.0, c.volume[i], c.volume[j]);
-    const double kc =
-        model.kcontact(c.type[i], c.type[j]) / model.horizon(c.type[i], c.type[j]);
+    const double kc = model.kcontact(c.type[i], c.type[j]) / model.horizon(c.type[i], c.type[j]);
     const Eigen::Vector3d n = del / dist;
     const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
     transverse[i] += kc * c.volume[j] * (1.0 - d / dist) * P;
