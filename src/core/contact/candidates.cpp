@@ -1,24 +1,13 @@
 #include "contact/candidates.h"
 
+#include "linalg/general_format.h"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 using Eigen::Vector3d;
 
 namespace PeriSISSM {
-
-namespace {
-
-  // a number as printf's %.6g (LAMMPS's {:.6g})
-  std::string g6(double v)
-  {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.6g", v);
-    return buf;
-  }
-
-}    // namespace
 
 CandidateRange::CandidateRange(double dmin, double dhat, double edge0, double skin)
 {
@@ -47,24 +36,25 @@ std::string CandidateRange::ghost_cutoff_error(double have, double edge0, double
   const double needed = ghost_cutoff(skin);
   if (!(have < needed)) return "";
   const std::string start =
-      "the ghost cutoff " + g6(have) + " is shorter than a contact pair needs: ";
-  const std::string end = "; set comm_modify cutoff " + g6(needed) + " or more";
+      "the ghost cutoff " + general_format(have, 6) + " is shorter than a contact pair needs: ";
+  const std::string end = "; set comm_modify cutoff " + general_format(needed, 6) + " or more";
   if (longest_edge == 0.0)
-    return start + "dmin + dhat + skin = " + g6(needed) +
+    return start + "dmin + dhat + skin = " + general_format(needed, 6) +
         " (the other particle of a pair with an owned one must be a ghost atom)" + end;
-  return start + "dmin + dhat + skin + 2.5 x max(" + g6(kEdgeFactor) + " x the longest edge (" +
-      g6(edge0) + "), that edge + 2 skin) = " + g6(needed) +
+  return start + "dmin + dhat + skin + 2.5 x max(" + general_format(kEdgeFactor, 6) +
+      " x the longest edge (" + general_format(edge0, 6) +
+      "), that edge + 2 skin) = " + general_format(needed, 6) +
       " (the other vertices of a pair with an owned vertex must be ghost atoms)" + end;
 }
 
 std::string CandidateRange::edge_error(double edge, double skin) const
 {
   if (covers(edge, skin)) return "";
-  return "a mesh edge is " + g6(edge) +
+  return "a mesh edge is " + general_format(edge, 6) +
       " long, more than the contact candidates of this run allow (the longest edge at the "
       "run's start, the larger of " +
-      g6(kEdgeFactor) +
-      " x it and it + 2 skin, less the neighbor skin: " + g6(longest_edge - skin) +
+      general_format(kEdgeFactor, 6) +
+      " x it and it + 2 skin, less the neighbor skin: " + general_format(longest_edge - skin, 6) +
       "): start a new run (which measures the edges again) or use a smaller neighbor skin";
 }
 

@@ -1,16 +1,15 @@
 #include "contact/motion_tracker.h"
 
+#include "linalg/general_format.h"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace PeriSISSM {
 
 std::string MotionTracker::moved_error(std::int64_t atom, double moved, std::int64_t build)
 {
-  char distance[32];
-  std::snprintf(distance, sizeof(distance), "%.6g", moved);
-  return "atom " + std::to_string(atom) + " moved " + distance +
+  return "atom " + std::to_string(atom) + " moved " + general_format(moved, 6) +
       " since the last neighbor list build at step " + std::to_string(build) +
       ", more than half the neighbor skin: contact pairs may be missing; let LAMMPS rebuild the "
       "lists when needed (neigh_modify every 1 delay 0 check yes), use a larger skin or a "
@@ -20,12 +19,9 @@ std::string MotionTracker::moved_error(std::int64_t atom, double moved, std::int
 std::string MotionTracker::reach_error(const std::string &integrator, std::int64_t step,
                                        std::int64_t atom, double skin, double from)
 {
-  char numbers[2][32];
-  std::snprintf(numbers[0], sizeof(numbers[0]), "%.6g", error_distance(skin));
-  std::snprintf(numbers[1], sizeof(numbers[1]), "%.6g", from);
   return integrator + " step " + std::to_string(step) + " needs atom " + std::to_string(atom) +
-      " to move farther than half the neighbor skin (" + numbers[0] +
-      ") from where it was at the last neighbor list build (it was " + numbers[1] +
+      " to move farther than half the neighbor skin (" + general_format(error_distance(skin), 6) +
+      ") from where it was at the last neighbor list build (it was " + general_format(from, 6) +
       " from there at the start of the move): the contact candidates cannot follow a step that "
       "far; use a larger neighbor skin (a step may move the atoms by 3/8 of it at least: the "
       "lists are built again after a step that moved an atom skin/8) or a smaller time step";

@@ -2,27 +2,21 @@
 
 #include "peri/blowup_guard.h"
 
+#include "linalg/general_format.h"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
 namespace PeriSISSM {
 
 namespace {
 
-  // x with prec significant digits, as printf's %.<prec>g
-  std::string g(double x, int prec)
-  {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.*g", prec, x);
-    return buf;
-  }
-
   // "(x, y, z)" with 4 significant digits
   std::string point(const double x[3])
   {
-    return "(" + g(x[0], 4) + ", " + g(x[1], 4) + ", " + g(x[2], 4) + ")";
+    return "(" + general_format(x[0], 4) + ", " + general_format(x[1], 4) + ", " +
+        general_format(x[2], 4) + ")";
   }
 
 }    // namespace
@@ -119,19 +113,22 @@ std::string likely_cause(int converged, double dt, double est)
 {
   if (converged == 0)
     return "fix sissm stopped at its iteration limit without converging, at time step dt = " +
-        g(dt, 4) + " (" + g(dt / est, 3) + " x the estimated explicit stable time step " +
-        g(est, 4) + " of peri/nosb): lower the time step or raise its iterations" +
+        general_format(dt, 4) + " (" + general_format(dt / est, 3) +
+        " x the estimated explicit stable time step " + general_format(est, 4) +
+        " of peri/nosb): lower the time step or raise its iterations" +
         (dt <= est ? "; with a time step this small, check the initial velocities and external "
                      "forces as well"
                    : "");
   if (converged == 1)
-    return "fix sissm converged in this step (dt = " + g(dt, 4) +
+    return "fix sissm converged in this step (dt = " + general_format(dt, 4) +
         "), so the motion was put in from outside: check initial velocities and positions "
         "(velocity, set, displace_atoms) and fixes that add forces";
   if (dt > est)
-    return "time step dt = " + g(dt, 4) + " is above the estimated stable time step " + g(est, 4) +
+    return "time step dt = " + general_format(dt, 4) + " is above the estimated stable time step " +
+        general_format(est, 4) +
         " of peri/nosb (compute nosb/atom column 11, formula in the pair_style peri/nosb doc)";
-  return "time step dt = " + g(dt, 4) + " is within the estimated stable time step " + g(est, 4) +
+  return "time step dt = " + general_format(dt, 4) + " is within the estimated stable time step " +
+      general_format(est, 4) +
       " of peri/nosb at rest (compute nosb/atom column 11): either the body is deformed far "
       "from rest (strongly compressed or inverted particles are stiffer: lower the time step), "
       "or the motion was put in from outside (check initial velocities and positions: velocity, "
@@ -144,7 +141,7 @@ std::string blowup_message(int kind, long long step, long long worst, const doub
   const double speed = std::sqrt(rec[3] * rec[3] + rec[4] * rec[4] + rec[5] * rec[5]);
   const std::string at = "Pair peri/nosb: the run is unstable: at step " + std::to_string(step);
   const std::string id = std::to_string(worst);
-  const std::string v = g(speed, 4), vdt = g(speed * dt, 4);
+  const std::string v = general_format(speed, 4), vdt = general_format(speed * dt, 4);
   if (kind == 1)
     return at + " atom " + id + " has a non-finite " + nonfinite_names((int) rec[6]) +
         "; likely cause: " + cause;
@@ -152,8 +149,8 @@ std::string blowup_message(int kind, long long step, long long worst, const doub
     return at + " atom " + id + " is at " + point(rec) +
         ", more than one box length outside the periodic box (speed " + v + ", " + vdt +
         " per step); likely cause: " + cause;
-  return at + " the atoms span " + g(span[0], 4) + " x " + g(span[1], 4) + " x " + g(span[2], 4) +
-      ", too far for LAMMPS's neighbor bins; atom " + id +
+  return at + " the atoms span " + general_format(span[0], 4) + " x " + general_format(span[1], 4) +
+      " x " + general_format(span[2], 4) + ", too far for LAMMPS's neighbor bins; atom " + id +
       " is farthest from the box of the last neighbor list build, at " + point(rec) + ", speed " +
       v + " (" + vdt + " per step); likely cause: " + cause;
 }

@@ -2,19 +2,11 @@
 
 #include "solvers/step_report.h"
 
-#include <cstdio>
+#include "linalg/general_format.h"
 
 namespace PeriSISSM {
 
 namespace {
-
-  // x as printf's %.<digits>g
-  std::string g(double x, int digits)
-  {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.*g", digits, x);
-    return buf;
-  }
 
   std::string n(long long x)
   {
@@ -35,11 +27,11 @@ RetryTexts retry_texts(const RetryOutcome &outcome, const StepContext &c, bool n
         "[9]; reported once per run)";
   if (!outcome.cut_back) return texts;
   const int substeps = outcome.substeps;
-  const std::string sub = n(substeps) + " sub-steps of " + g(c.dt / substeps, 6);
+  const std::string sub = n(substeps) + " sub-steps of " + general_format(c.dt / substeps, 6);
   if (outcome.cutback_failed)
     texts.error = me + "in " + n(c.iterations) + " iterations per step, not even as " + sub +
-        " (convergence measure " + g(outcome.result.measure, 3) + " > tolerance " +
-        g(outcome.result.tolerance, 3) +
+        " (convergence measure " + general_format(outcome.result.measure, 3) + " > tolerance " +
+        general_format(outcome.result.tolerance, 3) +
         "): raise iterations, lower the time step, or accept unconverged steps with "
         "'unconverged warn'";
   else
@@ -50,8 +42,8 @@ RetryTexts retry_texts(const RetryOutcome &outcome, const StepContext &c, bool n
 
 std::string unconverged_cause(double measure, double tol_step)
 {
-  return "this step stopped at the iteration limit with convergence measure " + g(measure, 3) +
-      " above the tolerance " + g(tol_step, 3) +
+  return "this step stopped at the iteration limit with convergence measure " +
+      general_format(measure, 3) + " above the tolerance " + general_format(tol_step, 3) +
       ", so the motion may be an artefact of the unconverged solve";
 }
 
@@ -59,23 +51,23 @@ std::string unconverged_error(const StepContext &c, int evaluations, double meas
                               double tol_step)
 {
   return "Fix sissm " + c.id + ": step " + n(c.step) + " stopped at " + n(evaluations) +
-      " iterations with convergence measure " + g(measure, 3) + " > tolerance " + g(tol_step, 3) +
-      " (unconverged error)";
+      " iterations with convergence measure " + general_format(measure, 3) + " > tolerance " +
+      general_format(tol_step, 3) + " (unconverged error)";
 }
 
 std::string unconverged_warning(const StepContext &c, int evaluations, double measure,
                                 double tolerance)
 {
   return "Fix sissm: step " + n(c.step) + " stopped at " + n(evaluations) +
-      " iterations with convergence measure " + g(measure, 3) + " > tolerance " + g(tolerance, 3) +
-      " (counted in f_" + c.id + "[4]; reported once per run)";
+      " iterations with convergence measure " + general_format(measure, 3) + " > tolerance " +
+      general_format(tolerance, 3) + " (counted in f_" + c.id + "[4]; reported once per run)";
 }
 
 std::string roundoff_warning(long long step, double reach, double floor, double tolerance)
 {
   return "Fix sissm: at step " + n(step) + " round-off in the atom coordinates (up to " +
-      g(reach, 3) + " from the origin) limits the convergence measure to about " + g(floor, 3) +
-      ", above the tolerance " + g(tolerance, 3) +
+      general_format(reach, 3) + " from the origin) limits the convergence measure to about " +
+      general_format(floor, 3) + ", above the tolerance " + general_format(tolerance, 3) +
       ": steps that reach it count as converged (a body nearer the origin, or a smaller time "
       "step, allows a tighter tolerance; reported once per run)";
 }
@@ -101,9 +93,9 @@ double StepStatistics::output(int n) const
 
 std::string StepStatistics::summary(const std::string &id) const
 {
-  return "Fix sissm " + id + " run: " + n(steps) + " steps, " + g((double) evaluations / steps, 6) +
-      " iterations per step, " + n(unconverged) + " unconverged, " + n(cutback) + " cut back, " +
-      n(switches) + " preconditioner switches";
+  return "Fix sissm " + id + " run: " + n(steps) + " steps, " +
+      general_format((double) evaluations / steps, 6) + " iterations per step, " + n(unconverged) +
+      " unconverged, " + n(cutback) + " cut back, " + n(switches) + " preconditioner switches";
 }
 
 }    // namespace PeriSISSM
