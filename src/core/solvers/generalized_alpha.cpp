@@ -37,7 +37,9 @@ void GeneralizedAlpha::begin(const Rows &rows, const StepArrays &a)
       const double step = wf * (h * v[k] + ka * hist[k]);
       a.yhat[i][k] = y[k] + step;
       if (a.flag) a.yhat[i][k] += c_ * a.flag[i][k] / rows.density[i];
-      y[k] += step;
+      // the first iterate: the motion at constant acceleration a^n (the predictor plus
+      // c a^n), exact where the acceleration does not change (free fall: one evaluation)
+      y[k] += step + c_ * hist[k];
     }
   }
 }

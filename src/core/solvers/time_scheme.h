@@ -50,8 +50,8 @@ class TimeScheme {
   virtual void set_step(double h) = 0;
   // Start of a step for the unknown rows: y^n and v^n as the scheme needs them, the predictor
   // yhat (with c flag / rho when a lagged force is given), and the first iterate in y (the
-  // predictor without the lagged force: a body at rest in equilibrium is a fixed point for any
-  // iteration count).
+  // predictor without the lagged force, plus what the scheme extrapolates from its history: a
+  // body at rest in equilibrium is a fixed point for any iteration count).
   virtual void begin(const Rows &rows, const StepArrays &a) = 0;
   // the factor c of the force in the residual: J = -dr/dy = rho I - c df/dy
   double force_factor() const { return c_; }

@@ -91,6 +91,22 @@ TEST(TimeSchemes, FreeFallIsExact)
   }
 }
 
+// Generalized-alpha starts each step at constant acceleration: once a^n = g (from the first
+// step on), a free fall meets a tight tolerance at the first evaluation of every step.
+TEST(TimeSchemes, GeneralizedAlphaFreeFallTakesOneEvaluation)
+{
+  for (double rho_inf : {1.0, 0.8, 0.0}) {
+    Springs s(1, 0.05, scheme("genalpha", rho_inf));
+    s.g[2] = -9.81;
+    s.v.rows[0][0] = 0.7;
+    s.tol = 1e-12;
+    for (int n = 0; n < 5; n++) {
+      step(s);
+      EXPECT_EQ(s.evaluations(), 1) << rho_inf << " step " << n;
+    }
+  }
+}
+
 // The swinging chain (springs.h) over t = 0.8, at h = 0.005,
 // 0.0025, 0.00125, against the same scheme at h = 0.8 / 5120: the error at the end falls by 2 per
 // halving for backward Euler and by 4 for the second-order schemes (within 15%; the fastest
