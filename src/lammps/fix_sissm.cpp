@@ -67,7 +67,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
   force_reneighbor = 1;    // after steps that moved atoms far (short-range contact)
   next_reneighbor = -1;
   vector_flag = 1;
-  size_vector = 9;
+  size_vector = 11;
   comm_forward = 1;    // amg: global node numbers of the ghosts
   global_freq = 1;
   extvector = 0;
@@ -330,7 +330,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   PeriSISSM::SolveResult result;
   if (opt.solver == SolverKind::krylov) {
     const PeriSISSM::KrylovWork work{xbase, rbase, jbase, cres, zdir, pdir, sdir, term};
-    result = PeriSISSM::solve_newton_krylov(*system, *precond, opt.iterations, work);
+    result = PeriSISSM::solve_newton_krylov(*system, *precond, opt.iterations, work, opt.error);
     // (tolerance 0: every step runs to the limit by request, which says nothing of the
     // preconditioner)
     precond->finished(result.newton, result.krylov, result.converged() || opt.tolerance == 0.0);
@@ -470,23 +470,24 @@ void FixSissm::post_integrate()
   }
   const PeriSISSM::SolveResult &result = outcome.result;
   const double measure = result.measure;
+  const bool converged = result.converged();
 
   // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
   // decides on a neighbor list build): a diverged step ends in an error, not in LAMMPS's
   // neighbor binning
-  forces->check_motion(measure <= tol_step ? 1 : 0);
+  forces->check_motion(converged ? 1 : 0);
   // short-range contact: a result beyond what the candidates could follow is refused, and
   // the next step starts from a fresh neighbor list if this one moved atoms far
-  const std::string cause = measure > tol_step ? PeriSISSM::unconverged_cause(measure, tol_step)
-                                               : "";
+  const std::string cause = converged ? "" : PeriSISSM::unconverged_cause(measure, tol_step);
   bool rebuild = forces->contact_end_of_step(cause);
   for (CollisionLimit *limit : limiters) rebuild = limit->rebuild_wanted() || rebuild;
   if (rebuild) next_reneighbor = update->ntimestep;
 
   const int evaluations = outcome.evaluations;
-  const PeriSISSM::StepVerdict verdict = PeriSISSM::step_verdict(opt.retry, measure, tol_step);
+  const PeriSISSM::StepVerdict verdict = PeriSISSM::step_verdict(opt.retry, converged);
   stats.end_step(evaluations, measure, outcome.substeps,
-                 verdict == PeriSISSM::StepVerdict::converged);
+                 verdict == PeriSISSM::StepVerdict::converged,
+                 result.error_met ? result.error : -1.0);
   if (verdict != PeriSISSM::StepVerdict::converged) {
     if (verdict == PeriSISSM::StepVerdict::error)
       error->all(FLERR, PeriSISSM::unconverged_error(context(), evaluations, measure, tol_step));

@@ -42,6 +42,7 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   }
   bool refresh() override { return schedule_.refresh(); }
   std::string summary() const override { return schedule_.summary(); }
+  bool estimates_error() const override { return true; }
 
  private:
   FixSissm *fix_;

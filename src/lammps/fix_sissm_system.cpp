@@ -162,3 +162,12 @@ double SissmSystem::step_tolerance()
   if (t.roundoff_limited(asked)) s.warned_roundoff = 1;
   return s.tol_step;
 }
+
+/* ----------------------------------------------------------------------
+   y^n of the step (written by the scheme's begin())
+------------------------------------------------------------------------- */
+
+double **SissmSystem::start()
+{
+  return fix_->yn;
+}

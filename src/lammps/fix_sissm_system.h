@@ -50,6 +50,7 @@ class SissmSystem : public PeriSISSM::NonlinearSystem {
   bool evaluation_complete() const override { return !contact_incomplete_; }
   void block(int i, double D[6]) const override;
   double step_tolerance() override;
+  double **start() override;
   void check_finite() override;
 
  private:

@@ -19,7 +19,11 @@ struct SolveResult {
   double tolerance = 0.0;
   int newton = 0;    // Newton steps (krylov)
   int krylov = 0;    // conjugate-gradient iterations over all Newton steps (krylov)
-  bool converged() const { return measure <= tolerance; }
+  // keyword error (newton_krylov.h): the estimated position error over the step's largest
+  // motion when that rule ended the solve, 0 otherwise
+  double error = 0.0;
+  bool error_met = false;
+  bool converged() const { return measure <= tolerance || error_met; }
 };
 
 // Work rows of the relaxed sweep (both null without relax).

@@ -7,7 +7,7 @@
 namespace PeriSISSM {
 
 SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, int maxiter,
-                                const KrylovWork &w)
+                                const KrylovWork &w, double error)
 {
   const Rows &rows = sys.rows();
   double **x = sys.unknowns();
@@ -96,6 +96,20 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
         }
     precond.prepare(sys);
     precond.apply(sys, w.cres, w.zdir);
+    double cg_enough = 0.0;
+    if (error > 0.0 && precond.estimates_error() && sys.evaluation_complete()) {
+      const double motion = scaled_distance(sys, x, sys.start());
+      // CG stops once its own estimate is a quarter of the target (measured on the hanging
+      // cloth: a quarter ends most steps after one Newton step; a half leaves more steps to a
+      // second one, 12.6 against 11.5 evaluations per step; none, 13.9)
+      cg_enough = 0.25 * error * motion;
+      const double estimate = scaled_max(sys, w.zdir, false);
+      if (estimate <= error * motion) {
+        out.error = motion > 0.0 ? estimate / motion : 0.0;
+        out.error_met = true;
+        break;
+      }
+    }
     for (int i = 0; i < n; i++)
       if (rows.has(i))
         for (int k = 0; k < 3; k++) w.pdir[i][k] = w.zdir[i][k];
@@ -130,6 +144,7 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
       cg++;
       if (scaled_max(sys, w.cres, true) <= target) break;
       precond.apply(sys, w.cres, w.zdir);
+      if (cg_enough > 0.0 && scaled_max(sys, w.zdir, false) <= cg_enough) break;
       const double rz_new = dot(sys, w.cres, w.zdir, w.term);
       const double beta = rz_new / rz;
       rz = rz_new;

@@ -24,6 +24,9 @@ class Preconditioner {
   virtual bool refresh() { return false; }
   // what it did over the run so far, for the log (empty: nothing to say)
   virtual std::string summary() const { return ""; }
+  // z = M^-1 r estimates the distance to the solution for smooth and for local errors alike
+  // (a matrix spectrally equivalent to J: keyword error may rely on it)
+  virtual bool estimates_error() const { return false; }
   virtual void apply(NonlinearSystem &sys, double **r, double **z) = 0;
 };
 

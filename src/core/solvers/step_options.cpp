@@ -6,9 +6,9 @@
 
 namespace PeriSISSM {
 
-const std::vector<std::string> kStepKeywords = {"iterations", "tolerance",   "solver",
-                                                "precond",    "unconverged", "scheme",
-                                                "relax",      "external",    "lagged"};
+const std::vector<std::string> kStepKeywords = {"iterations",  "tolerance", "solver", "precond",
+                                                "unconverged", "scheme",    "relax",  "external",
+                                                "lagged",      "error"};
 const std::vector<std::string> kSolverWords = {"jacobi", "krylov"};
 const std::vector<std::string> kPrecondWords = {"block", "amg"};
 const std::vector<std::string> kExternalWords = {"implicit", "lagged"};
@@ -39,6 +39,8 @@ std::string value_problem(const StepOptions &o, const std::string &keyword)
 {
   if (keyword == "iterations" && o.iterations < 1) return "iterations must be >= 1";
   if (keyword == "tolerance" && !(o.tolerance >= 0.0)) return "tolerance must be >= 0";
+  if (keyword == "error" && o.error_given && !(o.error >= 0.0 && o.error < 1.0))
+    return "error must be >= 0 and < 1";
   if (keyword == "unconverged" && (o.retry.max_cutback < 1 || o.retry.max_cutback > 20))
     return "unconverged cutback levels must be 1 to 20";
   if (keyword == "scheme" && !(o.rho_inf >= 0.0 && o.rho_inf <= 1.0))
@@ -52,13 +54,25 @@ std::string settle(StepOptions &o)
   if (o.solver == SolverKind::jacobi && o.precond_given && o.precond == PrecondKind::amg)
     return "precond amg needs solver krylov (the jacobi sweeps use the blocks themselves)";
   if (o.solver == SolverKind::jacobi) o.precond = PrecondKind::block;
+  if (o.error > 0.0 && o.precond != PrecondKind::amg)
+    return "error needs solver krylov with precond amg (the block preconditioner's estimate "
+           "misses smooth errors by up to the ratio of stiffness to mass)";
+  if (o.error < 0.0)
+    o.error = (o.scheme != "euler" && o.precond == PrecondKind::amg && !o.tolerance_given)
+        ? kDynamicsError
+        : 0.0;
   return "";
 }
 
 std::string settle_for_membranes(StepOptions &o, bool unbent_membranes, const std::string &id)
 {
   if (o.precond_given || o.precond != PrecondKind::amg || !unbent_membranes) return "";
+  if (o.error_given && o.error > 0.0)
+    return "Fix sissm " + id +
+        ": membranes without bending (pair_coeff ... membrane yes, no bend) with keyword error: "
+        "precond amg kept (error needs it; without error these membranes take precond block)\n";
   o.precond = PrecondKind::block;
+  o.error = 0.0;
   return "Fix sissm " + id +
       ": membranes without bending (pair_coeff ... membrane yes, no bend): precond block (the "
       "default amg has no out-of-plane stiffness for them; precond amg asks for it)\n";
@@ -106,6 +120,10 @@ StepOptionsProblem read_step_options(const std::vector<std::string> &words, cons
       o.iterations = (int) read(value, WordKind::integer);
     } else if (key == "tolerance") {
       o.tolerance = read(value, WordKind::real);
+      o.tolerance_given = true;
+    } else if (key == "error") {
+      o.error = read(value, WordKind::real);
+      o.error_given = true;
     } else if (key == "relax") {
       o.relax = read(value, WordKind::logical) != 0.0;
     } else if (key == "solver") {

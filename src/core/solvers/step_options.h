@@ -20,7 +20,14 @@ enum class PrecondKind { block, amg };
 struct StepOptions {
   int iterations = 100;       // force evaluations per step at most
   double tolerance = 1e-6;    // convergence: max_i |r_i| / (rho_i V_i^(1/3)) below it
-  bool relax = false;         // jacobi: per-particle step factor alpha_i (false: alpha_i = 1)
+  // keyword error: a step has also converged when the preconditioner's estimate of its
+  // position error is below error times the step's largest motion (newton_krylov.h); -1 until
+  // settle() gives the default (kDynamicsError for the second-order schemes with solver krylov
+  // and precond amg where keyword tolerance was not given, 0 = off otherwise)
+  double error = -1.0;
+  bool error_given = false;
+  bool tolerance_given = false;
+  bool relax = false;    // jacobi: per-particle step factor alpha_i (false: alpha_i = 1)
   SolverKind solver = SolverKind::krylov;
   PrecondKind precond = PrecondKind::amg;
   bool precond_given = false;         // the keyword precond was given
@@ -31,6 +38,9 @@ struct StepOptions {
   std::string scheme = "euler";       // keyword scheme, and generalized-alpha's rho_inf
   double rho_inf = 0.8;
 };
+
+// the default of keyword error for the second-order schemes (doc/fix_sissm.rst, "Stopping")
+constexpr double kDynamicsError = 1e-3;
 
 // the keywords, in the order an error message lists them
 extern const std::vector<std::string> kStepKeywords;
@@ -49,14 +59,15 @@ std::string choice_text(const std::vector<std::string> &words);
 std::string value_problem(const StepOptions &o, const std::string &keyword);
 
 // The rules between keywords once all are read: the combination refused (empty: none), and
-// otherwise solver jacobi takes precond block (its sweeps use the blocks themselves).
+// otherwise solver jacobi takes precond block (its sweeps use the blocks themselves) and
+// keyword error its default.
 std::string settle(StepOptions &o);
 
 // Membranes without bending (unbent_membranes): the coarse level's matrix has no stiffness out
 // of their plane but the mass (with bending, the hinges give it one), and amg lets such a flat
 // membrane leave its plane (measured: the hanging strip of examples/membranes buckles sideways in
 // the first step and then misses the tolerance; block keeps it in its plane), so the default
-// precond amg becomes block there. Returns the note for the log of the integrator with fix ID id
+// precond amg becomes block there, and the default of keyword error 0. Returns the note for the log of the integrator with fix ID id
 // (empty: nothing changed).
 std::string settle_for_membranes(StepOptions &o, bool unbent_membranes, const std::string &id);
 

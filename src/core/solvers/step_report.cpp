@@ -72,8 +72,10 @@ std::string roundoff_warning(long long step, double reach, double floor, double 
       "step, allows a tighter tolerance; reported once per run)";
 }
 
-void StepStatistics::end_step(int count, double measure, int substeps, bool converged)
+void StepStatistics::end_step(int count, double measure, int substeps, bool converged, double error)
 {
+  last_error = error >= 0.0 ? error : 0.0;
+  if (error >= 0.0) by_error++;
   last_evaluations = count;
   last_measure = measure;
   last_substeps = substeps;
@@ -85,9 +87,17 @@ void StepStatistics::end_step(int count, double measure, int substeps, bool conv
 double StepStatistics::output(int n) const
 {
   const double average = steps ? (double) evaluations / steps : 0.0;
-  const double values[9] = {(double) last_evaluations, last_measure,           average,
-                            (double) unconverged,      (double) last_substeps, (double) cutback,
-                            (double) last_krylov,      (double) last_newton,   (double) switches};
+  const double values[11] = {(double) last_evaluations,
+                             last_measure,
+                             average,
+                             (double) unconverged,
+                             (double) last_substeps,
+                             (double) cutback,
+                             (double) last_krylov,
+                             (double) last_newton,
+                             (double) switches,
+                             last_error,
+                             (double) by_error};
   return values[n];
 }
 
@@ -95,7 +105,8 @@ std::string StepStatistics::summary(const std::string &id) const
 {
   return "Fix sissm " + id + " run: " + n(steps) + " steps, " +
       general_format((double) evaluations / steps, 6) + " iterations per step, " + n(unconverged) +
-      " unconverged, " + n(cutback) + " cut back, " + n(switches) + " preconditioner switches";
+      " unconverged, " + n(cutback) + " cut back, " + n(switches) + " preconditioner switches" +
+      (by_error > 0 ? ", " + n(by_error) + " ended by the error estimate" : "");
 }
 
 }    // namespace PeriSISSM

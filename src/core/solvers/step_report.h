@@ -45,9 +45,13 @@ struct StepStatistics {
   // iterations
   int last_evaluations = 0, last_substeps = 1, last_newton = 0, last_krylov = 0;
   double last_measure = 0.0;
+  // the last step's estimated error over its motion where keyword error ended it (else 0)
+  double last_error = 0.0;
   // the run's steps, evaluations, unconverged steps, steps cut back and steps redone with the
   // other preconditioner
   long long steps = 0, evaluations = 0, unconverged = 0, cutback = 0, switches = 0;
+  // the run's steps that keyword error ended
+  long long by_error = 0;
 
   void begin_step() { last_newton = last_krylov = 0; }
   // one solve of the step (a step redone counts all its solves)
@@ -56,10 +60,12 @@ struct StepStatistics {
     last_newton += r.newton;
     last_krylov += r.krylov;
   }
-  void end_step(int evaluations, double measure, int substeps, bool converged);
+  // error: the estimated error over the motion where keyword error ended the step, < 0 if not
+  void end_step(int evaluations, double measure, int substeps, bool converged, double error);
   // output n + 1 of the global vector: 1 the last step's evaluations, 2 its measure, 3 the
   // run's evaluations per step, 4 unconverged steps, 5 the last step's sub-steps, 6 steps cut
-  // back, 7 the last step's Krylov iterations, 8 its Newton steps, 9 preconditioner switches
+  // back, 7 the last step's Krylov iterations, 8 its Newton steps, 9 preconditioner switches,
+  // 10 the last step's last_error, 11 the steps that keyword error ended
   double output(int n) const;
   // the run in one line of the log, without the newline (id: the integrator's fix ID)
   std::string summary(const std::string &id) const;

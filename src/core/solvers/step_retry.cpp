@@ -57,9 +57,9 @@ RetryOutcome run_retry_ladder(StepAttempts &step, const RetryPolicy &policy)
   return out;
 }
 
-StepVerdict step_verdict(const RetryPolicy &policy, double measure, double tolerance)
+StepVerdict step_verdict(const RetryPolicy &policy, bool converged)
 {
-  if (!(measure > tolerance)) return StepVerdict::converged;
+  if (converged) return StepVerdict::converged;
   if (policy.unconverged == Unconverged::error && !policy.fixed_count) return StepVerdict::error;
   return StepVerdict::warn;
 }

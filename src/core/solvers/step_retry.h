@@ -65,8 +65,8 @@ RetryOutcome run_retry_ladder(StepAttempts &step, const RetryPolicy &policy);
 
 enum class StepVerdict { converged, warn, error };
 
-// measure against the tolerance the step was held to
-StepVerdict step_verdict(const RetryPolicy &policy, double measure, double tolerance);
+// whether the step converged (SolveResult::converged of its last solve)
+StepVerdict step_verdict(const RetryPolicy &policy, bool converged);
 
 }    // namespace PeriSISSM
 

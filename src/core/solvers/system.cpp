@@ -44,6 +44,21 @@ double scaled_max(NonlinearSystem &sys, double **a, bool per_density)
   return local;
 }
 
+double scaled_distance(NonlinearSystem &sys, double **a, double **b)
+{
+  const Rows &rows = sys.rows();
+  double local = 0.0;
+  for (int i = 0; i < rows.n; i++) {
+    if (!rows.has(i)) continue;
+    const double length = rows.size ? rows.size[i] : cbrt(rows.volume[i]);
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++) d2 += (a[i][k] - b[i][k]) * (a[i][k] - b[i][k]);
+    local = fmax(local, sqrt(d2) / length);
+  }
+  sys.reductions().max(&local, 1);
+  return local;
+}
+
 int first_nonfinite(const Rows &rows, double **y)
 {
   for (int i = 0; i < rows.n; i++)

@@ -44,6 +44,8 @@ class NonlinearSystem {
   virtual void block(int i, double D[6]) const = 0;
   // the tolerance of this step, asked once after its first evaluation
   virtual double step_tolerance() = 0;
+  // the unknowns at the start of the step (y^n), for the step's motion
+  virtual double **start() = 0;
   // stop with an error when an unknown is not finite
   virtual void check_finite() = 0;
 
@@ -62,6 +64,9 @@ double merit(NonlinearSystem &sys, double *term);
 // per_density: with a = r the convergence measure (the residual as a length relative to the
 // particle size; near a stable state J >= rho, so |r|/rho bounds the distance to the solution)
 double scaled_max(NonlinearSystem &sys, double **a, bool per_density);
+
+// max_i |a_i - b_i| / V_i^(1/3) over the unknown rows (all processes)
+double scaled_distance(NonlinearSystem &sys, double **a, double **b);
 
 // the first row of the group whose y_x + y_y + y_z is not finite, -1 when there is none
 int first_nonfinite(const Rows &rows, double **y);

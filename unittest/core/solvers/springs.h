@@ -125,6 +125,7 @@ class Springs : public NonlinearSystem {
   int evaluations() const override { return evals_; }
   bool evaluation_complete() const override { return true; }
   double step_tolerance() override { return tol; }
+  double **start() override { return yn.ptr(); }
   void check_finite() override
   {
     for (double d : y.data)

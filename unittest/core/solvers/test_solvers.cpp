@@ -54,6 +54,57 @@ TEST(Solvers, JacobiAndNewtonKrylovReachTheSameStep)
   EXPECT_LT(diff, 1e-8);
 }
 
+// Keyword error (newton_krylov.h) on one particle swinging on a stiff nonlinear spring from a
+// pinned one: the block preconditioner is then the exact linearization (J is the particle's own
+// block), i.e. an estimating preconditioner. The solve ends on the error rule with far fewer
+// evaluations than a tight tolerance, and the iterate it accepts is within its own estimate
+// (error times the step's motion, plus what the linearization misses: 10%) of the converged
+// step. The block preconditioner itself does not claim to estimate: with it the rule is off.
+struct EstimatingBlocks : BlockPreconditioner {
+  bool estimates_error() const override { return true; }
+};
+
+TEST(Solvers, ErrorRuleStopsWithinItsEstimate)
+{
+  const double h = 0.05, error = 0.01;
+  auto swing = [&]() {
+    Springs s(2, h, make_time_scheme("genalpha", 0.8));
+    s.y.rows[1][0] = 1.0;
+    s.spring(0, 1, 400.0 / (h * h), 1.0);
+    s.pin(0);
+    s.g[2] = -10.0;
+    s.v.rows[1][1] = 3.0;
+    s.begin();
+    return s;
+  };
+  Springs tight = swing(), loose = swing(), plain = swing();
+  KrylovTables kt(2);
+  EstimatingBlocks est;
+  BlockPreconditioner block;
+  tight.tol = 1e-13;
+  const SolveResult rt = solve_newton_krylov(tight, block, 200, kt.work());
+  ASSERT_TRUE(rt.converged());
+  ASSERT_FALSE(rt.error_met);
+  loose.tol = 1e-13;
+  const SolveResult rl = solve_newton_krylov(loose, est, 200, kt.work(), error);
+  EXPECT_TRUE(rl.error_met);
+  EXPECT_TRUE(rl.converged());
+  EXPECT_GT(rl.measure, rl.tolerance);    // the residual rule alone would go on
+  EXPECT_LE(rl.error, error);
+  EXPECT_LT(loose.evaluations(), tight.evaluations());
+  double motion = 0.0, dist = 0.0;
+  for (int k = 0; k < 3; k++) {
+    motion += std::pow(tight.y.rows[1][k] - tight.yn.rows[1][k], 2);
+    dist += std::pow(loose.y.rows[1][k] - tight.y.rows[1][k], 2);
+  }
+  EXPECT_GT(std::sqrt(motion), 0.05);    // the step moved the particle
+  EXPECT_LT(std::sqrt(dist), 1.1 * error * std::sqrt(motion));
+  plain.tol = 1e-13;
+  const SolveResult rp = solve_newton_krylov(plain, block, 200, kt.work(), error);
+  EXPECT_FALSE(rp.error_met);
+  EXPECT_EQ(plain.evaluations(), tight.evaluations());
+}
+
 // The documented equivalence: Newton-Krylov with a budget of one evaluation is the plain SISSM
 // sweep, to the last bit.
 TEST(Solvers, OneEvaluationOfKrylovIsOneSweep)

@@ -156,7 +156,7 @@ TEST(StepOptions, ReadingNamesEachProblem)
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"iterations", "10", "speed", "2"},
        "unknown keyword 'speed' (allowed: iterations, tolerance, solver, precond, unconverged, "
-       "scheme, relax, external, lagged)"},
+       "scheme, relax, external, lagged, error)"},
       {{"iterations", "0"}, "iterations must be >= 1, got 0"},
       {{"tolerance", "-1"}, "tolerance must be >= 0, got -1"},
       {{"solver", "gmres"}, "solver must be jacobi or krylov, got 'gmres'"},
@@ -215,6 +215,51 @@ TEST(StepOptions, UnbentMembranesTakeBlockUnlessAmgWasAsked)
   asked.precond_given = true;
   EXPECT_EQ(settle_for_membranes(asked, true, "int"), "");
   EXPECT_EQ(asked.precond, PrecondKind::amg);
+}
+
+// Keyword error: its default is on for the second-order schemes with the multigrid only (the
+// block preconditioner's estimate misses smooth errors), an explicit value needs amg, and
+// membranes without bending keep amg when it was asked for.
+TEST(StepOptions, ErrorDefaultsToTheSchemeAndNeedsAmg)
+{
+  auto settled = [](const std::vector<std::string> &words, StepOptions &o) {
+    return read_words(words, o).problem;
+  };
+  StepOptions euler, genalpha, bdf2, block, jacobi, given, bad, membrane;
+  EXPECT_EQ(settled({}, euler), "");
+  EXPECT_EQ(euler.error, 0.0);
+  EXPECT_EQ(settled({"scheme", "genalpha"}, genalpha), "");
+  EXPECT_EQ(genalpha.error, kDynamicsError);
+  EXPECT_EQ(settled({"scheme", "bdf2"}, bdf2), "");
+  EXPECT_EQ(bdf2.error, kDynamicsError);
+  EXPECT_EQ(settled({"scheme", "genalpha", "precond", "block"}, block), "");
+  EXPECT_EQ(block.error, 0.0);
+  EXPECT_EQ(settled({"scheme", "bdf2", "solver", "jacobi"}, jacobi), "");
+  EXPECT_EQ(jacobi.error, 0.0);
+  EXPECT_EQ(settled({"error", "0.05"}, given), "");
+  EXPECT_EQ(given.error, 0.05);
+  EXPECT_EQ(settled({"error", "0.05", "precond", "block"}, bad),
+            "error needs solver krylov with precond amg (the block preconditioner's estimate "
+            "misses smooth errors by up to the ratio of stiffness to mass)");
+  StepOptions range;
+  EXPECT_EQ(settled({"error", "1"}, range), "error must be >= 0 and < 1, got 1");
+  StepOptions off, tight, both;
+  EXPECT_EQ(settled({"scheme", "genalpha", "error", "0"}, off), "");
+  EXPECT_EQ(off.error, 0.0);
+  // a tolerance asked for is the rule (no default error); both may be asked for
+  EXPECT_EQ(settled({"scheme", "genalpha", "tolerance", "1e-9"}, tight), "");
+  EXPECT_EQ(tight.error, 0.0);
+  EXPECT_EQ(settled({"scheme", "bdf2", "tolerance", "1e-9", "error", "0.01"}, both), "");
+  EXPECT_EQ(both.error, 0.01);
+  // membranes without bending: the default amg becomes block and the rule goes off with it
+  EXPECT_NE(settle_for_membranes(genalpha, true, "int"), "");
+  EXPECT_EQ(genalpha.precond, PrecondKind::block);
+  EXPECT_EQ(genalpha.error, 0.0);
+  EXPECT_EQ(settle_for_membranes(given, true, "int"),
+            "Fix sissm int: membranes without bending (pair_coeff ... membrane yes, no bend) with "
+            "keyword error: precond amg kept (error needs it; without error these membranes take "
+            "precond block)\n");
+  EXPECT_EQ(given.precond, PrecondKind::amg);
 }
 
 }    // namespace

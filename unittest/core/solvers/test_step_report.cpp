@@ -92,20 +92,31 @@ TEST(StepReport, StatisticsOfARun)
   r.krylov = 11;
   st.solved(r);
   st.solved(r);    // a step redone: both solves count
-  st.end_step(30, 2e-7, 1, true);
+  st.end_step(30, 2e-7, 1, true, -1.0);
   st.begin_step();
   st.solved(r);
-  st.end_step(4, 3e-5, 4, false);
+  st.end_step(4, 3e-5, 4, false, -1.0);
   st.cutback++;
   st.switches += 2;
   const double expected[9] = {4, 3e-5, 17, 1, 4, 1, 11, 2, 2};
   for (int n = 0; n < 9; n++) EXPECT_EQ(st.output(n), expected[n]) << n;
+  const double expected_error[2] = {0.0, 0.0};
+  for (int n = 9; n < 11; n++) EXPECT_EQ(st.output(n), expected_error[n - 9]) << n;
   st.begin_step();
-  st.end_step(6, 0.0, 1, true);
+  st.end_step(6, 0.0, 1, true, -1.0);
   EXPECT_EQ(st.output(6), 0.0);    // begin_step cleared the last step's counts
   EXPECT_EQ(st.summary("int"),
             "Fix sissm int run: 3 steps, 13.3333 iterations per step, 1 unconverged, 1 cut back, "
             "2 preconditioner switches");
+  // a step that keyword error ended (its measure above the tolerance)
+  st.begin_step();
+  st.end_step(8, 0.02, 1, true, 0.004);
+  EXPECT_EQ(st.output(9), 0.004);
+  EXPECT_EQ(st.output(10), 1.0);
+  EXPECT_EQ(st.output(3), 1.0);    // not counted as unconverged
+  EXPECT_EQ(st.summary("int"),
+            "Fix sissm int run: 4 steps, 12 iterations per step, 1 unconverged, 1 cut back, "
+            "2 preconditioner switches, 1 ended by the error estimate");
 }
 
 }    // namespace

@@ -81,9 +81,9 @@ TEST(StepRetry, WarnKeepsTheUnconvergedStep)
   const RetryOutcome out = run_retry_ladder(step, policy(Unconverged::warn));
   EXPECT_EQ(step.log, "S1.0 F ");
   EXPECT_FALSE(out.result.converged());
-  EXPECT_EQ(step_verdict(policy(Unconverged::warn), out.result.measure, 1e-6), StepVerdict::warn);
-  EXPECT_EQ(step_verdict(policy(Unconverged::error), out.result.measure, 1e-6), StepVerdict::error);
-  EXPECT_EQ(step_verdict(policy(Unconverged::error), 1e-6, 1e-6), StepVerdict::converged);
+  EXPECT_EQ(step_verdict(policy(Unconverged::warn), out.result.converged()), StepVerdict::warn);
+  EXPECT_EQ(step_verdict(policy(Unconverged::error), out.result.converged()), StepVerdict::error);
+  EXPECT_EQ(step_verdict(policy(Unconverged::error), true), StepVerdict::converged);
 }
 
 // A preconditioner built in an earlier step is rebuilt and the step redone from its start.
@@ -157,7 +157,7 @@ TEST(StepRetry, FixedCountIsNeverRetriedNorRefused)
   const RetryPolicy p = policy(Unconverged::error, 4, true, true);
   const RetryOutcome out = run_retry_ladder(step, p);
   EXPECT_EQ(step.log, "S1.0 ");
-  EXPECT_EQ(step_verdict(p, out.result.measure, 0.0), StepVerdict::warn);
+  EXPECT_EQ(step_verdict(p, out.result.converged()), StepVerdict::warn);
 }
 
 }    // namespace
