@@ -455,6 +455,7 @@ void FixSissm::post_integrate()
   }
 
   stats.begin_step();
+  scheme->set_extrapolation(last_converged);
   // tolerance 0 asks for every step to use all its iterations: such a step is neither redone
   // nor refused
   opt.retry.fixed_count = opt.tolerance == 0.0;
@@ -485,6 +486,7 @@ void FixSissm::post_integrate()
 
   const int evaluations = outcome.evaluations;
   const PeriSISSM::StepVerdict verdict = PeriSISSM::step_verdict(opt.retry, converged);
+  last_converged = converged;
   stats.end_step(evaluations, measure, outcome.substeps,
                  verdict == PeriSISSM::StepVerdict::converged,
                  result.error_met ? result.error : -1.0);

@@ -39,7 +39,7 @@ void GeneralizedAlpha::begin(const Rows &rows, const StepArrays &a)
       if (a.flag) a.yhat[i][k] += c_ * a.flag[i][k] / rows.density[i];
       // the first iterate: the motion at constant acceleration a^n (the predictor plus
       // c a^n), exact where the acceleration does not change (free fall: one evaluation)
-      y[k] += step + c_ * hist[k];
+      y[k] += step + (extrapolate_ ? c_ * hist[k] : 0.0);
     }
   }
 }

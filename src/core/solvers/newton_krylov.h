@@ -18,11 +18,12 @@
 // solution, precond amg): the step has also converged at an evaluation whose estimate
 // max_i |z_i| / l_i is at most error times the step's largest motion max_i |y_i - y_i^n| / l_i
 // (checked before each Newton step, z being the first CG direction; the evaluated iterate is
-// the result, uncorrected: a sweep on a residual that large is not a safe move). The residual measure bounds the distance to
-// the solution by |r_i| / rho_i, which overstates it by up to (h omega)^2 for the stiff modes
-// that a large step takes in one solve (measured on examples/hanging-cloth at 2 ms: the first
-// iterate's measure 0.03 to 0.6, its first Newton step 0.006 to 0.01 particle sizes, z within
-// 30% of that step).
+// the result, uncorrected: a sweep on a residual that large is not a safe move), and CG stops
+// once its own z is a quarter of that target. The residual measure bounds the distance to the
+// solution by |r_i| / rho_i, which overstates it by up to (h omega)^2 for the stiff modes that
+// a large step takes in one solve (measured on examples/hanging-cloth at 2 ms: the first
+// iterate's measure 0.03 to 0.6, its first Newton step 0.006 to 0.01 particle sizes, z within a
+// third of that step).
 
 #ifndef PERISISSM_SOLVERS_NEWTON_KRYLOV_H
 #define PERISISSM_SOLVERS_NEWTON_KRYLOV_H

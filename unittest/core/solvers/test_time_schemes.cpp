@@ -104,6 +104,10 @@ TEST(TimeSchemes, GeneralizedAlphaFreeFallTakesOneEvaluation)
       step(s);
       EXPECT_EQ(s.evaluations(), 1) << rho_inf << " step " << n;
     }
+    // without extrapolation (after an unconverged step) it starts from the predictor
+    s.scheme().set_extrapolation(false);
+    step(s);
+    EXPECT_GT(s.evaluations(), 1) << rho_inf;
   }
 }
 
