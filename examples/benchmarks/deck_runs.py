@@ -47,8 +47,8 @@ class DeckRunner:
         wd.mkdir(parents=True)
         for name in self.shared:
             shutil.copy(self.folder / name, wd)
-        cmd = ["nice", *lammps_run.mpirun_prefix(nprocs), str(self.lmp), "-in", str(self.folder / deck), "-log", "log.lammps",
-               "-nocite", "-screen", "none"]
+        cmd = ["nice", *lammps_run.mpirun_prefix(nprocs), str(self.lmp), "-in",
+               str(self.folder / deck), "-log", "log.lammps", "-nocite", "-screen", "none"]
         for k, v in variables.items():
             cmd += ["-var", k, str(v)]
         t0 = time.time()

@@ -475,7 +475,6 @@ def test_bench_passes_tool():
         <= (four_ms + 0.005) / max(two_ms - 0.005, 1e-9) + 0.0005, out
 
 
-
 def markdown_tables(text):
     """The markdown tables of a text: a list of (header, rows), cells as stripped strings."""
     def cells(line):
@@ -491,11 +490,11 @@ def markdown_tables(text):
 
 # examples/benchmarks/dynamics/cloth.py on two steps of fix sissm (2 ms each) of the hanging cloth
 # (3038 vertices) and of one layer on the ball (1 ms each), against fix nve over the same time:
-# its tables parse, fix sissm used a positive whole number of force evaluations in its dearest
-# step and a positive mean, every time per frame is a positive number, and the accuracy columns
-# of the hanging cloth are finite and small after 4 ms (the first steps of a fall are nearly
-# free: measured 1.3e-3 of the motion for the centre, FIXME). About 20 s on one core.
-@pytest.mark.slow
+# its first table parses, fix sissm used a positive whole number of force evaluations in its
+# dearest step and a positive mean, every time per frame is a positive number, the hanging
+# cloth's accuracy columns are below 0.1 of the motion (measured after 4 ms: 2.2e-5 for the
+# centre, 2.9e-3 for the lowest point) and the ball's layer stays farther than dmin = 1 mm
+# (measured 2.34 and 2.43 mm). About 8 s on one core: in the full tier with the other drivers.
 @pytest.mark.full
 @pytest.mark.parametrize("scene, more", [("hanging", ["--time", "0.004"]),
                                          ("ball", ["--time", "0.002", "--layers", "1"])])
@@ -517,5 +516,6 @@ def test_cloth_in_motion_driver(tmp_path, scene, more):
             assert 0 <= float(row[name]) < 0.1, (name, row)
     else:
         assert row["layers"] == "1", row
-        gaps = [float(v.split()[0]) for v in row["gap at the end (mm): sissm / nve"].split("/")]
-        assert all(g > 1.0 for g in gaps), row
+        # the smallest distance in the final dump, or "> 3" when no pair is within dmin + dhat
+        for gap in row["gap at the end (mm): sissm / nve"].split(" / "):
+            assert "crossing" not in gap and float(gap.lstrip("> ")) > 1.0, row

@@ -20,10 +20,11 @@ examples/cloth-on-ball/in.cloth-on-ball, examples/twisting-cloth/in.twisting-clo
 examples/contact/in.thrown-cloth) with -var settings only:
   hanging  1 m cloth held at two corners, falling and swinging (3038 vertices; --full: 33418).
            fix sissm at 2 ms; fix nve at 2e-4 s (6.3e-5 s at --full), 0.9 x the largest step
-           measured stable (README.md), shortened to fit the same time exactly. Accuracy: the centre of mass and the
-           lowest point at the end against fix nve's (the small-step reference), relative to
-           the reference's own displacement since the start; --halve also runs fix nve at half
-           its step to show that the reference is converged. Frame 1/60 s.
+           measured stable (README.md), shortened to fit the same time exactly. Accuracy: the
+           centre of mass and the lowest point at the end against fix nve's (the small-step
+           reference), relative to the reference's own displacement since the start; --halve
+           also runs fix nve at half its step to show that the reference is converged. Frame
+           1/60 s.
   ball     1, 3 or 6 layers of cloth falling onto a ball. fix sissm at 1 ms (skin 8 mm, ghost
            cutoff 9 cm); fix nve at 20 us. Frame 1/30 s.
   twist    a strip twisted by its ends. fix sissm at 1 ms (kappa 10, the deck's); fix nve at
@@ -106,8 +107,8 @@ def evaluations(run):
     return mean, int(col[k]), int(steps[k])
 
 
-def final_positions(run):
-    """The last frame of the run's dump (dump.run): {"id", "mass" (when dumped), "x"...}."""
+def dump_frames(run):
+    """The frames of the run's dump (dump.run: the start and the end): [{"id", "x", ...}]."""
     return lammps_run.read_dump(run["dir"] / "dump.run")
 
 
@@ -147,14 +148,14 @@ class Cloth:
         return {"steps": n, "dt": repr(dt), "every": every, "dump": n, "name": "run",
                 **self.scene["nve"], **(extra or {})}
 
-    def alternate(self, configs, nprocs):
+    def alternate(self, configs, nprocs, what=""):
         """Runs each (key, variables) of configs in turn, --rounds times; per key the run with
         the shortest loop time (every round gives the same physics)."""
         best = {}
         for r in range(self.args.rounds):
             for key, variables in configs:
                 run = self.runner.run(self.scene["deck"], variables, check=False, nprocs=nprocs,
-                                      label=f"{key}, {nprocs} rank(s), round {r + 1}")
+                                      label=f"{key}, {what}{nprocs} rank(s), round {r + 1}")
                 if key not in best or (run["ok"] and run["loop"] < best[key]["loop"]):
                     best[key] = run
         return best
@@ -188,10 +189,10 @@ class Cloth:
             failed = self.failed(f"fix sissm, {nprocs} rank(s)", s)
             if self.failed(f"fix nve, {nprocs} rank(s)", n):
                 raise RuntimeError("the reference run failed: " + self.notes[-1])
-            frames = final_positions(n)
+            frames = dump_frames(n)
             ref0, ref = centre_and_lowest(frames[0]), centre_and_lowest(frames[-1])
             err = (None, None) if failed else motion_error(
-                centre_and_lowest(final_positions(s)[-1]), ref, ref0)
+                centre_and_lowest(dump_frames(s)[-1]), ref, ref0)
             mean, most, at = evaluations(s)
             sf, nf = self.per_frame(s, self.scene["sissm_dt"]), self.per_frame(n, self.dt_nve)
             rows.append([n["atoms"], nprocs, frame_cell(s, sf), fmt(nf),
@@ -203,7 +204,7 @@ class Cloth:
             if self.args.halve:
                 half = self.runner.run(self.scene["deck"], self.nve_vars(common, halve=True),
                                        nprocs=nprocs, label=f"nve dt/2, {nprocs} rank(s)")
-                e = motion_error(centre_and_lowest(final_positions(half)[-1]), ref, ref0)
+                e = motion_error(centre_and_lowest(dump_frames(half)[-1]), ref, ref0)
                 checks.append([nprocs, f"{self.dt_nve:.4g}", f"{self.dt_nve / 2:.4g}",
                                fmt(e[0], 2), fmt(e[1], 2)])
                 positions.append([f"fix nve dt/2, {nprocs} rank(s)", *position_cells(half)])
@@ -229,7 +230,8 @@ class Cloth:
             mesh = self.contact_mesh(layers)
             for nprocs in self.args.np:
                 best = self.alternate([("sissm", self.sissm_vars(extra)),
-                                       ("nve", self.nve_vars(extra))], nprocs)
+                                       ("nve", self.nve_vars(extra))], nprocs,
+                                      f"{layers} layer(s), " if layers else "")
                 s, n = best["sissm"], best["nve"]
                 what = (f"{layers} layer(s), " if layers else "") + f"{nprocs} rank(s)"
                 self.failed(f"fix sissm, {what}", s)
@@ -318,7 +320,7 @@ def motion_error(run, ref, start):
 def position_cells(run):
     if not run["ok"]:
         return ["-"] * 4
-    c, z = centre_and_lowest(final_positions(run)[-1])
+    c, z = centre_and_lowest(dump_frames(run)[-1])
     return [f"{v:.7g}" for v in (*c, z)]
 
 
@@ -337,7 +339,7 @@ def gap_text(mesh, run):
     with the crossing triangle pairs when there are any; '-' for a failed run."""
     if not run["ok"]:
         return "-"
-    frame = final_positions(run)[-1]
+    frame = dump_frames(run)[-1]
     x = np.column_stack([frame["x"], frame["y"], frame["z"]])[:len(mesh.vertices)]
     radius = DMIN + DHAT
     gaps = mesh.check(x, radius=radius, dmin=DMIN)
