@@ -42,6 +42,7 @@ fix sissm's iterations and tolerance are its defaults (100, 1e-6) in every scene
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import sys
 import tempfile
@@ -178,8 +179,9 @@ class Cloth:
         mesh = self.size["mesh"]
         if not mesh.exists():          # the authors' size is not shipped (hanging-cloth/README)
             import make_sheet
-            make_sheet.main(["rectangle", "1.0", "1.0", "--spacing", str(self.size["a"]),
-                             "--pattern", "equilateral", "-o", str(mesh)])
+            with contextlib.redirect_stdout(sys.stderr):     # its summary line: not the table's
+                make_sheet.main(["rectangle", "1.0", "1.0", "--spacing", str(self.size["a"]),
+                                 "--pattern", "equilateral", "-o", str(mesh)])
         common = {"mesh": mesh, "a": self.size["a"]}
         rows, checks, positions = [], [], []
         for nprocs in self.args.np:
