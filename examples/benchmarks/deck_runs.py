@@ -1,6 +1,6 @@
-"""Shared by the error-against-cost benchmark drivers (error-vs-time/run.py, dynamics/run.py):
-running one LAMMPS deck of a benchmark folder in a numbered work folder, and the small helpers
-of their reports (Pareto fronts, number formatting)."""
+"""Shared by the benchmark drivers (error-vs-time/run.py, dynamics/run.py, dynamics/cloth.py):
+running one LAMMPS deck of a benchmark or example folder in a numbered work folder, and the
+small helpers of their reports (the build measured, Pareto fronts, number formatting)."""
 from __future__ import annotations
 
 import math
@@ -39,16 +39,16 @@ class DeckRunner:
         self.count, self.total_wall = 0, 0.0
         self.progress = Progress(expected, name, approximate=expected is not None)
 
-    def run(self, deck: str, variables: dict, check=True, label=""):
+    def run(self, deck: str, variables: dict, check=True, label="", nprocs=1):
         """ok, log, thermo (last table), errors (ERROR lines), summary (fix sissm's), loop time,
-        loop steps, atoms and the run folder of one run."""
+        loop steps, atoms and the run folder of one run, on nprocs MPI ranks."""
         self.count += 1
         wd = self.work / f"run{self.count:04d}"
         wd.mkdir(parents=True)
         for name in self.shared:
             shutil.copy(self.folder / name, wd)
-        cmd = ["nice", str(self.lmp), "-in", str(self.folder / deck), "-log", "log.lammps",
-               "-nocite", "-screen", "none"]
+        cmd = ["nice", *lammps_run.mpirun_prefix(nprocs), str(self.lmp), "-in",
+               str(self.folder / deck), "-log", "log.lammps", "-nocite", "-screen", "none"]
         for k, v in variables.items():
             cmd += ["-var", k, str(v)]
         t0 = time.time()
@@ -78,6 +78,24 @@ class DeckRunner:
                     loop=float(loop[-1][0]) if loop else float("nan"),
                     loop_steps=int(loop[-1][2]) if loop else 0,
                     atoms=int(loop[-1][3]) if loop else 0, dir=wd)
+
+
+def describe_build(lmp):
+    """The commit of the checkout, whether src/ has uncommitted changes, and the plugin's
+    modification time (the build changes while fix sissm is being worked on)."""
+    def git(*a):
+        try:
+            return subprocess.run(["git", "-C", str(REPO), *a], capture_output=True,
+                                  text=True).stdout.strip()
+        except OSError:
+            return ""
+    head = git("rev-parse", "--short", "HEAD") or "?"
+    dirty = git("status", "--porcelain", "--", "src")
+    plugins = sorted(Path(lmp).resolve().parent.glob("*plugin*.so"))
+    stamp = (time.strftime("%Y-%m-%d %H:%M", time.localtime(plugins[0].stat().st_mtime))
+             if plugins else "?")
+    return (f"commit {head}" + (" with uncommitted changes under src/" if dirty else "")
+            + f", plugin built {stamp}")
 
 
 def pareto(points):

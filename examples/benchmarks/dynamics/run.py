@@ -30,7 +30,6 @@ import csv
 import math
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
@@ -41,7 +40,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parents[2]
 sys.path.insert(0, str(HERE.parent))
-from deck_runs import DeckRunner, fmt, lammps_run, pareto  # noqa: E402
+from deck_runs import DeckRunner, describe_build, fmt, lammps_run, pareto  # noqa: E402
 
 # ----------------------------------------------------------------------------------------------
 # fix sissm variants: ONE place.  Each entry is the option string given to fix sissm ("" = no
@@ -116,24 +115,6 @@ def euler_bernoulli_period(beam):
     L, t = beam["nx"] * beam["a"], beam["nt"] * beam["a"]
     omega = 1.875104069 ** 2 * math.sqrt(E * t * t / 12 / (RHO * L ** 4))
     return 2 * math.pi / omega
-
-
-def describe_build(lmp):
-    """The commit of the checkout, whether src/ has uncommitted changes, and the plugin's
-    modification time (the build changes while fix sissm is being worked on)."""
-    def git(*a):
-        try:
-            return subprocess.run(["git", "-C", str(REPO), *a], capture_output=True,
-                                  text=True).stdout.strip()
-        except OSError:
-            return ""
-    head = git("rev-parse", "--short", "HEAD") or "?"
-    dirty = git("status", "--porcelain", "--", "src")
-    plugins = sorted(Path(lmp).resolve().parent.glob("*plugin*.so"))
-    stamp = (time.strftime("%Y-%m-%d %H:%M", time.localtime(plugins[0].stat().st_mtime))
-             if plugins else "?")
-    return (f"commit {head}" + (" with uncommitted changes under src/" if dirty else "")
-            + f", plugin built {stamp}")
 
 
 def crossings(t, z):
