@@ -22,6 +22,7 @@ LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps wi
 # the summary line fix sissm writes at the end of every run it completes (doc/fix_sissm.rst)
 SUMMARY = re.compile(r"Fix sissm \S+ run: (\d+) steps, ([0-9.eE+-]+) iterations per step, "
                      r"(\d+) unconverged, (\d+) cut back, (\d+) preconditioner switches"
+                     r"(?:, \d+ ended by the error estimate)?"
                      r"(?:; (\d+) set-ups? of the AMG hierarchy)?")
 
 

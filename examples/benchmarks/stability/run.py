@@ -236,6 +236,7 @@ def run(deck: Path, workdir: Path, variables: dict, timeout: float = HANG_GUARD_
 
 SUMMARY = re.compile(r"Fix sissm \S+ run: (\d+) steps, ([0-9.eE+-]+) iterations per step, "
                      r"(\d+) unconverged, (\d+) cut back, (\d+) preconditioner switches"
+                     r"(?:, \d+ ended by the error estimate)?"
                      r"(?:; (\d+) set-ups? of the AMG hierarchy)?")
 
 
