@@ -47,9 +47,9 @@ def test_a_step_beyond_the_neighbor_list_is_cut_back(tmp_path):
     # into sub-steps, each starting from a new neighbor list when the atoms have moved far
     # from the last one (issue 40). Step 1 brings the layers to 1.5 mm, step 2 meets the
     # contact (8 sub-steps); the gap never closes below the contact distance and the blocks
-    # part at 0.2 m/s (backward Euler damps the bounce). Before, the run stopped in step 1 with
-    # the skin's error (and before issue 9 the blocks passed through each other unhindered:
-    # gap 4.5, 1.5, -1.5, -4.5 mm, one iteration per step, "converged").
+    # part at 0.2 m/s (backward Euler damps the bounce). Without contact candidates that
+    # follow the iterates the blocks pass through each other unhindered (gap 4.5, 1.5, -1.5,
+    # -4.5 mm, one iteration per step, "converged").
     run = run_deck(DECK, tmp_path, variables={"gap": 0.0045, "v": 15.0})
     t = run.thermo[-1]
     assert "step 1 did not converge in 100 iterations; redone as" in run.log

@@ -2,8 +2,9 @@
 the defaults and the default short-range contact of peri/nosb, a step whose atoms leave the
 reach of the contact candidates does not converge and is cut back; each sub-step that starts
 far from the last neighbor list build starts from a new one (doc/fix_sissm.rst, "Contact").
-Two scenes that stopped with the skin's ERROR at step 1 or 2 before, run to rest on 1 and 2
-ranks (on 2 ranks atoms change ranks inside the steps):
+Two scenes whose steps move atoms farther than one neighbor list follows (1.075 spacings with
+the decks' skin of one spacing) run to rest on 1 and 2 ranks (on 2 ranks atoms change ranks
+inside the steps):
 
 - a free 5 x 5 x 5 neo-Hookean block whose particles are displaced at random by up to 3
   spacings (each coordinate by up to 1.73 spacings), released at rest, dt = 1e-5 s (about ten
@@ -70,7 +71,7 @@ def test_scrambled_block_recovers(tmp_path, nprocs):
     run = run_deck(BLOCK, tmp_path, nprocs=nprocs, variables={
         **FIX_DEFAULTS, "nx": 5, "ny": 5, "nz": 5, "model": "neohookean", "drand": SCRAMBLE,
         "dt": 1.0e-5, "nsteps": nsteps, "thermo_every": 1, "dump_every": 1})
-    assert "redone as" in run.log  # steps were cut back (they stopped the run before)
+    assert "redone as" in run.log  # steps were cut back
     frames = read_dump(tmp_path / "dump.atoms")
     first, last = frames[0], frames[-1]
     ids = first["id"]
