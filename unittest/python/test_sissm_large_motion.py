@@ -2,9 +2,9 @@
 the defaults and the default short-range contact of peri/nosb, a step whose atoms leave the
 reach of the contact candidates does not converge and is cut back; each sub-step that starts
 far from the last neighbor list build starts from a new one (doc/fix_sissm.rst, "Contact").
-Two scenes whose steps move atoms farther than one neighbor list follows (1.075 spacings with
-the decks' skin of one spacing) run to rest on 1 and 2 ranks (on 2 ranks atoms change ranks
-inside the steps):
+Three scenes whose steps move atoms farther than one neighbor list follows (1.075 spacings with
+the decks' skin of one spacing), each on 1 and 2 ranks (on 2 ranks the first two move atoms
+from one rank to the other inside the steps):
 
 - a free 5 x 5 x 5 neo-Hookean block whose particles are displaced at random by up to 3
   spacings (each coordinate by up to 1.73 spacings), released at rest, dt = 1e-5 s (about ten
@@ -15,6 +15,9 @@ inside the steps):
   (fix wall/harmonic), dt = 0.01 s: it falls 2 to 3 spacings per step and comes to rest on
   the floor, where the wall holds the two layers' weight with the lower one 1.5 mm into the
   wall's zone.
+- the same plate without gravity sliding at 0.2 m/s across the boundary of a box periodic in
+  x and y: the sub-steps' neighbor list builds wrap atoms into the box, and the plate ends
+  where uniform motion puts it.
 
 Bounds: rest means the largest speed below 1e-4 of the largest speed of the run (the block's
 particles reach 400 m/s in its first steps, the plate lands at 0.29 m/s); the damping of
@@ -111,3 +114,29 @@ def test_plate_falls_to_rest_on_the_floor(tmp_path, nprocs):
     d = pair_distances(positions(last))
     np.fill_diagonal(d, np.inf)
     assert np.abs(d.min(axis=1) / A - 1.0).max() < 1e-6
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
+def test_plate_slides_across_a_periodic_boundary(tmp_path, nprocs):
+    # no gravity, 0.2 m/s along x in a box periodic in x and y (12 spacings): 2 mm per step,
+    # every step cut back, and the sub-steps' neighbor list builds wrap the atoms that leave
+    # the box (their rows of the step move with them). A free plate in uniform motion: backward
+    # Euler keeps it exactly, so every atom ends where it started plus v t (to 1e-12 m, the
+    # round-off of positions of a few mm) and the plate is undeformed.
+    nsteps, v, dt = 4, 0.2, 0.01
+    run = run_deck(PLATE, tmp_path, nprocs=nprocs, variables={
+        "nsteps": nsteps, "g": 0, "vx": v, "bxy": "p", "dt": dt})
+    assert run.thermo[-1]["f_integrate[6]"][-1] == nsteps
+    (last,) = read_dump(tmp_path / "dump.final")
+    # 8 mm in a box of 12 mm: the leading 6 columns were wrapped, the last 2 not
+    wraps = np.round((last["xu"] - last["x"]) / (12 * A)).astype(int)
+    assert set(wraps) == {0, 1}
+    unwrapped = np.column_stack([last["xu"], last["yu"], last["zu"]])
+    moved = unwrapped - np.array([v * nsteps * dt, 0.0, 0.0])
+    lattice = np.round(moved / A) * A
+    print(f"{nprocs} ranks: off the moved lattice by {np.abs(moved - lattice).max():.2e} m, "
+          f"velocities off by {np.abs(last['vx'] - v).max():.2e} m/s")
+    assert np.abs(moved - lattice).max() < 1e-12
+    assert len({tuple(p) for p in np.round(lattice / A).astype(int)}) == len(lattice)
+    assert np.abs(last["vx"] - v).max() < 1e-9
+    assert np.abs(last["vy"]).max() < 1e-9 and np.abs(last["vz"]).max() < 1e-9
