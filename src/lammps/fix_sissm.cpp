@@ -14,6 +14,7 @@
 
 #include "implicit_forces.h"
 
+#include "solvers/carried_rows.h"
 #include "solvers/jacobi.h"
 #include "solvers/momentum.h"
 #include "solvers/newton_krylov.h"
@@ -265,6 +266,27 @@ void FixSissm::grow()
   }
 }
 
+/* ----------------------------------------------------------------------
+   the per-atom rows of the step (every work array of this run's options; the history travels
+   with the atoms by itself), those holding positions marked; for neighbor list builds inside
+   a step (fix_sissm_neighbor.cpp)
+------------------------------------------------------------------------- */
+
+std::vector<PeriSISSM::CarriedArray> FixSissm::carried_arrays()
+{
+  std::vector<PeriSISSM::CarriedArray> out;
+  for (const WorkArray &w : work_arrays()) {
+    if (!w.used) continue;
+    PeriSISSM::CarriedArray a;
+    a.rows = w.rows ? *w.rows : nullptr;
+    a.vector = w.vector ? *w.vector : nullptr;
+    a.cols = w.cols;
+    a.position = w.rows == &yn || w.rows == &yhat || w.rows == &xstart || w.rows == &xbase;
+    out.push_back(a);
+  }
+  return out;
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixSissm::setup(int /*vflag*/)
@@ -365,7 +387,9 @@ class SissmAttempts : public PeriSISSM::StepAttempts {
   SissmAttempts(FixSissm *fix, double **flag) : fix_(fix), flag_(flag) {}
   PeriSISSM::SolveResult solve(int n, int s) override
   {
-    return fix_->solve_step(fix_->dtv / n, (double) (s + 1) / n, flag_);
+    // (a sub-step may start with a neighbor list build, which may move flagged)
+    if (n > 1) fix_->start_substep();
+    return fix_->solve_step(fix_->dtv / n, (double) (s + 1) / n, flag_ ? fix_->flagged : nullptr);
   }
   int evaluations() const override { return fix_->system->evaluations(); }
   void restore_start() override { fix_->restore_start(); }
@@ -380,6 +404,7 @@ class SissmAttempts : public PeriSISSM::StepAttempts {
     fix_->place_others(1.0);
     fix_->scheme->set_step(fix_->dtv);
   }
+  bool beyond_reach() override { return fix_->beyond_reach(); }
 
  private:
   FixSissm *fix_;
@@ -403,7 +428,8 @@ void FixSissm::report_retries(const PeriSISSM::RetryOutcome &outcome)
     warned_fallback = 1;
   }
   if (!outcome.cut_back) return;
-  if (outcome.cutback_failed) error->all(FLERR, text.error);
+  // (beyond the contact candidates' reach, contact_end_of_step() says so)
+  if (outcome.cutback_failed && !outcome.beyond_reach) error->all(FLERR, text.error);
   stats.cutback++;
   if (comm->me == 0) utils::logmesg(lmp, text.note);
 }

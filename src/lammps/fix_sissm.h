@@ -31,7 +31,8 @@ FixStyle(sissm,FixSissm);
 
 namespace PeriSISSM {
 class Preconditioner;
-}
+struct CarriedArray;
+}    // namespace PeriSISSM
 
 namespace LAMMPS_NS {
 
@@ -138,6 +139,11 @@ class FixSissm : public Fix {
   void report_retries(const PeriSISSM::RetryOutcome &outcome);
   PeriSISSM::StepContext context() const;    // what the log's texts say about the step
   std::unique_ptr<PeriSISSM::Preconditioner> make_amg();
+  // neighbor list builds inside a cut-back step (fix_sissm_neighbor.cpp)
+  void start_substep();
+  bool beyond_reach();
+  std::vector<PeriSISSM::CarriedArray> carried_arrays();
+  void build_neighbors_in_step();
 };
 
 }    // namespace LAMMPS_NS

@@ -47,9 +47,13 @@ class ImplicitForces {
   // contact_end_of_step() stops with an error when the step's result is that far (cause: what
   // the integrator knows about the step, may be empty) and returns true when the next step
   // should start from a new neighbor list
+  // contact_build_wanted() asks how a (sub-)step should start at the current positions: 0 from
+  // the current candidates, 1 from a new neighbor list, 2 (also) the candidates are incomplete
+  // here (all ranks)
   virtual void track_contact_motion(int flag) = 0;
   virtual int contact_follow_motion() = 0;
   virtual bool contact_end_of_step(const std::string &cause) = 0;
+  virtual int contact_build_wanted() = 0;
 
   // true (all ranks) when an unbroken bond joins an owned atom of groupbit with an atom outside
   // it, or a contact pair did in the evaluations since begin_implicit_step()

@@ -79,6 +79,7 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   void track_contact_motion(int flag) override;
   int contact_follow_motion() override;
   bool contact_end_of_step(const std::string &cause) override;
+  int contact_build_wanted() override;
   bool group_coupled(int groupbit) override;
   void check_motion(int converged) override;
   bool has_unbent_membranes() const override;

@@ -178,6 +178,20 @@ bool PairPeriNosb::contact_end_of_step(const std::string &cause)
 }
 
 /* ----------------------------------------------------------------------
+   before an implicit (sub-)step (all ranks): whether it should start from a new neighbor list
+   (core ContactFollower::build_wanted())
+------------------------------------------------------------------------- */
+
+int PairPeriNosb::contact_build_wanted()
+{
+  if (!follower.tracked() || !list || !follower.current(neighbor->lastcall)) return 0;
+  double moved;
+  tagint worst;
+  motion_since(&moved, &worst);
+  return follower.build_wanted(moved, neighbor->skin);
+}
+
+/* ----------------------------------------------------------------------
    largest distance of an owned atom from the choice of the candidates (all ranks); also the
    largest distance from the last neighbor list build and (in *worst) the ID of the atom that
    moved farthest from it on this rank if that is the global largest, else MAXTAGINT

@@ -89,6 +89,12 @@ bool ContactFollower::reachable(double moved, double skin) const
   return MotionTracker::reachable(reach, MotionTracker::follow_margin(skin), moved, horizon, skin);
 }
 
+int ContactFollower::build_wanted(double moved, double skin) const
+{
+  if (!reachable(moved, skin)) return 2;
+  return moved > MotionTracker::request_distance(skin) ? 1 : 0;
+}
+
 int ContactFollower::after_motion(double from_choice, double from_build, double skin) const
 {
   if (!reachable(from_build, skin)) return -1;

@@ -76,6 +76,10 @@ class ContactFollower {
   void local_moves2(const double *const *x, int nlocal, double moves2[2], int &farthest) const;
   // whether the choice with margin skin/4 is complete after moves up to `moved` from the build
   bool reachable(double moved, double skin) const;
+  // how an implicit (sub-)step should start when the atoms have moved by up to `moved` from the
+  // build (all ranks): 0 from these candidates (moved <= MotionTracker::request_distance()), 1
+  // from a new neighbor list, 2 the candidates cannot be complete here (not reachable())
+  int build_wanted(double moved, double skin) const;
   // an implicit iterate with largest moves from_choice and from_build (over all ranks): -1 the
   // candidates cannot be complete, 0 they are, 1 choose again with MotionTracker::follow_margin()
   int after_motion(double from_choice, double from_build, double skin) const;

@@ -6,6 +6,14 @@ namespace PeriSISSM {
 
 namespace {
 
+  // whether the last solve settles its (sub-)step: converged, and (unless the count is fixed)
+  // ended within the contact candidates' reach, which every solve is asked
+  bool settled(StepAttempts &step, const RetryPolicy &policy, RetryOutcome &out)
+  {
+    out.beyond_reach = !policy.fixed_count && step.beyond_reach();
+    return out.result.converged() && !out.beyond_reach;
+  }
+
   // rung 4: levels of 2^level sub-steps; true when a level converged
   bool cut_back(StepAttempts &step, const RetryPolicy &policy, RetryOutcome &out)
   {
@@ -17,7 +25,7 @@ namespace {
       for (int s = 0; s < n; s++) {
         out.result = step.solve(n, s);
         out.evaluations += step.evaluations();
-        if (!out.result.converged()) {
+        if (!settled(step, policy, out)) {
           done = false;
           break;
         }
@@ -36,21 +44,25 @@ RetryOutcome run_retry_ladder(StepAttempts &step, const RetryPolicy &policy)
   out.result = step.solve(1, 0);
   out.evaluations = step.evaluations();
   const bool retry = !policy.fixed_count;
-  if (!out.result.converged() && retry && step.refresh_preconditioner()) {
+  bool done = settled(step, policy, out);
+  // (beyond reach, the whole step again moves the atoms as far: straight to the sub-steps)
+  if (!done && retry && !out.beyond_reach && step.refresh_preconditioner()) {
     out.refreshed = true;
     step.restore_start();
     out.result = step.solve(1, 0);
     out.evaluations += step.evaluations();
+    done = settled(step, policy, out);
   }
-  if (!out.result.converged() && retry && policy.two_preconditioners) {
+  if (!done && retry && !out.beyond_reach && policy.two_preconditioners) {
     out.switched = true;
     step.restore_start();
     step.switch_preconditioner();
     out.result = step.solve(1, 0);
     out.evaluations += step.evaluations();
-    out.switch_converged = out.result.converged();
+    done = settled(step, policy, out);
+    out.switch_converged = done;
   }
-  if (!out.result.converged() && retry && policy.unconverged == Unconverged::cutback) {
+  if (!done && retry && policy.unconverged == Unconverged::cutback) {
     out.cut_back = true;
     out.cutback_failed = !cut_back(step, policy, out);
   }

@@ -11,6 +11,10 @@
 //      blocks converge);
 //   4. unconverged cutback [N]: from the start as 2, 4, ... 2^N equal sub-steps, the first
 //      level whose sub-steps all converge ends the step; when none does, the step fails.
+// A solve that ends beyond the reach of its contact candidates (StepAttempts::beyond_reach())
+// has not converged, whatever its measure; when the whole step does, rungs 2 and 3 are skipped
+// (the same step with another preconditioner moves the atoms as far, while shorter sub-steps,
+// each starting from fresh candidates, move them less).
 // Then the verdict of the step (step_verdict): converged, or with unconverged warn a warning
 // (once per run) and the step kept, with unconverged error an error.
 
@@ -45,6 +49,9 @@ class StepAttempts {
   virtual void switch_preconditioner() = 0;
   // after the sub-steps: the atoms outside the group and the step length as at the step's end
   virtual void end_cutback() = 0;
+  // true when the last solve ended with the atoms farther from the last neighbor list build
+  // than the contact candidates can follow (asked after every solve unless the count is fixed)
+  virtual bool beyond_reach() = 0;
 
  protected:
   ~StepAttempts() = default;
@@ -57,6 +64,7 @@ struct RetryOutcome {
   bool refreshed = false;           // rung 2 was taken
   bool switched = false;            // rung 3 was taken
   bool switch_converged = false;    // ... and converged the step
+  bool beyond_reach = false;        // the last solve ended beyond the candidates' reach
   bool cut_back = false;            // rung 4 was taken
   bool cutback_failed = false;      // ... and no level converged: the step fails
 };

@@ -218,6 +218,13 @@ TEST(ContactFollower, ImplicitIteratesAndTheStepLimit)
   EXPECT_EQ(f.after_motion(0.049, 0.1, skin), 0);
   EXPECT_EQ(f.after_motion(0.05, 0.1, skin), 1);
   EXPECT_EQ(f.after_motion(0.0, 0.25, skin), -1);
+  // a (sub-)step starts from a new list beyond skin/4 = 0.1, cannot start beyond 0.2
+  EXPECT_EQ(f.build_wanted(0.0, skin), 0);
+  EXPECT_EQ(f.build_wanted(0.1, skin), 0);
+  EXPECT_EQ(f.build_wanted(0.1001, skin), 1);
+  EXPECT_EQ(f.build_wanted(0.2, skin), 1);
+  EXPECT_EQ(f.build_wanted(0.2001, skin), 2);
+  EXPECT_EQ(f.build_wanted(NAN, skin), 2);
   const std::string e = f.too_far(12, 345, 0.25, skin, "");
   EXPECT_EQ(e.rfind("Pair peri/nosb: the implicit step 12 moved atom 345 by 0.25 from", 0), 0u)
       << e;

@@ -26,7 +26,10 @@ class ScriptedStep : public StepAttempts {
   {
     log += "S" + std::to_string(n) + "." + std::to_string(s) + " ";
     EXPECT_LT(next_, script_.size()) << "more solves than scripted: " << log;
-    const bool ok = next_ < script_.size() && script_[next_] == 'c';
+    // c: converged, u: not, r: not and beyond reach, R: converged measure but beyond reach
+    const char c = next_ < script_.size() ? script_[next_] : 'u';
+    const bool ok = c == 'c' || c == 'R';
+    far_ = c == 'r' || c == 'R';
     next_++;
     SolveResult r;
     r.tolerance = 1e-6;
@@ -42,14 +45,21 @@ class ScriptedStep : public StepAttempts {
   }
   void switch_preconditioner() override { log += "P "; }
   void end_cutback() override { log += "E "; }
+  bool beyond_reach() override
+  {
+    reach_asked++;
+    return far_;
+  }
 
   std::string log;
+  int reach_asked = 0;
   size_t solves() const { return next_; }
 
  private:
   std::string script_;
   bool refresh_ok_;
   size_t next_ = 0;
+  bool far_ = false;
 };
 
 RetryPolicy policy(Unconverged u, int levels = 4, bool two = false, bool fixed = false)
@@ -148,6 +158,44 @@ TEST(StepRetry, AllRungsInOrder)
   EXPECT_FALSE(out.switch_converged || out.cutback_failed);
   EXPECT_EQ(out.substeps, 2);
   EXPECT_EQ(out.evaluations, 50);
+}
+
+// A solve that ends beyond the contact candidates' reach has not converged, whatever its
+// measure; a whole step that does goes straight to the sub-steps: no refresh, no other
+// preconditioner (either would move the atoms as far). With warn it is kept (the integrator
+// refuses it). Every solve is asked.
+TEST(StepRetry, BeyondReachGoesStraightToTheSubsteps)
+{
+  ScriptedStep step("rcRcccc", true);
+  const RetryOutcome out = run_retry_ladder(step, policy(Unconverged::cutback, 4, true));
+  EXPECT_EQ(step.log, "S1.0 R S2.0 S2.1 R S4.0 S4.1 S4.2 S4.3 E ");
+  EXPECT_TRUE(out.cut_back);
+  EXPECT_FALSE(out.beyond_reach || out.refreshed || out.switched || out.cutback_failed);
+  EXPECT_EQ(out.substeps, 4);
+  EXPECT_EQ(step.reach_asked, 7);
+
+  ScriptedStep kept("R", true);
+  const RetryOutcome w = run_retry_ladder(kept, policy(Unconverged::warn, 4, true));
+  EXPECT_EQ(kept.log, "S1.0 ");
+  EXPECT_TRUE(w.beyond_reach);
+
+  // the last level ends beyond reach: the step fails, and says why
+  ScriptedStep far("rr", true);
+  const RetryOutcome f = run_retry_ladder(far, policy(Unconverged::cutback, 1, true));
+  EXPECT_EQ(far.log, "S1.0 R S2.0 E ");
+  EXPECT_TRUE(f.cutback_failed && f.beyond_reach);
+
+  // within reach: the ladder as before
+  ScriptedStep near("uuc", true);
+  const RetryOutcome n = run_retry_ladder(near, policy(Unconverged::cutback, 4, true));
+  EXPECT_EQ(near.log, "S1.0 F R S1.0 R P S1.0 ");
+  EXPECT_FALSE(n.beyond_reach);
+  EXPECT_EQ(near.reach_asked, 3);
+
+  // a fixed count is not asked
+  ScriptedStep fixed("R", true);
+  EXPECT_FALSE(run_retry_ladder(fixed, policy(Unconverged::error, 4, true, true)).beyond_reach);
+  EXPECT_EQ(fixed.reach_asked, 0);
 }
 
 // Tolerance 0 (fixed_count): one solve, no retry, no error verdict even with unconverged error.
