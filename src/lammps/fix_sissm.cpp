@@ -428,8 +428,10 @@ void FixSissm::report_retries(const PeriSISSM::RetryOutcome &outcome)
     warned_fallback = 1;
   }
   if (!outcome.cut_back) return;
-  // (beyond the contact candidates' reach, contact_end_of_step() says so)
-  if (outcome.cutback_failed && !outcome.beyond_reach) error->all(FLERR, text.error);
+  // (a last sub-step that converged beyond the contact candidates' reach: contact_end_of_step()
+  // says so)
+  if (outcome.cutback_failed && !(outcome.beyond_reach && outcome.result.converged()))
+    error->all(FLERR, text.error);
   stats.cutback++;
   if (comm->me == 0) utils::logmesg(lmp, text.note);
 }
@@ -481,7 +483,6 @@ void FixSissm::post_integrate()
   }
 
   stats.begin_step();
-  scheme->set_extrapolation(last_converged);
   // tolerance 0 asks for every step to use all its iterations: such a step is neither redone
   // nor refused
   opt.retry.fixed_count = opt.tolerance == 0.0;
@@ -512,7 +513,8 @@ void FixSissm::post_integrate()
 
   const int evaluations = outcome.evaluations;
   const PeriSISSM::StepVerdict verdict = PeriSISSM::step_verdict(opt.retry, converged);
-  last_converged = converged;
+  // (the scheme keeps it in its state: restart files and redone steps carry it)
+  scheme->set_extrapolation(converged);
   stats.end_step(evaluations, measure, outcome.substeps,
                  verdict == PeriSISSM::StepVerdict::converged,
                  result.error_met ? result.error : -1.0);

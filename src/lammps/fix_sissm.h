@@ -99,7 +99,6 @@ class FixSissm : public Fix {
   int block_first = 0;    // precond amg: the blocks converged the last step that amg did not
   // warnings already given in this run: unconverged, round-off floor, preconditioner switch
   int warned = 0, warned_roundoff = 0, warned_fallback = 0;
-  bool last_converged = true;    // the last step converged (the next may extrapolate from it)
   int nmax = 0;
   double **fint = nullptr;    // lagged, mixed: the pair's force density at y^n (pre_reverse)
   double **fext = nullptr;    // the other fixes' force density of the last evaluation (lagged: 0)

@@ -40,6 +40,10 @@ class GeneralizedAlpha : public TimeScheme {
   void begin(const Rows &rows, const StepArrays &a) override;
   void iterate_velocity(int i, const StepArrays &a, double *vel) const override;
   void finish(const Rows &rows, const StepArrays &a) override;
+  // the state: whether the next step extrapolates (TimeScheme::set_extrapolation)
+  int state_size() const override { return 1; }
+  void get_state(double *s) const override { s[0] = extrapolate_ ? 1.0 : 0.0; }
+  void set_state(const double *s) override { extrapolate_ = s[0] != 0.0; }
 
  private:
   // a^{n+1} and v^{n+1} of one component from the unknown u (see above)
