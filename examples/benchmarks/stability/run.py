@@ -47,6 +47,9 @@ import lammps_run  # noqa: E402
 sys.path.insert(0, str(REPO / "tools"))
 from progress import Progress  # noqa: E402
 
+sys.path.insert(0, str(HERE.parent))
+from deck_runs import SUMMARY  # noqa: E402  (fix sissm's run summary line)
+
 MATRIX_DECK = HERE / "in.stability.matrix"
 EXTREME_DECK = HERE / "in.stability.extreme"
 GEOMETRY = HERE / "stability.geometry"
@@ -233,11 +236,6 @@ def run(deck: Path, workdir: Path, variables: dict, timeout: float = HANG_GUARD_
         return None, time.time() - t0
     return r, time.time() - t0
 
-
-SUMMARY = re.compile(r"Fix sissm \S+ run: (\d+) steps, ([0-9.eE+-]+) iterations per step, "
-                     r"(\d+) unconverged, (\d+) cut back, (\d+) preconditioner switches"
-                     r"(?:, \d+ ended by the error estimate)?"
-                     r"(?:; (\d+) set-ups? of the AMG hierarchy)?")
 
 
 def classify(r, wall: float, nsteps: int, sissm: bool) -> Outcome:

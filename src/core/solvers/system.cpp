@@ -8,6 +8,16 @@
 
 namespace PeriSISSM {
 
+namespace {
+
+  // the particle size V_i^(1/3) of row i (rows.size where it is set)
+  inline double row_length(const Rows &rows, int i)
+  {
+    return rows.size ? rows.size[i] : cbrt(rows.volume[i]);
+  }
+
+}    // namespace
+
 double dot(NonlinearSystem &sys, double **a, double **b, double *term)
 {
   const Rows &rows = sys.rows();
@@ -35,7 +45,7 @@ double scaled_max(NonlinearSystem &sys, double **a, bool per_density)
   double local = 0.0;
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
-    const double length = rows.size ? rows.size[i] : cbrt(rows.volume[i]);
+    const double length = row_length(rows, i);
     const double size = per_density ? rows.density[i] * length : length;
     const double m = sqrt(a[i][0] * a[i][0] + a[i][1] * a[i][1] + a[i][2] * a[i][2]) / size;
     if (m > local) local = m;
@@ -50,7 +60,7 @@ double scaled_distance(NonlinearSystem &sys, double **a, double **b)
   double local = 0.0;
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
-    const double length = rows.size ? rows.size[i] : cbrt(rows.volume[i]);
+    const double length = row_length(rows, i);
     double d2 = 0.0;
     for (int k = 0; k < 3; k++) d2 += (a[i][k] - b[i][k]) * (a[i][k] - b[i][k]);
     local = fmax(local, sqrt(d2) / length);
