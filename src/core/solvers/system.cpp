@@ -48,7 +48,8 @@ double scaled_max(NonlinearSystem &sys, double **a, bool per_density)
     const double length = row_length(rows, i);
     const double size = per_density ? rows.density[i] * length : length;
     const double m = sqrt(a[i][0] * a[i][0] + a[i][1] * a[i][1] + a[i][2] * a[i][2]) / size;
-    if (m > local) local = m;
+    // (a value that is not a number counts as infinite: no test passes on it)
+    if (!(m <= local)) local = std::isnan(m) ? INFINITY : m;
   }
   sys.reductions().max(&local, 1);
   return local;
@@ -63,7 +64,8 @@ double scaled_distance(NonlinearSystem &sys, double **a, double **b)
     const double length = row_length(rows, i);
     double d2 = 0.0;
     for (int k = 0; k < 3; k++) d2 += (a[i][k] - b[i][k]) * (a[i][k] - b[i][k]);
-    local = fmax(local, sqrt(d2) / length);
+    const double m = sqrt(d2) / length;
+    if (!(m <= local)) local = std::isnan(m) ? INFINITY : m;
   }
   sys.reductions().max(&local, 1);
   return local;

@@ -62,7 +62,9 @@ double dot(NonlinearSystem &sys, double **a, double **b, double *term);
 double merit(NonlinearSystem &sys, double *term);
 // max_i |a_i| / V_i^(1/3) over the unknown rows (all processes), times 1/rho_i when
 // per_density: with a = r the convergence measure (the residual as a length relative to the
-// particle size; near a stable state J >= rho, so |r|/rho bounds the distance to the solution)
+// particle size; near a stable state J >= rho, so |r|/rho bounds the distance to the solution).
+// A row that is not a number makes it infinite (so does it scaled_distance): no tolerance is
+// met on it.
 double scaled_max(NonlinearSystem &sys, double **a, bool per_density);
 
 // max_i |a_i - b_i| / V_i^(1/3) over the unknown rows (all processes)

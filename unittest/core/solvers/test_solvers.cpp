@@ -105,6 +105,36 @@ TEST(Solvers, ErrorRuleStopsWithinItsEstimate)
   EXPECT_EQ(plain.evaluations(), tight.evaluations());
 }
 
+// A preconditioner whose answer is not a number (a broken set of user options) estimates no
+// error: the rule never ends the step on it, the solve stays unconverged (measured before the
+// guard: PETSc with an SOR smoother on the hanging cloth gave z = NaN, and every step ended on
+// the rule after one evaluation while the cloth blew up).
+struct NotANumber : BlockPreconditioner {
+  bool estimates_error() const override { return true; }
+  void apply(NonlinearSystem &sys, double **r, double **z) override
+  {
+    BlockPreconditioner::apply(sys, r, z);
+    z[1][0] = std::nan("");
+  }
+};
+
+TEST(Solvers, ErrorRuleIgnoresAnEstimateThatIsNotANumber)
+{
+  Springs s(2, 0.05, make_time_scheme("genalpha", 0.8));
+  s.y.rows[1][0] = 1.0;
+  s.spring(0, 1, 400.0 / (0.05 * 0.05), 1.0);
+  s.pin(0);
+  s.g[2] = -10.0;
+  s.v.rows[1][1] = 3.0;
+  s.begin();
+  s.tol = 1e-13;
+  KrylovTables kt(2);
+  NotANumber nan;
+  const SolveResult r = solve_newton_krylov(s, nan, 20, kt.work(), 0.01);
+  EXPECT_FALSE(r.error_met);
+  EXPECT_FALSE(r.converged());
+}
+
 // The documented equivalence: Newton-Krylov with a budget of one evaluation is the plain SISSM
 // sweep, to the last bit.
 TEST(Solvers, OneEvaluationOfKrylovIsOneSweep)
