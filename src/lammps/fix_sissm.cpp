@@ -89,15 +89,18 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 
   scheme = PeriSISSM::make_time_scheme(opt.scheme, opt.rho_inf);
   ncols = scheme->history_columns();
-  if (ncols > 0) {
-    // the history travels with the atoms and is kept in restart files
-    restart_global = 1;
-    restart_peratom = 1;
-    maxexchange = ncols;
+  travels = opt.precond == PrecondKind::amg;
+  if (ncols > 0 || travels) {
+    // the history (kept in restart files too) and amg's node numbers travel with the atoms
+    maxexchange = ncols + (travels ? 1 : 0);
     grow_arrays(atom->nmax);
     atom->add_callback(Atom::GROW);
-    atom->add_callback(Atom::RESTART);
     for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  }
+  if (ncols > 0) {
+    restart_global = 1;
+    restart_peratom = 1;
+    atom->add_callback(Atom::RESTART);
   }
 #ifndef PERISISSM_HAVE_PETSC
   if (opt.precond == PrecondKind::amg)
@@ -112,11 +115,10 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 
 FixSissm::~FixSissm()
 {
-  if (ncols > 0) {
-    atom->delete_callback(id, Atom::GROW);
-    atom->delete_callback(id, Atom::RESTART);
-  }
+  if (ncols > 0 || travels) atom->delete_callback(id, Atom::GROW);
+  if (ncols > 0) atom->delete_callback(id, Atom::RESTART);
   memory->destroy(hist);
+  memory->destroy(gnode);
   destroy_arrays();
 }
 
@@ -235,7 +237,6 @@ std::vector<FixSissm::WorkArray> FixSissm::work_arrays()
           {&hstart, nullptr, ncols, restart && history, "sissm:hstart"},
           {&vn, nullptr, 3, history, "sissm:vn"},
           {&fstart, nullptr, 3, history, "sissm:fstart"},
-          {nullptr, &gnode, 1, opt.precond == PrecondKind::amg, "sissm:gnode"},
           {&rprev, nullptr, 3, opt.relax, "sissm:rprev"},
           {&dprev, nullptr, 3, opt.relax, "sissm:dprev"},
           {&xbase, nullptr, 3, krylov, "sissm:krylov"},

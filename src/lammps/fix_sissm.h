@@ -116,7 +116,10 @@ class FixSissm : public Fix {
   double **hstart = nullptr;          // the history at the start of the step (redone steps)
   std::vector<double> state_start;    // the scheme's global state at the start of the step
   double **vn = nullptr, **fstart = nullptr;    // with history: v^n, the force density at y^n
-  double *gnode = nullptr;    // amg: global node number of each atom (-1: not an unknown)
+  // amg: global node number of each atom (-1: not an unknown); it travels with the atom, so a
+  // hierarchy outlives atoms changing processes or local slots (fix_sissm_amg.cpp)
+  double *gnode = nullptr;
+  bool travels = false;    // amg: gnode is allocated and travels
   double *psize = nullptr;    // V^(1/3) of each atom (Rows::size), refreshed at every step
   friend class SissmAmg;
   friend class SissmSystem;

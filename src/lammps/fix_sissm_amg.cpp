@@ -1,8 +1,9 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: fix sissm precond amg (doc/fix_sissm.rst, "Preconditioners": what is assembled,
    and when the pattern, the hierarchy and its interpolation are made again). The matrix of
-   solvers/block_matrix.h over the group's atoms, numbered contiguously in rank order (the
-   numbers reach the ghosts by a forward communication), applied by PETSc (petsc_amg.h).
+   solvers/block_matrix.h over the group's atoms, numbered contiguously in rank order when a
+   hierarchy is made (the numbers travel with the atoms and reach the ghosts by a forward
+   communication), applied by PETSc (petsc_amg.h).
 ------------------------------------------------------------------------- */
 
 #include "fix_sissm.h"
@@ -22,6 +23,7 @@
 #include "petsc_amg.h"
 #endif
 
+#include <cstdint>
 #include <stdexcept>
 #include <utility>
 
@@ -30,6 +32,11 @@ using namespace LAMMPS_NS;
 #ifdef PERISISSM_HAVE_PETSC
 
 namespace LAMMPS_NS {
+
+// PETSc options for a group of membrane particles only, before the user's: the interpolation of
+// the plain aggregates, not smoothed (measured on the hanging cloth: the same CG iterations
+// for about 16% less CPU time; on the solid cantilever's static step smoothing is needed)
+constexpr const char *kMembraneOptions = "-pc_gamg_agg_nsmooths 0";
 
 class SissmAmg : public PeriSISSM::Preconditioner {
  public:
@@ -56,15 +63,24 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   std::vector<int> hinge_vertex_;       // and the hinges
   bigint built_at_ = -1;                // neighbor->lastcall of that build
   int nlocal_ = -1;
-  int nodes_ = 0;
+  bigint total_ = 0;                    // unknowns of all ranks when they were numbered
+  std::uint64_t signature_ = 0;         // the pattern's (all ranks)
+  std::uint64_t matrix_signature_ = 0;    // the pattern PETSc's matrix was made with
   bool logged_ = false;
   std::vector<double> values_, coords_, b_, z_;
+  std::vector<int> unknown_nodes_;
   bool all_ranks(bool mine);
   bool pattern_current();
-  // numbers the unknowns and builds the pattern; false (all ranks) when it is the one the
-  // hierarchy has already (a neighbor list build that moved no atom between slots or ranks)
+  // the pattern of the current atoms; false (all ranks) when it is the one PETSc's matrix has:
+  // the unknowns still carry the numbers they were given and are coupled as they were
   bool build_pattern(const PeriSISSM::Rows &rows);
-  // a new PETSc hierarchy (aggregates and interpolation) for the current pattern
+  // the unknowns numbered contiguously in rank order, and their pattern
+  void number_unknowns(const PeriSISSM::Rows &rows);
+  // the pattern and its signature from the unknowns' numbers (their ghosts' too)
+  void pattern_from_numbers(const PeriSISSM::Rows &rows);
+  // whether every unknown of this rank carries a number and no other atom does
+  bool numbers_carried(const PeriSISSM::Rows &rows) const;
+  // a new PETSc matrix and hierarchy (aggregates and interpolation) for the current pattern
   void make_hierarchy();
   // a call of PETSc whose failure ends the run with its message
   template <class Call> void guarded(Call call)
@@ -99,33 +115,68 @@ bool SissmAmg::pattern_current()
                    hinge_vertex_ == hinges_.vertex);
 }
 
-bool SissmAmg::build_pattern(const PeriSISSM::Rows &rows)
+bool SissmAmg::numbers_carried(const PeriSISSM::Rows &rows) const
 {
-  Atom *atom = fix_->atom;
-  double *gnode = fix_->gnode;
-  const int count = PeriSISSM::count_unknowns(rows);
-  int offset = 0;
-  MPI_Exscan(&count, &offset, 1, MPI_INT, MPI_SUM, fix_->world);
-  if (fix_->comm->me == 0) offset = 0;
-  PeriSISSM::number_unknowns(rows, offset, atom->nlocal + atom->nghost, gnode);
-  fix_->comm->forward_comm(fix_);
+  for (int i = 0; i < rows.n; i++)
+    if ((fix_->gnode[i] >= 0.0) != rows.has(i)) return false;
+  return true;
+}
 
-  const PeriSISSM::BlockPattern old = std::move(pattern_);
-  PeriSISSM::build_block_pattern(rows, gnode, springs_, hinges_, hinge_index_, pattern_);
+void SissmAmg::pattern_from_numbers(const PeriSISSM::Rows &rows)
+{
+  fix_->comm->forward_comm(fix_);
+  PeriSISSM::build_block_pattern(rows, fix_->gnode, springs_, hinges_, hinge_index_, pattern_);
+  std::uint64_t mine = PeriSISSM::pattern_signature(pattern_);
+  MPI_Allreduce(&mine, &signature_, 1, MPI_UINT64_T, MPI_SUM, fix_->world);
   first_ = springs_.first;
   partner_ = springs_.partner;
   hinge_vertex_ = hinges_.vertex;
   built_at_ = fix_->neighbor->lastcall;
-  nlocal_ = atom->nlocal;
-  if (all_ranks(amg_ && count == nodes_ && pattern_ == old)) return false;
+  nlocal_ = fix_->atom->nlocal;
+  unknown_nodes_.clear();
+  for (int i = 0; i < rows.n; i++)
+    if (rows.has(i)) unknown_nodes_.push_back((int) fix_->gnode[i]);
+}
 
-  nodes_ = count;
-  z_.assign(3 * count, 0.0);
-  guarded([&] {
-    if (!amg_)
-      amg_ = std::make_unique<PetscAmg>(fix_->world, fmt::format("sissm_{}_", fix_->id),
-                                        fix_->opt.petsc);
-  });
+void SissmAmg::number_unknowns(const PeriSISSM::Rows &rows)
+{
+  Atom *atom = fix_->atom;
+  const int count = PeriSISSM::count_unknowns(rows);
+  int offset = 0;
+  MPI_Exscan(&count, &offset, 1, MPI_INT, MPI_SUM, fix_->world);
+  if (fix_->comm->me == 0) offset = 0;
+  PeriSISSM::number_unknowns(rows, offset, atom->nlocal + atom->nghost, fix_->gnode);
+  bigint mine = count;
+  MPI_Allreduce(&mine, &total_, 1, MPI_LMP_BIGINT, MPI_SUM, fix_->world);
+  pattern_from_numbers(rows);
+}
+
+bool SissmAmg::build_pattern(const PeriSISSM::Rows &rows)
+{
+  // the numbers travel with the atoms (fix_sissm_history.cpp): while every unknown carries its
+  // own and the couplings are the same, PETSc's matrix and hierarchy stay
+  bigint count = PeriSISSM::count_unknowns(rows), all = 0;
+  MPI_Allreduce(&count, &all, 1, MPI_LMP_BIGINT, MPI_SUM, fix_->world);
+  if (amg_ && all == total_ && all_ranks(numbers_carried(rows))) {
+    pattern_from_numbers(rows);
+    if (signature_ == matrix_signature_) {
+      guarded([&] {
+        amg_->set_unknowns(unknown_nodes_);
+      });
+      return false;
+    }
+  }
+  number_unknowns(rows);
+  if (!amg_) {
+    // membranes: plain aggregates (doc/fix_sissm.rst, "PETSc options"), before the user's
+    const std::string options = (fix_->forces->only_membranes(fix_->groupbit)
+                                     ? std::string(kMembraneOptions) + " "
+                                     : std::string()) +
+        fix_->opt.petsc;
+    guarded([&] {
+      amg_ = std::make_unique<PetscAmg>(fix_->world, fmt::format("sissm_{}_", fix_->id), options);
+    });
+  }
   make_hierarchy();
   return true;
 }
@@ -133,8 +184,10 @@ bool SissmAmg::build_pattern(const PeriSISSM::Rows &rows)
 void SissmAmg::make_hierarchy()
 {
   guarded([&] {
-    amg_->set_pattern(nodes_, pattern_.row, pattern_.col);
+    amg_->set_pattern((int) unknown_nodes_.size(), pattern_.row, pattern_.col);
+    amg_->set_unknowns(unknown_nodes_);
   });
+  matrix_signature_ = signature_;
   schedule_.made_hierarchy(built_at_);
 }
 
@@ -149,11 +202,15 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
   const bool same_pattern = pattern_current() || !build_pattern(rows);
   if (!schedule_.setup_wanted(same_pattern, c)) return;
   fix_->forces->hinge_couplings(hinges_, true);
-  if (schedule_.begin_setup(same_pattern, built_at_, c)) make_hierarchy();
+  if (schedule_.begin_setup(same_pattern, built_at_, c)) {
+    // (numbered again: the matrix's rows go back to the processes of their atoms)
+    number_unknowns(rows);
+    make_hierarchy();
+  }
   PeriSISSM::assemble_blocks(rows, fix_->gnode, c, springs_, hinges_, hinge_index_, pattern_,
                              fix_->atom->x, values_, coords_);
   guarded([&] {
-    amg_->set_values(values_, coords_.data());
+    amg_->set_values(pattern_.row, pattern_.col, values_, coords_.data());
   });
   if (!logged_) {
     // describe() is collective (the matrix's global nonzero count): every rank calls it
@@ -167,6 +224,7 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
 void SissmAmg::apply(PeriSISSM::NonlinearSystem &sys, double **r, double **z)
 {
   PeriSISSM::gather_weighted(sys.rows(), r, b_);
+  z_.resize(b_.size());
   guarded([&] {
     amg_->apply(b_.data(), z_.data());
   });

@@ -1,7 +1,8 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: fix sissm, the per-atom history of the time scheme (solvers/time_scheme.h, its
    columns and global state): it moves with its atom between processes and restart files keep
-   it, so that a run split by a restart continues as if it had not been split. A restart file
+   it, so that a run split by a restart continues as if it had not been split. precond amg's
+   node numbers (fix_sissm_amg.cpp) move with their atoms too (restart files do not keep them). A restart file
    written with another scheme (or none) gives no history: the atoms start again as at the
    first step, and the log says so.
 ------------------------------------------------------------------------- */
@@ -36,29 +37,34 @@ double scheme_code(const std::string &name)
 void FixSissm::grow_arrays(int n)
 {
   if (ncols > 0) memory->grow(hist, n, ncols, "sissm:hist");
+  if (travels) memory->grow(gnode, n, "sissm:gnode");
 }
 
 void FixSissm::copy_arrays(int i, int j, int /*delflag*/)
 {
   for (int k = 0; k < ncols; k++) hist[j][k] = hist[i][k];
+  if (travels) gnode[j] = gnode[i];
 }
 
-// a new atom has no history
+// a new atom has no history and no node number
 void FixSissm::set_arrays(int i)
 {
   for (int k = 0; k < ncols; k++) hist[i][k] = 0.0;
+  if (travels) gnode[i] = -1.0;
 }
 
 int FixSissm::pack_exchange(int i, double *buf)
 {
   for (int k = 0; k < ncols; k++) buf[k] = hist[i][k];
-  return ncols;
+  if (travels) buf[ncols] = gnode[i];
+  return maxexchange;
 }
 
 int FixSissm::unpack_exchange(int nlocal, double *buf)
 {
   for (int k = 0; k < ncols; k++) hist[nlocal][k] = buf[k];
-  return ncols;
+  if (travels) gnode[nlocal] = buf[ncols];
+  return maxexchange;
 }
 
 /* ----------------------------------------------------------------------

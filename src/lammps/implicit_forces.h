@@ -67,6 +67,9 @@ class ImplicitForces {
   // matrix has no stiffness out of their plane but the mass (fix sissm's default
   // preconditioner is then block)
   virtual bool has_unbent_membranes() const = 0;
+  // true (all ranks) when every owned atom of groupbit is a particle of a membrane type
+  // (precond amg then aggregates without smoothing the interpolation: fix_sissm_amg.cpp)
+  virtual bool only_membranes(int groupbit) = 0;
 
  protected:
   // not deleted through this interface (its implementations are LAMMPS styles whose

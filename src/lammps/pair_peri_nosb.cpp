@@ -228,6 +228,15 @@ bool PairPeriNosb::has_unbent_membranes() const
   return model_ && model_->any_membrane() && coeffs->any_unbent_membrane(bend);
 }
 
+bool PairPeriNosb::only_membranes(int groupbit)
+{
+  int mine = 1, all = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((atom->mask[i] & groupbit) && !coeffs->at(atom->type[i], atom->type[i]).membrane) mine = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, world);
+  return all == 1;
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairPeriNosb::grow_peratom()

@@ -61,17 +61,59 @@ struct PetscAmg::Impl {
   Vec b = nullptr, z = nullptr, coords = nullptr;
   PC pc = nullptr;
   MatNullSpace nullsp = nullptr;
-  int nodes = 0;
-  bool options_inserted = false;
+  // the unknowns of this process in its own order (3 values each), and the scatter between
+  // them and the matrix's vectors
+  Vec mine = nullptr;
+  VecScatter scatter = nullptr;
+  int unknowns = 0;
 
+  void destroy_unknowns()
+  {
+    if (scatter) VecScatterDestroy(&scatter);
+    if (mine) VecDestroy(&mine);
+  }
   void destroy_matrix()
   {
+    destroy_unknowns();
     if (pc) PCDestroy(&pc);
     if (nullsp) MatNullSpaceDestroy(&nullsp);
     if (A) MatDestroy(&A);
     if (b) VecDestroy(&b);
     if (z) VecDestroy(&z);
     if (coords) VecDestroy(&coords);
+  }
+  // the vector of the matrix's layout := this process's unknowns' values (3 each)
+  void to_matrix(const double *in, Vec out)
+  {
+    PetscScalar *p = nullptr;
+    check(VecGetArray(mine, &p), "VecGetArray");
+    for (int k = 0; k < 3 * unknowns; k++) p[k] = in[k];
+    check(VecRestoreArray(mine, &p), "VecRestoreArray");
+    check(VecScatterBegin(scatter, mine, out, INSERT_VALUES, SCATTER_REVERSE), "VecScatterBegin");
+    check(VecScatterEnd(scatter, mine, out, INSERT_VALUES, SCATTER_REVERSE), "VecScatterEnd");
+  }
+  void from_matrix(Vec in, double *out)
+  {
+    check(VecScatterBegin(scatter, in, mine, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(scatter, in, mine, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar *q = nullptr;
+    check(VecGetArrayRead(mine, &q), "VecGetArrayRead");
+    for (int k = 0; k < 3 * unknowns; k++) out[k] = q[k];
+    check(VecRestoreArrayRead(mine, &q), "VecRestoreArrayRead");
+  }
+  // the blocks (rows[m], cols[m]) := values (zeros when values is null), summed over repeats
+  // and processes
+  void insert(const std::vector<int> &rows, const std::vector<int> &cols, const double *values)
+  {
+    check(MatZeroEntries(A), "MatZeroEntries");
+    const PetscScalar zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (std::size_t m = 0; m < rows.size(); m++) {
+      const PetscInt r = rows[m], c = cols[m];
+      check(MatSetValuesBlocked(A, 1, &r, 1, &c, values ? values + 9 * m : zero, ADD_VALUES),
+            "MatSetValuesBlocked");
+    }
+    check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   }
 };
 
@@ -100,23 +142,26 @@ void PetscAmg::set_pattern(int nodes, const std::vector<int> &rows, const std::v
 {
   Impl &d = *d_;
   d.destroy_matrix();
-  d.nodes = nodes;
-  const PetscInt n = 3 * nodes;
+  int first = 0;
+  MPI_Exscan(&nodes, &first, 1, MPI_INT, MPI_SUM, d.comm);
+  int me = 0;
+  MPI_Comm_rank(d.comm, &me);
+  if (me == 0) first = 0;
   check(MatCreate(d.comm, &d.A), "MatCreate");
-  check(MatSetSizes(d.A, n, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetSizes(d.A, 3 * nodes, 3 * nodes, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
   check(MatSetBlockSize(d.A, 3), "MatSetBlockSize");
   check(MatSetType(d.A, MATAIJ), "MatSetType");
-  // one COO entry per scalar: block (r, c) holds rows 3r+a, columns 3c+b
-  const size_t nb = rows.size();
-  std::vector<PetscInt> ci(9 * nb), cj(9 * nb);
-  for (size_t m = 0; m < nb; m++)
-    for (int a = 0; a < 3; a++)
-      for (int c = 0; c < 3; c++) {
-        ci[9 * m + 3 * a + c] = 3 * rows[m] + a;
-        cj[9 * m + 3 * a + c] = 3 * cols[m] + c;
-      }
-  check(MatSetPreallocationCOO(d.A, (PetscCount) ci.size(), ci.data(), cj.data()),
-        "MatSetPreallocationCOO");
+  // blocks per block row inside and outside this process's columns
+  std::vector<PetscInt> inside(nodes, 0), outside(nodes, 0);
+  for (std::size_t m = 0; m < rows.size(); m++) {
+    const bool in = cols[m] >= first && cols[m] < first + nodes;
+    (in ? inside : outside)[rows[m] - first]++;
+  }
+  check(MatXAIJSetPreallocation(d.A, 3, inside.data(), outside.data(), nullptr, nullptr),
+        "MatXAIJSetPreallocation");
+  // the pattern, fixed: a value outside it is an error, not a new nonzero
+  d.insert(rows, cols, nullptr);
+  check(MatSetOption(d.A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(d.A, &d.z, &d.b), "MatCreateVecs");
   check(VecDuplicate(d.b, &d.coords), "VecDuplicate");
   check(VecSetBlockSize(d.coords, 3), "VecSetBlockSize");
@@ -128,14 +173,28 @@ void PetscAmg::set_pattern(int nodes, const std::vector<int> &rows, const std::v
   check(PCSetFromOptions(d.pc), "PCSetFromOptions (the petsc options string)");
 }
 
-void PetscAmg::set_values(const std::vector<double> &values, const double *xyz)
+void PetscAmg::set_unknowns(const std::vector<int> &nodes)
 {
   Impl &d = *d_;
-  check(MatSetValuesCOO(d.A, values.data(), INSERT_VALUES), "MatSetValuesCOO");
-  PetscScalar *c = nullptr;
-  check(VecGetArray(d.coords, &c), "VecGetArray");
-  for (int k = 0; k < 3 * d.nodes; k++) c[k] = xyz[k];
-  check(VecRestoreArray(d.coords, &c), "VecRestoreArray");
+  d.destroy_unknowns();
+  d.unknowns = (int) nodes.size();
+  std::vector<PetscInt> block(nodes.begin(), nodes.end());
+  IS where = nullptr;
+  check(ISCreateBlock(PETSC_COMM_SELF, 3, (PetscInt) block.size(), block.data(),
+                      PETSC_COPY_VALUES, &where),
+        "ISCreateBlock");
+  check(VecCreateSeq(PETSC_COMM_SELF, 3 * d.unknowns, &d.mine), "VecCreateSeq");
+  const PetscErrorCode ierr = VecScatterCreate(d.b, where, d.mine, nullptr, &d.scatter);
+  ISDestroy(&where);
+  check(ierr, "VecScatterCreate");
+}
+
+void PetscAmg::set_values(const std::vector<int> &rows, const std::vector<int> &cols,
+                          const std::vector<double> &values, const double *xyz)
+{
+  Impl &d = *d_;
+  d.insert(rows, cols, values.data());
+  d.to_matrix(xyz, d.coords);
   if (d.nullsp) MatNullSpaceDestroy(&d.nullsp);
   check(MatNullSpaceCreateRigidBody(d.coords, &d.nullsp), "MatNullSpaceCreateRigidBody");
   check(MatSetNearNullSpace(d.A, d.nullsp), "MatSetNearNullSpace");
@@ -146,16 +205,9 @@ void PetscAmg::set_values(const std::vector<double> &values, const double *xyz)
 void PetscAmg::apply(const double *bin, double *zout)
 {
   Impl &d = *d_;
-  const int n = 3 * d.nodes;
-  PetscScalar *p = nullptr;
-  check(VecGetArray(d.b, &p), "VecGetArray");
-  for (int k = 0; k < n; k++) p[k] = bin[k];
-  check(VecRestoreArray(d.b, &p), "VecRestoreArray");
+  d.to_matrix(bin, d.b);
   check(PCApply(d.pc, d.b, d.z), "PCApply");
-  const PetscScalar *q = nullptr;
-  check(VecGetArrayRead(d.z, &q), "VecGetArrayRead");
-  for (int k = 0; k < n; k++) zout[k] = q[k];
-  check(VecRestoreArrayRead(d.z, &q), "VecRestoreArrayRead");
+  d.from_matrix(d.z, zout);
 }
 
 std::string PetscAmg::describe() const

@@ -4,8 +4,11 @@
    A distributed algebraic multigrid preconditioner from PETSc (smoothed aggregation, PCGAMG,
    by default): z = M^-1 b for a sparse symmetric matrix M with three unknowns per node (block
    size 3), assembled from coordinate (COO) lists in global node numbers, with the six
-   rigid-body modes of the nodes' coordinates as its near-null space. Knows MPI and PETSc, not
-   LAMMPS: fix sissm numbers the nodes and fills the lists (fix_sissm_amg.cpp). Errors are
+   rigid-body modes of the nodes' coordinates as its near-null space. The matrix's pattern and
+   its rows' processes are fixed when it is made; each process then gives the values of its
+   unknowns' rows and its unknowns' entries of b and z wherever the matrix holds them, so the
+   hierarchy outlives nodes changing processes. Knows MPI and PETSc, not LAMMPS: fix sissm
+   numbers the nodes and fills the lists (fix_sissm_amg.cpp). Errors are
    thrown as std::runtime_error with PETSc's message.
 ------------------------------------------------------------------------- */
 
@@ -30,16 +33,22 @@ class PetscAmg {
   PetscAmg(const PetscAmg &) = delete;
   PetscAmg &operator=(const PetscAmg &) = delete;
 
-  // nodes: owned nodes of this process (global numbers first .. first + nodes - 1, numbered
-  // contiguously over the processes in rank order); rows, cols: global node numbers of the
-  // 3x3 blocks this process adds (each entry is one block, 9 values); entries of repeated
-  // blocks are summed. Rebuilds the matrix (and drops the hierarchy).
+  // A new matrix (and no hierarchy): nodes: the nodes this process owns in the matrix (global
+  // numbers first .. first + nodes - 1, numbered contiguously over the processes in rank
+  // order); rows, cols: global node numbers of the 3x3 blocks of the pattern this process
+  // holds, each of its rows one of its own nodes. Later values may come from other processes
+  // (set_values), the pattern's blocks stay the only ones.
   void set_pattern(int nodes, const std::vector<int> &rows, const std::vector<int> &cols);
-  // values: 9 per block of set_pattern(), row-major; coords: 3 per owned node (the
-  // near-null space). Then the preconditioner is set up (the first time: the hierarchy;
-  // later: again, reusing the interpolation when the options allow it).
-  void set_values(const std::vector<double> &values, const double *coords);
-  // z = M^-1 b, 3 * nodes values each
+  // the unknowns of this process, in its order of b and z (apply) and of the coordinates
+  // (set_values): their global node numbers, owned in the matrix by any process. Collective.
+  void set_unknowns(const std::vector<int> &nodes);
+  // values: 9 per block (rows[m], cols[m]), row-major, blocks of set_pattern's pattern held by
+  // any process (entries of repeated blocks are summed); coords: 3 per unknown (the near-null
+  // space). Then the preconditioner is set up (the first time: the hierarchy; later: again,
+  // reusing the interpolation when the options allow it). Collective.
+  void set_values(const std::vector<int> &rows, const std::vector<int> &cols,
+                  const std::vector<double> &values, const double *coords);
+  // z = M^-1 b, 3 values per unknown each. Collective.
   void apply(const double *b, double *z);
 
   // what PETSc built, one line (after set_values): preconditioner type, levels, the matrix's

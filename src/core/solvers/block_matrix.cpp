@@ -76,6 +76,21 @@ void build_block_pattern(const Rows &rows, const double *node, const BondSprings
   }
 }
 
+std::uint64_t pattern_signature(const BlockPattern &pattern)
+{
+  std::uint64_t sum = 0;
+  for (std::size_t m = 0; m < pattern.col.size(); m++) {
+    // splitmix64's finalizer of the pair
+    std::uint64_t z = ((std::uint64_t) (std::uint32_t) pattern.row[m] << 32) |
+        (std::uint32_t) pattern.col[m];
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    sum += z ^ (z >> 31);
+  }
+  return sum;
+}
+
 void assemble_blocks(const Rows &rows, const double *node, double c, const BondSprings &springs,
                      const HingeCouplings &hinges, const HingeIndex &index,
                      const BlockPattern &pattern, double **x, std::vector<double> &values,

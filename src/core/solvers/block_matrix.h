@@ -15,6 +15,7 @@
 #include "peri/bond_stiffness.h"
 #include "solvers/system.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace PeriSISSM {
@@ -40,6 +41,12 @@ struct BlockPattern {
   int find(int r, int gcol) const;
   bool operator==(const BlockPattern &o) const { return first == o.first && col == o.col; }
 };
+
+// A number naming the pattern's set of blocks (global row, global column) whatever their order
+// and the process that holds them: the sum (modulo 2^64) of a 64-bit mix of each block's pair,
+// which the glue sums over the processes. Two patterns with the same blocks have the same
+// signature; different ones collide with probability about 2^-64.
+std::uint64_t pattern_signature(const BlockPattern &pattern);
 
 // Inputs: rows (the unknowns: rows.has(i), i < rows.n); node: global node number of every
 // local row, owned and ghost (-1: not an unknown); springs, hinges and their index.

@@ -86,6 +86,35 @@ TEST(BlockMatrix, PatternHasDiagonalFirstThenPartnersThenHingeVertices)
   EXPECT_FALSE(p == q);
 }
 
+// The signature names the set of blocks: the same blocks split over two processes in another
+// order sum to the signature of the whole; a block moved to another column changes it.
+TEST(BlockMatrix, SignatureIsTheSetOfBlocksWhateverTheirOrderAndProcess)
+{
+  Scene s;
+  BlockPattern whole;
+  build_block_pattern(s.rows, s.node, s.springs, s.hinges, s.index, whole);
+  const std::uint64_t sig = pattern_signature(whole);
+  BlockPattern a, b;    // rows 11 and 10 on one process (in that order), 12 on the other
+  for (int m : {3, 4, 5, 6, 0, 1, 2}) {
+    a.row.push_back(whole.row[m]);
+    a.col.push_back(whole.col[m]);
+  }
+  for (int m : {9, 7, 8}) {
+    b.row.push_back(whole.row[m]);
+    b.col.push_back(whole.col[m]);
+  }
+  EXPECT_EQ(pattern_signature(a) + pattern_signature(b), sig);
+  BlockPattern moved = whole;
+  moved.col[2] = 21;
+  EXPECT_NE(pattern_signature(moved), sig);
+  BlockPattern transposed = whole;    // (10, 11) and (11, 10) swapped for (11, 10), (10, 11)
+  std::swap(transposed.row[1], transposed.col[1]);
+  std::swap(transposed.row[4], transposed.col[4]);
+  EXPECT_EQ(pattern_signature(transposed), sig);
+  transposed.row[1] = 12;    // a block of row 12 instead of row 11
+  EXPECT_NE(pattern_signature(transposed), sig);
+}
+
 TEST(BlockMatrix, AssembledBlocksMatchTheDenseDefinition)
 {
   Scene s;
