@@ -37,7 +37,8 @@ examples/contact/in.thrown-cloth) with -var settings only:
   thrown   a 10 cm cloth thrown at 3 m/s onto a held one, fix sissm at 1 ms only (kappa auto
            needs it), friction --friction and kappa --kappa: did it finish, the evaluations of
            the dearest step and of the first step in contact.
-fix sissm's iterations and tolerance are its defaults (100, 1e-6) in every scene.
+fix sissm's iterations, tolerance and error rule are its defaults (100, 1e-6, error 1e-3 with
+--sissm's scheme genalpha) in every scene.
 """
 from __future__ import annotations
 
