@@ -2,8 +2,8 @@
 series and .obj frames; an independent reader (Debian's python3-meshio for .vtu and .obj, the
 standard library's XML parser for .vtp and .pvd) reads back the positions, triangles and fields
 that `dump custom` of the same steps prints; 1 and 2 ranks write identical files; vertices
-selected by dump_modify thresh; a file without '*' holds the last frame; every bad input gives
-an error naming the dump and the value."""
+selected by dump_modify thresh; a file without '*' holds the last frame; write_dump writes the
+same frame; every bad input gives an error naming the dump and the value."""
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -120,7 +120,8 @@ def serial(tmp_path_factory):
              f"dump            o all nosb/mesh {EVERY} shape.*.obj",
              f"dump            last all nosb/mesh {EVERY} last.vtu id vx pvd no",
              f"dump            t all nosb/mesh {EVERY} low.*.vtu id",
-             "dump_modify     t thresh id <= 12"])
+             "dump_modify     t thresh id <= 12",
+             "write_dump      all nosb/mesh once.obj"])
     return wd
 
 
@@ -189,6 +190,12 @@ def test_a_file_without_star_holds_the_last_frame(serial):
     assert np.array_equal(last.points, final.points)
     assert np.array_equal(last.point_data["vx"], final.point_data["vx"])
     assert list(last.point_data) == ["id", "vx"]
+
+
+def test_write_dump_writes_the_frame_the_dump_writes(serial):
+    once = (serial / "once.obj").read_text().splitlines()
+    assert once[0].startswith("# dump WRITE_DUMP nosb/mesh: step 0")
+    assert once[1:] == (serial / "shape.0.obj").read_text().splitlines()[1:]
 
 
 def test_thresh_selects_vertices_and_the_triangles_of_three_selected(serial):
