@@ -225,7 +225,11 @@ void DumpNosbMesh::pack(tagint *ids)
     std::vector<PeriSISSM::FrameTriangle> triangles;
     for (size_t k = 0; k + 3 < alltris.size(); k += 4)
       triangles.push_back({(int) alltris[k], {alltris[k + 1], alltris[k + 2], alltris[k + 3]}});
-    frame = PeriSISSM::assemble_frame(rows, size_one, triangles);
+    try {
+      frame = PeriSISSM::assemble_frame(rows, size_one, triangles);
+    } catch (std::invalid_argument &e) {
+      error->one(FLERR, "Dump nosb/mesh {}: {}", id, e.what());
+    }
     const PeriSISSM::BoxPeriods box = {
         {domain->xprd, 0.0, 0.0},
         {domain->xy, domain->yprd, 0.0},
