@@ -28,7 +28,7 @@ lammps_options=(-DCMAKE_BUILD_TYPE=Release -DBUILD_MPI=on -DBUILD_SHARED_LIBS=on
 debian_packages=(cmake g++ make libopenmpi-dev openmpi-bin libeigen3-dev libgtest-dev
   python3-pytest python3-pytest-xdist python3-numpy python3-matplotlib xz-utils ccache
   libjpeg-dev libpng-dev zlib1g-dev ca-certificates python3-sphinx python3-myst-parser libjs-mathjax
-  petsc-dev pkg-config valgrind)
+  petsc-dev pkg-config valgrind python3-meshio)
 
 say() { printf '[setup] %s\n' "$*"; }
 die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
@@ -163,6 +163,16 @@ WRAP
   chmod +x "$w"
 }
 
+# build/python: LAMMPS's own Python module (its files linked from the LAMMPS tree) with the
+# shared library it loads beside it, so that PYTHONPATH=build/python makes `from lammps import
+# lammps` work (the module looks for liblammps.so in its own folder first)
+write_python_module() {
+  local tree=$1 lbuild=$2 dir="$here/build/python/lammps" f
+  rm -rf "$here/build/python" && mkdir -p "$dir"
+  for f in "$tree"/python/lammps/*; do ln -s "$f" "$dir/"; done
+  ln -s "$lbuild/liblammps.so" "$dir/liblammps.so"
+}
+
 main() {
   install_packages
   local tree lbuild
@@ -171,6 +181,7 @@ main() {
   mkdir -p "$here/build"
   build_project "$tree" "$lbuild"
   write_wrapper "$lbuild"
+  write_python_module "$tree" "$lbuild"
   say "ready: $here/build/lmp  (LAMMPS $(lammps_version_of "$tree"), cache $cache)"
 }
 

@@ -5,9 +5,11 @@
 
 #include "lammpsplugin.h"
 
+#include "output.h"
 #include "version.h"
 
 #include "compute_nosb_atom.h"
+#include "dump_nosb_mesh.h"
 #include "fix_nosb_contact.h"
 #include "fix_nosb_family.h"
 #include "fix_nosb_mesh.h"
@@ -28,6 +30,11 @@ template <class Base, class T> void *create(void *lmp)
 template <class Base, class T> void *create_with_args(void *lmp, int argc, char **argv)
 {
   return static_cast<Base *>(new T((LAMMPS *) lmp, argc, argv));
+}
+
+Dump *create_dump_nosb_mesh(LAMMPS *lmp, int argc, char **argv)
+{
+  return new DumpNosbMesh(lmp, argc, argv);
 }
 
 // one style: kind, name, description, and its creator (v1: lmp only; v2: lmp and arguments)
@@ -74,4 +81,8 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
       plugin.creator.v2 = s.v2;
     (*register_plugin)(&plugin, lmp);
   }
+  // dump nosb/mesh: this LAMMPS's plugin loader registers no dump styles (PLUGIN/plugin.cpp
+  // takes pair, bond, angle, dihedral, improper, kspace, compute, fix, region and command), so
+  // the creator goes into the table the dump command reads; "plugin list" does not show it
+  (*((LAMMPS *) lmp)->output->dump_map)["nosb/mesh"] = &create_dump_nosb_mesh;
 }
