@@ -102,15 +102,26 @@ struct PetscAmg::Impl {
     check(VecRestoreArrayRead(mine, &q), "VecRestoreArrayRead");
   }
   // the blocks (rows[m], cols[m]) := values (zeros when values is null), summed over repeats
-  // and processes
+  // and processes; a run of blocks of one row goes in as one block row (3 x 3n, row-major)
   void insert(const std::vector<int> &rows, const std::vector<int> &cols, const double *values)
   {
     check(MatZeroEntries(A), "MatZeroEntries");
-    const PetscScalar zero[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    for (std::size_t m = 0; m < rows.size(); m++) {
-      const PetscInt r = rows[m], c = cols[m];
-      check(MatSetValuesBlocked(A, 1, &r, 1, &c, values ? values + 9 * m : zero, ADD_VALUES),
+    std::vector<PetscInt> c;
+    std::vector<PetscScalar> v;
+    for (std::size_t m = 0; m < rows.size();) {
+      std::size_t end = m;
+      while (end < rows.size() && rows[end] == rows[m]) end++;
+      const std::size_t n = end - m;
+      c.assign(cols.begin() + m, cols.begin() + end);
+      v.assign(9 * n, 0.0);
+      if (values)
+        for (std::size_t k = 0; k < n; k++)
+          for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) v[a * 3 * n + 3 * k + b] = values[9 * (m + k) + 3 * a + b];
+      const PetscInt r = rows[m];
+      check(MatSetValuesBlocked(A, 1, &r, (PetscInt) n, c.data(), v.data(), ADD_VALUES),
             "MatSetValuesBlocked");
+      m = end;
     }
     check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
