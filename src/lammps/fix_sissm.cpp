@@ -238,6 +238,7 @@ std::vector<FixSissm::WorkArray> FixSissm::work_arrays()
           {nullptr, &gnode, 1, opt.precond == PrecondKind::amg, "sissm:gnode"},
           {&rprev, nullptr, 3, opt.relax, "sissm:rprev"},
           {&dprev, nullptr, 3, opt.relax, "sissm:dprev"},
+          {&yprev, nullptr, 3, opt.chebyshev > 0.0, "sissm:yprev"},
           {&xbase, nullptr, 3, krylov, "sissm:krylov"},
           {&rbase, nullptr, 3, krylov, "sissm:krylov"},
           {&jbase, nullptr, 3, krylov, "sissm:krylov"},
@@ -281,7 +282,8 @@ std::vector<PeriSISSM::CarriedArray> FixSissm::carried_arrays()
     a.rows = w.rows ? *w.rows : nullptr;
     a.vector = w.vector ? *w.vector : nullptr;
     a.cols = w.cols;
-    a.position = w.rows == &yn || w.rows == &yhat || w.rows == &xstart || w.rows == &xbase;
+    a.position = w.rows == &yn || w.rows == &yhat || w.rows == &xstart || w.rows == &xbase ||
+        w.rows == &yprev;
     out.push_back(a);
   }
   return out;
@@ -357,7 +359,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
     // preconditioner)
     precond->finished(result.newton, result.krylov, result.converged() || opt.tolerance == 0.0);
   } else {
-    result = PeriSISSM::solve_jacobi(*system, opt.iterations, {rprev, dprev});
+    result = PeriSISSM::solve_jacobi(*system, opt.iterations, {rprev, dprev, yprev}, opt.chebyshev);
   }
   stats.solved(result);
   if (!forces->group_coupled(groupbit)) {
