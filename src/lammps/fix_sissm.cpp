@@ -239,6 +239,7 @@ std::vector<FixSissm::WorkArray> FixSissm::work_arrays()
           {&fstart, nullptr, 3, history, "sissm:fstart"},
           {&rprev, nullptr, 3, opt.relax, "sissm:rprev"},
           {&dprev, nullptr, 3, opt.relax, "sissm:dprev"},
+          {&yprev, nullptr, 3, opt.chebyshev > 0.0, "sissm:yprev"},
           {&xbase, nullptr, 3, krylov, "sissm:krylov"},
           {&rbase, nullptr, 3, krylov, "sissm:krylov"},
           {&jbase, nullptr, 3, krylov, "sissm:krylov"},
@@ -282,7 +283,8 @@ std::vector<PeriSISSM::CarriedArray> FixSissm::carried_arrays()
     a.rows = w.rows ? *w.rows : nullptr;
     a.vector = w.vector ? *w.vector : nullptr;
     a.cols = w.cols;
-    a.position = w.rows == &yn || w.rows == &yhat || w.rows == &xstart || w.rows == &xbase;
+    a.position = w.rows == &yn || w.rows == &yhat || w.rows == &xstart || w.rows == &xbase ||
+        w.rows == &yprev;
     out.push_back(a);
   }
   return out;
@@ -358,7 +360,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
     // preconditioner)
     precond->finished(result.newton, result.krylov, result.converged() || opt.tolerance == 0.0);
   } else {
-    result = PeriSISSM::solve_jacobi(*system, opt.iterations, {rprev, dprev});
+    result = PeriSISSM::solve_jacobi(*system, opt.iterations, {rprev, dprev, yprev}, opt.chebyshev);
   }
   stats.solved(result);
   if (!forces->group_coupled(groupbit)) {

@@ -25,7 +25,8 @@ error-vs-time-quick* unless --out/--report say otherwise.
 
 Which runs and checkpoints exist never depends on the machine's speed: a fix sissm run is
 capped in force evaluations (fix halt in in.sissm, on steps x (f_ID[3] + 1)), not in seconds.
-Wall time is only reported.
+Wall time is only reported. The report's last section, the cloth in motion, is written by
+examples/benchmarks/dynamics/pareto.py and kept when this script rewrites the report.
 """
 from __future__ import annotations
 
@@ -928,6 +929,10 @@ def report(bm, out: Path, report_path: Path, command: str):
     return "\n".join(L)
 
 
+# where dynamics/pareto.py's section of the report begins (its CLOTH_BEGIN)
+CLOTH_BEGIN = "<!-- cloth in motion: written by examples/benchmarks/dynamics/pareto.py -->"
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--quick", action="store_true")
@@ -953,7 +958,10 @@ def main():
     plot_convergence(out / "convergence.png", bm.conv)
     cmd = "/usr/bin/python3 examples/benchmarks/error-vs-time/run.py" + (" --quick" if args.quick
                                                                          else "")
-    rpt.write_text(report(bm, out, rpt, cmd))
+    # the cloth-in-motion section that dynamics/pareto.py writes into the report stays
+    cloth = rpt.read_text().split(CLOTH_BEGIN, 1) if rpt.exists() else []
+    rpt.write_text(report(bm, out, rpt, cmd) + ("\n" + CLOTH_BEGIN + cloth[1] if len(cloth) == 2
+                                                else ""))
     bm.say(f"done: {rpt} and {out} ({bm.elapsed:.0f} s)")
     if not args.keep:
         shutil.rmtree(bm.work, ignore_errors=True)

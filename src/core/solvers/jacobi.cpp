@@ -3,15 +3,17 @@
 #include "solvers/jacobi.h"
 
 #include "linalg/small_matrix.h"
+#include "solvers/chebyshev.h"
 
 namespace PeriSISSM {
 
-void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &relax)
+void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &memory, double omega)
 {
+  const bool extrapolate = omega != 1.0;
   const Rows &rows = sys.rows();
   double **x = sys.unknowns();
   double **res = sys.residual();
-  const bool relaxed = relax.rprev != nullptr;
+  const bool relaxed = memory.rprev != nullptr;
 
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
@@ -23,7 +25,7 @@ void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &relax)
 
     double alpha = 1.0;
     if (relaxed && !first) {
-      const double *dp = relax.dprev[i], *rp = relax.rprev[i];
+      const double *dp = memory.dprev[i], *rp = memory.rprev[i];
       const double dd = dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2];
       if (dd > 0.0) {
         const double dDd = D[0] * dp[0] * dp[0] + D[1] * dp[1] * dp[1] + D[2] * dp[2] * dp[2] +
@@ -35,24 +37,34 @@ void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &relax)
     }
     for (int k = 0; k < 3; k++) {
       d[k] *= alpha;
-      x[i][k] += d[k];
+      const double y = x[i][k];
+      if (extrapolate) {
+        // (the move made: what the secant of the next sweep measures)
+        const double yp = memory.yprev[i][k];
+        x[i][k] = omega * (y + d[k] - yp) + yp;
+        d[k] = x[i][k] - y;
+      } else {
+        x[i][k] += d[k];
+      }
+      if (memory.yprev) memory.yprev[i][k] = y;
       if (relaxed) {
-        relax.rprev[i][k] = r[k];
-        relax.dprev[i][k] = d[k];
+        memory.rprev[i][k] = r[k];
+        memory.dprev[i][k] = d[k];
       }
     }
   }
   sys.check_finite();
 }
 
-SolveResult solve_jacobi(NonlinearSystem &sys, int maxiter, const SweepMemory &relax)
+SolveResult solve_jacobi(NonlinearSystem &sys, int maxiter, const SweepMemory &memory, double rho)
 {
   SolveResult out;
+  ChebyshevWeights weights(rho);
   for (int k = 0; k < maxiter; k++) {
     sys.evaluate(true);
     out.measure = scaled_max(sys, sys.residual(), true);
     if (k == 0) out.tolerance = sys.step_tolerance();
-    sissm_sweep(sys, k == 0, relax);
+    sissm_sweep(sys, k == 0, memory, weights.next());
     if (out.measure <= out.tolerance && sys.evaluation_complete()) break;
   }
   return out;

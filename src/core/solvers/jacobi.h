@@ -3,7 +3,10 @@
 // with D_i the diagonal block of J. relax yes (after the first sweep of a step): a secant
 // estimate of the particle's stiffness along its last move Delta: the residual changed by
 // -(stiffness) Delta; when the true response is stiffer than D assumed (Delta.D.Delta), the
-// move is scaled back by their ratio.
+// move is scaled back by their ratio. chebyshev rho (solve_jacobi's rho > 0): each sweep's result
+// is extrapolated by the Chebyshev weights of chebyshev.h, y <- omega (yhat - yprev) + yprev with
+// yprev the iterate the last sweep started from; relax then measures its secant along the move
+// that was made (the extrapolated one).
 
 #ifndef PERISISSM_SOLVERS_JACOBI_H
 #define PERISISSM_SOLVERS_JACOBI_H
@@ -26,19 +29,24 @@ struct SolveResult {
   bool converged() const { return measure <= tolerance || error_met; }
 };
 
-// Work rows of the relaxed sweep (both null without relax).
+// Work rows of the sweeps: those of relax (both null without relax) and of chebyshev (null
+// without it).
 struct SweepMemory {
   double **rprev = nullptr;    // residual of the previous sweep
-  double **dprev = nullptr;    // correction of the previous sweep
+  double **dprev = nullptr;    // move of the previous sweep
+  double **yprev = nullptr;    // the iterate the previous sweep started from
 };
 
 // One sweep from the last evaluation (residual and blocks); first: the first sweep of the step
-// (no secant estimate yet).
-void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &relax);
+// (no secant estimate yet, no earlier iterate); omega: its Chebyshev weight (1: the plain sweep;
+// otherwise memory.yprev is needed).
+void sissm_sweep(NonlinearSystem &sys, bool first, const SweepMemory &memory, double omega = 1.0);
 
 // Up to maxiter sweeps; each evaluates the residual of the iterate it starts from, and the sweep
-// whose starting residual meets the tolerance is the last one.
-SolveResult solve_jacobi(NonlinearSystem &sys, int maxiter, const SweepMemory &relax);
+// whose starting residual meets the tolerance is the last one. rho > 0 (< 1): the sweeps are
+// accelerated by the Chebyshev weights of that spectral radius (memory.yprev needed).
+SolveResult solve_jacobi(NonlinearSystem &sys, int maxiter, const SweepMemory &memory,
+                         double rho = 0.0);
 
 }    // namespace PeriSISSM
 

@@ -6,9 +6,9 @@
 
 namespace PeriSISSM {
 
-const std::vector<std::string> kStepKeywords = {"iterations",  "tolerance", "solver", "precond",
-                                                "unconverged", "scheme",    "relax",  "external",
-                                                "lagged",      "error"};
+const std::vector<std::string> kStepKeywords = {"iterations",  "tolerance", "solver",   "precond",
+                                                "unconverged", "scheme",    "relax",    "external",
+                                                "lagged",      "error",     "chebyshev"};
 const std::vector<std::string> kSolverWords = {"jacobi", "krylov"};
 const std::vector<std::string> kPrecondWords = {"block", "amg"};
 const std::vector<std::string> kExternalWords = {"implicit", "lagged"};
@@ -45,12 +45,16 @@ std::string value_problem(const StepOptions &o, const std::string &keyword)
     return "unconverged cutback levels must be 1 to 20";
   if (keyword == "scheme" && !(o.rho_inf >= 0.0 && o.rho_inf <= 1.0))
     return "scheme genalpha rho_inf must be 0 to 1";
+  if (keyword == "chebyshev" && !(o.chebyshev >= 0.0 && o.chebyshev < 1.0))
+    return "chebyshev rho must be >= 0 and < 1";
   return "";
 }
 
 std::string settle(StepOptions &o)
 {
   if (o.relax && o.solver != SolverKind::jacobi) return "relax yes requires solver jacobi";
+  if (o.chebyshev > 0.0 && o.solver != SolverKind::jacobi)
+    return "chebyshev requires solver jacobi";
   if (o.solver == SolverKind::jacobi && o.precond_given && o.precond == PrecondKind::amg)
     return "precond amg needs solver krylov (the jacobi sweeps use the blocks themselves)";
   if (o.solver == SolverKind::jacobi) o.precond = PrecondKind::block;
@@ -126,6 +130,8 @@ StepOptionsProblem read_step_options(const std::vector<std::string> &words, cons
       o.error_given = true;
     } else if (key == "relax") {
       o.relax = read(value, WordKind::logical) != 0.0;
+    } else if (key == "chebyshev") {
+      o.chebyshev = read(value, WordKind::real);
     } else if (key == "solver") {
       o.solver = (SolverKind) k;
     } else if (key == "external") {

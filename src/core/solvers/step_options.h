@@ -28,6 +28,9 @@ struct StepOptions {
   bool error_given = false;
   bool tolerance_given = false;
   bool relax = false;    // jacobi: per-particle step factor alpha_i (false: alpha_i = 1)
+  // jacobi: the estimated spectral radius of the sweep for its Chebyshev acceleration
+  // (chebyshev.h; 0: plain sweeps)
+  double chebyshev = 0.0;
   SolverKind solver = SolverKind::krylov;
   PrecondKind precond = PrecondKind::amg;
   bool precond_given = false;         // the keyword precond was given

@@ -35,7 +35,7 @@ TEST(StepOptions, ChoiceTextListsTheWords)
 TEST(StepOptions, KeywordsAreKnown)
 {
   for (const char *k : {"iterations", "tolerance", "relax", "solver", "external", "lagged",
-                        "precond", "unconverged", "scheme"})
+                        "precond", "unconverged", "scheme", "chebyshev"})
     EXPECT_TRUE(is_step_keyword(k)) << k;
   EXPECT_FALSE(is_step_keyword("petsc"));
   EXPECT_FALSE(is_step_keyword("1e-6"));
@@ -132,6 +132,13 @@ TEST(StepOptions, ReadsEveryKeyword)
   EXPECT_EQ(o.scheme, "genalpha");
   EXPECT_EQ(o.rho_inf, 0.5);
   EXPECT_EQ(o.precond, PrecondKind::block);    // settled: jacobi sweeps use the blocks
+  EXPECT_EQ(o.chebyshev, 0.0);                 // off unless asked for
+  StepOptions c;
+  EXPECT_EQ(read_words({"solver", "jacobi", "chebyshev", "0.95"}, c).problem, "");
+  EXPECT_EQ(c.chebyshev, 0.95);
+  StepOptions zero;
+  EXPECT_EQ(read_words({"chebyshev", "0"}, zero).problem, "");    // 0: off, with any solver
+  EXPECT_EQ(zero.chebyshev, 0.0);
 }
 
 TEST(StepOptions, ReadsPetscOptionsAndOptionalValues)
@@ -156,7 +163,7 @@ TEST(StepOptions, ReadingNamesEachProblem)
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"iterations", "10", "speed", "2"},
        "unknown keyword 'speed' (allowed: iterations, tolerance, solver, precond, unconverged, "
-       "scheme, relax, external, lagged, error)"},
+       "scheme, relax, external, lagged, error, chebyshev)"},
       {{"iterations", "0"}, "iterations must be >= 1, got 0"},
       {{"tolerance", "-1"}, "tolerance must be >= 0, got -1"},
       {{"solver", "gmres"}, "solver must be jacobi or krylov, got 'gmres'"},
@@ -168,6 +175,9 @@ TEST(StepOptions, ReadingNamesEachProblem)
       {{"scheme", "newmark"}, "scheme must be euler, bdf2 or genalpha, got 'newmark'"},
       {{"scheme", "genalpha", "1.5"}, "scheme genalpha rho_inf must be 0 to 1, got 1.5"},
       {{"relax", "yes"}, "relax yes requires solver jacobi"},
+      {{"chebyshev", "0.9"}, "chebyshev requires solver jacobi"},
+      {{"solver", "jacobi", "chebyshev", "1"}, "chebyshev rho must be >= 0 and < 1, got 1"},
+      {{"solver", "jacobi", "chebyshev", "-0.5"}, "chebyshev rho must be >= 0 and < 1, got -0.5"},
       {{"solver", "jacobi", "precond", "amg"},
        "precond amg needs solver krylov (the jacobi sweeps use the blocks themselves)"}};
   for (const auto &c : cases) {

@@ -1,0 +1,24 @@
+// Chebyshev semi-iterative weights (see chebyshev.h).
+
+#include "solvers/chebyshev.h"
+
+#include <cmath>
+
+namespace PeriSISSM {
+
+double ChebyshevWeights::next()
+{
+  given_++;
+  if (given_ == 2)
+    omega_ = 2.0 / (2.0 - rho2_);
+  else if (given_ > 2)
+    omega_ = 4.0 / (4.0 - rho2_ * omega_);
+  return omega_;
+}
+
+double chebyshev_limit(double rho)
+{
+  return 2.0 / (1.0 + std::sqrt(1.0 - rho * rho));
+}
+
+}    // namespace PeriSISSM
