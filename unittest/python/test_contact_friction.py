@@ -197,19 +197,23 @@ def test_bad_friction_arguments(tmp_path, args, message):
 def test_default_slip_speed_is_ipcs_in_any_units(tmp_path):
     """Without epsv the slip speed is IPC's 1e-3 m/s in the deck's units: the thrown cloth of
     test_contact_ccd.py with friction 0.1 (kappa auto) in SI and in cgs units gives the same
-    motion and friction work (1 J = 1e7 erg). Given as the number 1e-3 in cgs (1e-3 cm/s, what
-    the default was before it took the units into account) the work differs."""
+    motion and friction work (1 J = 1e7 erg), and in cgs the same as epsv given as 0.1 (cm/s).
+    (The work depends on epsv only through the vertices that slip slower than it, so whether
+    the number 1e-3 in cgs, the default before it took the units into account, changes the
+    work depends on the run: 2e-9 relative here after a change of the multigrid's
+    aggregation, more than 1e-7 before it.)"""
     from test_contact_ccd import throw
     cgs = {"units": "cgs", "L": 100, "T": 1, "M": 1000}
     si, _, _ = throw(tmp_path / "si", kappa="auto", friction=0.1, steps=4)
     cm, _, _ = throw(tmp_path / "cgs", kappa="auto", friction=0.1, steps=4, **cgs)
-    number, _, _ = throw(tmp_path / "number", kappa="auto", friction="0.1 epsv 1e-3", steps=4,
-                         **cgs)
-    a, b, c = si.thermo[-1], cm.thermo[-1], number.thermo[-1]
+    given, _, _ = throw(tmp_path / "given", kappa="auto", friction="0.1 epsv 0.1", steps=4,
+                        **cgs)
+    a, b, c = si.thermo[-1], cm.thermo[-1], given.thermo[-1]
     assert a["f_c[7]"].max() > 0 and a["f_c[8]"][-1] > 0        # friction acted
     assert np.allclose(b["c_zmin"], 100 * a["c_zmin"], rtol=1e-10, atol=0)
     assert np.allclose(b["f_c[8]"], 1e7 * a["f_c[8]"], rtol=1e-9, atol=0)
-    assert abs(c["f_c[8]"][-1] / b["f_c[8]"][-1] - 1) > 1e-7
+    assert np.allclose(c["f_c[8]"], b["f_c[8]"], rtol=1e-12, atol=0)
+    assert np.allclose(c["c_zmin"], b["c_zmin"], rtol=1e-12, atol=0)
 
 
 def test_friction_in_lj_units_needs_epsv(tmp_path):
