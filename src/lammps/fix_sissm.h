@@ -107,7 +107,7 @@ class FixSissm : public Fix {
   double **yhat = nullptr;       // predictor y^n + h v^n (+ h^2 f_ext / rho when lagged)
   double **res = nullptr;        // backward-Euler residual of the last evaluation
   double **kblock = nullptr;     // implicit block sum_j omega_ij (H_i + H_j + S_ij) per atom
-  double **rprev = nullptr, **dprev = nullptr;    // relax: residual, correction of the last sweep
+  double **rprev = nullptr, **dprev = nullptr;    // relax: residual, move of the last sweep
   double **yprev = nullptr;    // chebyshev: the iterate the last sweep started from
   double **xbase = nullptr, **rbase = nullptr, **jbase = nullptr, **cres = nullptr,
          **zdir = nullptr, **pdir = nullptr, **sdir = nullptr;    // krylov vectors
