@@ -10,6 +10,8 @@ import numpy as np
 import pytest
 
 from lammps_run import read_dump, run_deck
+from test_read_mesh import grid_obj as read_mesh_grid
+from test_read_mesh import grid_triangles as grid_indices
 
 meshio = pytest.importorskip("meshio", reason="python3-meshio (tools/setup.sh installs it)")
 
@@ -21,22 +23,12 @@ STEPS, EVERY, DT = 10, 5, 1e-3
 
 
 def grid_obj(nx, ny):
-    lines = [f"v {i * H!r} {j * H!r} 0.0" for j in range(ny) for i in range(nx)]
-    for j in range(ny - 1):
-        for i in range(nx - 1):
-            a = j * nx + i + 1
-            lines += [f"f {a} {a + 1} {a + nx + 1}", f"f {a} {a + nx + 1} {a + nx}"]
-    return "\n".join(lines) + "\n"
+    return read_mesh_grid(nx, ny, h=H, header="")
 
 
 def grid_triangles(nx, ny, first_id):
     """Triangles of grid_obj as atom-ID triples (read_mesh numbers vertices in file order)."""
-    tris = []
-    for j in range(ny - 1):
-        for i in range(nx - 1):
-            a = first_id + j * nx + i
-            tris += [(a, a + 1, a + nx + 1), (a, a + nx + 1, a + nx)]
-    return tris
+    return [tuple(first_id + v for v in t) for t in grid_indices(nx, ny)]
 
 
 def canonical(tri):

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from lammps_run import REPO, run_deck
+from test_read_mesh import grid_obj
 
 sys.path.insert(0, str(REPO / "tools"))
 import render_mesh  # noqa: E402
@@ -20,12 +21,7 @@ N = 9    # vertices per side of the test sheet
 
 
 def sheet_obj(n=N, h=0.1):
-    lines = [f"v {i * h!r} {j * h!r} 0.0" for j in range(n) for i in range(n)]
-    for j in range(n - 1):
-        for i in range(n - 1):
-            a = j * n + i + 1
-            lines += [f"f {a} {a + 1} {a + n + 1}", f"f {a} {a + n + 1} {a + n}"]
-    return "\n".join(lines) + "\n"
+    return grid_obj(n, n, h=h, header="")
 
 
 @pytest.fixture(scope="module")
