@@ -2,8 +2,6 @@
 
 #include "solvers/chebyshev.h"
 
-#include <cmath>
-
 namespace PeriSISSM {
 
 double ChebyshevWeights::next()
@@ -14,11 +12,6 @@ double ChebyshevWeights::next()
   else if (given_ > 2)
     omega_ = 4.0 / (4.0 - rho2_ * omega_);
   return omega_;
-}
-
-double chebyshev_limit(double rho)
-{
-  return 2.0 / (1.0 + std::sqrt(1.0 - rho * rho));
 }
 
 }    // namespace PeriSISSM

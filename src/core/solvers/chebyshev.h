@@ -27,9 +27,6 @@ class ChebyshevWeights {
   double omega_ = 1.0;    // the last one
 };
 
-// the limit of the weights, 2 / (1 + sqrt(1 - rho^2))
-double chebyshev_limit(double rho);
-
 }    // namespace PeriSISSM
 
 #endif    // PERISISSM_SOLVERS_CHEBYSHEV_H
