@@ -92,6 +92,14 @@ def _dot(u, v):
     return np.einsum("...i,...i->...", u, v)
 
 
+def _cross(u, v):
+    """u x v row by row (numpy's cross moves axes around on every call: slow on small chunks)."""
+    u, v = np.broadcast_arrays(u, v)
+    return np.stack([u[..., 1] * v[..., 2] - u[..., 2] * v[..., 1],
+                     u[..., 2] * v[..., 0] - u[..., 0] * v[..., 2],
+                     u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]], axis=-1)
+
+
 def point_segment_distance(p, a, b):
     """Distance from points p to segments ab, and the closest points of the segments.
 
@@ -118,7 +126,7 @@ def point_triangle_distance(p, a, b, c):
     |(p - a).n| / |n|. Otherwise the closest point lies on the boundary: the nearest of the
     three edges, each clamped to its ends (the edge and corner regions).
     """
-    n = np.cross(b - a, c - a)
+    n = _cross(b - a, c - a)
     nn = _dot(n, n)
     best, closest = point_segment_distance(p, a, b)
     for u, v in ((b, c), (c, a)):
@@ -128,7 +136,7 @@ def point_triangle_distance(p, a, b, c):
         closest = np.where(nearer[..., None], q, closest)
     inside = nn > 0
     for u, v in ((a, b), (b, c), (c, a)):
-        inside &= _dot(np.cross(v - u, p - u), n) >= 0
+        inside &= _dot(_cross(v - u, p - u), n) >= 0
     height = _dot(p - a, n) / np.where(nn > 0, nn, 1.0)
     foot = p - height[..., None] * n
     best = np.where(inside, np.abs(height) * np.sqrt(nn), best)
@@ -173,7 +181,7 @@ def segment_segment_distance(p1, q1, p2, q2):
 
 def _volume(a, b, c, d):
     """Six times the signed volume of the tetrahedron abcd: (b - a).((c - a) x (d - a))."""
-    return _dot(b - a, np.cross(c - a, d - a))
+    return _dot(b - a, _cross(c - a, d - a))
 
 
 def segment_crosses_triangle(p, q, a, b, c):
@@ -199,7 +207,7 @@ def box_pairs(lo_a, hi_a, lo_b=None, hi_b=None, gap=0.0):
              pair the first set with itself; gap >= 0.
     Outputs: yields (i, j) index arrays: every pair with lo_b[j] - hi_a[i] <= gap and
              lo_a[i] - hi_b[j] <= gap on all three axes exactly once (with i < j when pairing a
-             set with itself), one chunk per neighbouring cell offset.
+             set with itself), in one chunk.
     The grid: cells h = (largest box side) + gap wide, each box filed under the cell of its
     lowest corner. Two boxes within `gap` have lowest corners less than h apart on each axis,
     so they are filed in the same or neighbouring cells: each box of a is matched against the
@@ -225,20 +233,24 @@ def box_pairs(lo_a, hi_a, lo_b=None, hi_b=None, gap=0.0):
 
     order = np.argsort(key(cell_b), kind="stable")
     sorted_keys = key(cell_b)[order]
-    for offset in itertools.product((-1, 0, 1), repeat=3):
-        wanted = key(cell_a + np.array(offset))
-        start = np.searchsorted(sorted_keys, wanted, "left")
-        count = np.searchsorted(sorted_keys, wanted, "right") - start
-        total = int(count.sum())
-        if total == 0:
-            continue
-        i = np.repeat(np.arange(len(lo_a)), count)
-        first = np.cumsum(count) - count             # where each box's run starts in i
-        j = order[np.repeat(start - first, count) + np.arange(total)]
-        keep = np.all(lo_b[j] - hi_a[i] <= gap, axis=1) & np.all(lo_a[i] - hi_b[j] <= gap, axis=1)
-        if same:
-            keep &= i < j
-        yield i[keep], j[keep]
+    offsets = np.array(list(itertools.product((-1, 0, 1), repeat=3)))
+    wanted = key((cell_a[:, None, :] + offsets[None, :, :]).reshape(-1, 3))   # 27 per box of a
+    start = np.searchsorted(sorted_keys, wanted, "left")
+    count = np.searchsorted(sorted_keys, wanted, "right") - start
+    total = int(count.sum())
+    if total == 0:
+        return
+    i = np.repeat(np.arange(len(wanted)) // len(offsets), count)
+    first = np.cumsum(count) - count                 # where each cell's run starts in i
+    j = order[np.repeat(start - first, count) + np.arange(total)]
+    if same:
+        keep = i < j
+        i, j = i[keep], j[keep]
+    for axis in range(3):                            # one axis at a time, on what is left
+        keep = ((lo_b[j, axis] - hi_a[i, axis] <= gap)
+                & (lo_a[i, axis] - hi_b[j, axis] <= gap))
+        i, j = i[keep], j[keep]
+    yield i, j
 
 
 # ---------------------------------------------------------------- the mesh and one frame
