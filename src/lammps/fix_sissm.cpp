@@ -144,6 +144,14 @@ void FixSissm::init()
   dtv = update->dt;
   comm_reverse = 3;
   choose_external();
+  // a contact that checks every move of the unknowns: the forces at the step's end
+  scheme->set_forces_at_end(!limiters.empty());
+  if (!limiters.empty() && scheme->force_time() == 1.0 && opt.scheme == "genalpha" &&
+      comm->me == 0)
+    utils::logmesg(lmp,
+                   "Fix sissm {}: scheme genalpha with a contact fix that limits moves: alpha_f "
+                   "= 0 (Wood-Bossak-Zienkiewicz), the forces at the end of the step\n",
+                   id);
   // contacts that adapt their stiffness to the step (kappa auto) need the scheme's force factor
   // before the first step, for the run's setup evaluation; one integrator may set it
   if (!adapting.empty()) {
@@ -181,14 +189,16 @@ void FixSissm::begin_path(double h)
   for (CollisionLimit *limit : limiters) limit->begin_path();
 }
 
-// ghost positions current on entry and on return
+// ghost positions current on entry and on return; at the end of a step, a move cut short by
+// a contact's reach leaves the step unsettled (end_reach, beyond_reach()): its sub-steps may
+// start from new candidates
 void FixSissm::limit_path(bool end_of_step)
 {
   reach_cut = 0;
   for (CollisionLimit *limit : limiters) {
     if (limit->limit_move(groupbit) < 1.0) comm->forward_comm();
     if (limit->reach_limited()) {
-      if (end_of_step) limit->reach_error("fix sissm");
+      if (end_of_step && !end_reach) end_reach = limit;
       reach_cut = 1;
     }
   }
@@ -369,6 +379,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
                                 moment);
   }
   // the last move (the final correction, the momentum balance) is limited like the others
+  end_reach = nullptr;
   if (!limiters.empty()) {
     comm->forward_comm();
     limit_path(true);
@@ -425,7 +436,7 @@ void FixSissm::report_retries(const PeriSISSM::RetryOutcome &outcome)
   const bool now_block = precond == block_precond.get();
   const PeriSISSM::RetryTexts text = PeriSISSM::retry_texts(outcome, context(), now_block);
   if (outcome.switched) {
-    if (outcome.switch_converged) block_first = now_block;
+    if (outcome.switch_converged) block_first = now_block ? PeriSISSM::kBlocksFirstSteps : 0;
     stats.switches++;
     if (!warned_fallback && comm->me == 0) error->warning(FLERR, text.warning);
     warned_fallback = 1;
@@ -495,6 +506,7 @@ void FixSissm::post_integrate()
     ImplicitStep step(forces, groupbit);
     // precond amg: the preconditioner that converged the last step goes first
     precond = (amg_precond && !block_first) ? amg_precond.get() : block_precond.get();
+    if (block_first > 0) block_first--;
     SissmAttempts attempts(this, lagged ? flagged : nullptr);
     outcome = PeriSISSM::run_retry_ladder(attempts, opt.retry);
     report_retries(outcome);
@@ -502,6 +514,9 @@ void FixSissm::post_integrate()
   const PeriSISSM::SolveResult &result = outcome.result;
   const double measure = result.measure;
   const bool converged = result.converged();
+  // (every policy: the atoms stopped where the candidates end, which the velocities do not know
+  // of)
+  if (end_reach) end_reach->reach_error("fix sissm");
 
   // the blow-up guard of pair peri/nosb, now that the atoms are at y^{n+1} (before LAMMPS
   // decides on a neighbor list build): a diverged step ends in an error, not in LAMMPS's

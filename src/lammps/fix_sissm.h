@@ -91,12 +91,16 @@ class FixSissm : public Fix {
   std::vector<class CollisionLimit *> contacts, limiters, adapting;
   int balance_first = 0;        // the next evaluation is the first of a (sub-)step: balance them
   int reach_cut = 0;            // the last evaluation's move was cut short by a contact's reach
+  // the contact whose reach cut the last solve's end of step short (null: none)
+  class CollisionLimit *end_reach = nullptr;
   std::string external_note;    // what was last logged about them
   double dtv = 0.0;
   double tol_step = 1.0e-6;    // the tolerance of the current step (SissmSystem::step_tolerance())
 
   PeriSISSM::StepStatistics stats;    // the global vector (solvers/step_report.h)
-  int block_first = 0;    // precond amg: the blocks converged the last step that amg did not
+  // precond amg: the steps left in which the blocks go first, after they converged a step that
+  // amg did not (solvers/step_retry.h)
+  int block_first = 0;
   // warnings already given in this run: unconverged, round-off floor, preconditioner switch
   int warned = 0, warned_roundoff = 0, warned_fallback = 0;
   int nmax = 0;

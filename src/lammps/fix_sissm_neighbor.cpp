@@ -40,13 +40,13 @@ void FixSissm::start_substep()
 }
 
 /* ----------------------------------------------------------------------
-   the last solve ended beyond the reach of the pair's contact candidates (all ranks; a solve
-   cut short by the reach of a contact fix's candidates ends in that fix's error)
+   the last solve ended beyond the reach of the pair's contact candidates, or its end was cut
+   short by the reach of a contact fix's candidates (all ranks)
 ------------------------------------------------------------------------- */
 
 bool FixSissm::beyond_reach()
 {
-  return forces->contact_build_wanted() == 2;
+  return end_reach || forces->contact_build_wanted() == 2;
 }
 
 /* ----------------------------------------------------------------------

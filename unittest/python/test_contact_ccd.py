@@ -4,7 +4,8 @@ sissm"). A 10 cm cloth thrown at 3 m/s onto a held 20 cm cloth with 1 ms steps m
 step, more than dmin + dhat = 3 mm of barrier range: the independent checker (tools/mesh_gaps.py)
 finds no non-adjacent point-triangle or edge-edge pair of the two cloths within dmin in any
 step's dump, on 1 and 2 ranks; the same throw with `ccd no` ends in the barrier's error (an
-iterate went through); a step farther than the candidates reach is an error naming the skin."""
+iterate went through); a step farther than the candidates reach is redone as sub-steps, and
+without them (unconverged warn) it is an error naming the skin."""
 import sys
 from pathlib import Path
 
@@ -91,10 +92,25 @@ def test_without_ccd_an_iterate_goes_through_the_barrier(tmp_path):
     assert len(told) == 1, run.warnings
 
 
-def test_step_beyond_the_candidates_reach_is_an_error(tmp_path):
+def test_step_beyond_the_candidates_reach_is_redone_as_substeps(tmp_path):
     """A 4 mm skin lets a step move atoms 1.5 mm at least (3/8 of the skin); at 3 mm per step the
-    first step already needs more, and the error says what to change."""
-    run, _, _ = throw(tmp_path, check=False, skin=0.004, steps=3)
+    first step already needs more: it is redone as sub-steps (the default unconverged cutback),
+    each of which may start from new candidates, and the throw goes on, every frame outside dmin
+    (mesh_gaps) and every step converged."""
+    run, lower, upper = throw(tmp_path, skin=0.004, steps=3)
+    assert run.thermo[-1]["Step"][-1] == 3
+    assert "Fix sissm integrate: step 1 did not converge" in run.log and "sub-steps" in run.log
+    assert run.thermo[-1]["f_integrate[2]"].max() < 1e-6
+    gaps_of, n = checker(lower, upper)
+    for frame in mesh_gaps.read_dump(tmp_path / "dump.ccd"):
+        gaps = gaps_of.check(mesh_gaps.mesh_positions(frame, n), radius=0.006, dmin=DMIN)
+        assert not gaps.fails, (frame.step, gaps)
+
+
+def test_step_beyond_the_candidates_reach_is_an_error_without_cutback(tmp_path):
+    """The same throw with unconverged warn (no sub-steps): the first step ends in an error that
+    says what to change."""
+    run, _, _ = throw(tmp_path, check=False, skin=0.004, steps=3, more="unconverged warn")
     assert any("fix sissm step 1 needs atom" in e and "half the neighbor skin (0.002)" in e
                and "larger neighbor skin" in e for e in run.errors), run.errors
 

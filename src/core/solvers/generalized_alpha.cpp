@@ -4,13 +4,20 @@
 
 namespace PeriSISSM {
 
-GeneralizedAlpha::GeneralizedAlpha(double rho_inf)
+GeneralizedAlpha::GeneralizedAlpha(double rho_inf) : rho_inf_(rho_inf)
 {
-  alpha_m_ = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
-  alpha_f_ = rho_inf / (rho_inf + 1.0);
+  set_forces_at_end(false);
+}
+
+void GeneralizedAlpha::set_forces_at_end(bool on)
+{
+  const double rho = rho_inf_;
+  alpha_m_ = on ? (rho - 1.0) / (rho + 1.0) : (2.0 * rho - 1.0) / (rho + 1.0);
+  alpha_f_ = on ? 0.0 : rho / (rho + 1.0);
   gamma_ = 0.5 - alpha_m_ + alpha_f_;
   const double s = 1.0 - alpha_m_ + alpha_f_;
   beta_ = 0.25 * s * s;
+  if (h_ > 0.0) set_step(h_);
 }
 
 void GeneralizedAlpha::set_step(double h)

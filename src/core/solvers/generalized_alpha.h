@@ -15,6 +15,12 @@
 // (a linear oscillator's energy is conserved; with a consistent start a = f/rho it is the
 // trapezoidal rule), rho_inf < 1 damps modes with h omega >> 1 to rho_inf per step while the
 // slow ones keep their amplitude to third order; rho_inf = 0 annihilates them in one step.
+// With set_forces_at_end(true): alpha_f = 0 and alpha_m = (rho_inf - 1) / (rho_inf + 1), the
+// member of the family of Wood, Bossak and Zienkiewicz (1980), also second order with the
+// spectral radius rho_inf at h omega -> infinity; the unknowns are then the end positions
+// y^{n+1}, where a contact that checks every move of the unknowns keeps the step
+// collision-free (the end of Chung and Hulbert's step lies beyond u on the same straight move,
+// 1 / (1 - alpha_f) as far from y^n, unchecked).
 // History per row: a^n and the valid flag; a row without it starts from a^n = f(y^n) / rho.
 // The first iterate is u at a^{n+1} = a^n, i.e. uhat + c a^n (without the lagged force of the
 // predictor; uhat alone where extrapolation is off): exact for a constant acceleration, so free fall converges at the first evaluation;
@@ -34,6 +40,9 @@ class GeneralizedAlpha : public TimeScheme {
   static constexpr int kColumns = 4;
   explicit GeneralizedAlpha(double rho_inf);
   std::string name() const override { return "genalpha"; }
+  void set_forces_at_end(bool on) override;
+  double alpha_f() const { return alpha_f_; }
+  double alpha_m() const { return alpha_m_; }
   int history_columns() const override { return kColumns; }
   void set_step(double h) override;
   double force_time() const override { return 1.0 - alpha_f_; }
@@ -48,7 +57,7 @@ class GeneralizedAlpha : public TimeScheme {
  private:
   // a^{n+1} and v^{n+1} of one component from the unknown u (see above)
   void end_state(int i, int k, const StepArrays &a, double &acc, double &vel) const;
-  double alpha_m_, alpha_f_, gamma_, beta_;
+  double rho_inf_, alpha_m_, alpha_f_, gamma_, beta_;
 };
 
 }    // namespace PeriSISSM

@@ -22,8 +22,11 @@ RetryTexts retry_texts(const RetryOutcome &outcome, const StepContext &c, bool n
   if (outcome.switched)
     texts.warning = me + "with precond " + (now_block ? "amg" : "block") + "; redone with the " +
         (now_block ? "block" : "amg") + " preconditioner (" +
-        (outcome.switch_converged ? "converged" : "not converged either") +
-        "; the one that converged goes first from now on; counted in f_" + c.id +
+        (!outcome.switch_converged ? "not converged either"
+             : now_block ? "converged; the blocks go first for the next " +
+                    n(kBlocksFirstSteps) + " steps"
+                         : "converged; multigrid goes first from now on") +
+        "; counted in f_" + c.id +
         "[9]; reported once per run)";
   if (!outcome.cut_back) return texts;
   const int substeps = outcome.substeps;

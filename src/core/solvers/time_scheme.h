@@ -63,6 +63,11 @@ class TimeScheme {
   // where in the step the forces are evaluated, as a fraction of h (1: at t^{n+1}); particles
   // outside the group are placed there while the step is solved
   virtual double force_time() const { return 1.0; }
+  // on: evaluate the forces at t^{n+1} (force_time() 1), for a contact that checks the moves of
+  // the unknowns, which must then be the step's end positions; a scheme that evaluates them
+  // inside the step switches to a member of its family that does not (generalized-alpha:
+  // alpha_f = 0); the others have nothing to change
+  virtual void set_forces_at_end(bool /*on*/) {}
   // residual of one row from its force density f at the current iterate y
   void residual(double rho, const double *yhat, const double *y, const double *f, double *r) const
   {

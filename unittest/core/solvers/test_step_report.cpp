@@ -19,10 +19,12 @@ TEST(StepReport, SwitchOfPreconditionerNamesBoth)
   const RetryTexts t = retry_texts(o, kStep, true);
   EXPECT_EQ(t.warning,
             "Fix sissm int: step 120 did not converge with precond amg; redone with the block "
-            "preconditioner (converged; the one that converged goes first from now on; counted "
+            "preconditioner (converged; the blocks go first for the next 10 steps; counted "
             "in f_int[9]; reported once per run)");
   EXPECT_EQ(t.error, "");
   EXPECT_EQ(t.note, "");
+  EXPECT_NE(retry_texts(o, kStep, false).warning.find("(converged; multigrid goes first from now on;"),
+            std::string::npos);
   o.switch_converged = false;
   const std::string back = retry_texts(o, kStep, false).warning;
   EXPECT_NE(back.find("with precond block; redone with the amg preconditioner (not converged "

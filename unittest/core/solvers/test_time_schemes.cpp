@@ -179,9 +179,8 @@ std::complex<double> bdf2_root(double x)
 
 // Chung-Hulbert amplification matrix of (u, h v, h^2 a) for u'' = -omega^2 u, from the defining
 // equations (generalized_alpha.h), x = h omega
-Eigen::Matrix3d genalpha_matrix(double rho_inf, double x)
+Eigen::Matrix3d alpha_matrix(double am, double af, double x)
 {
-  const double am = (2 * rho_inf - 1) / (rho_inf + 1), af = rho_inf / (rho_inf + 1);
   const double g = 0.5 - am + af, b = 0.25 * (1 - am + af) * (1 - am + af);
   // unknowns (u1, V1 = h v1, A1 = h^2 a1) from (u0, V0, A0):
   //   (1-am) A1 + am A0 + x^2 ((1-af) u1 + af u0) = 0
@@ -191,6 +190,17 @@ Eigen::Matrix3d genalpha_matrix(double rho_inf, double x)
   L << x * x * (1 - af), 0, 1 - am, 1, 0, -b, 0, 1, -g;
   R << -x * x * af, 0, -am, 1, 1, 0.5 - b, 0, 1, 1 - g;
   return L.inverse() * R;
+}
+
+Eigen::Matrix3d genalpha_matrix(double rho_inf, double x)
+{
+  return alpha_matrix((2 * rho_inf - 1) / (rho_inf + 1), rho_inf / (rho_inf + 1), x);
+}
+
+// the member of Wood, Bossak and Zienkiewicz: alpha_f = 0
+Eigen::Matrix3d bossak_matrix(double rho_inf, double x)
+{
+  return alpha_matrix((rho_inf - 1) / (rho_inf + 1), 0.0, x);
 }
 
 std::complex<double> genalpha_root(double rho_inf, double x)
@@ -308,6 +318,49 @@ TEST(TimeSchemes, GeneralizedAlphaIsChungHulbert)
       EXPECT_NEAR(h * o.s.v.rows[0][0], s1(1), tol) << rho_inf << " " << x;
       EXPECT_NEAR(h * h * o.s.hist.rows[0][0], s1(2), tol) << rho_inf << " " << x;
     }
+}
+
+// With the forces at the end of the step (set_forces_at_end, for a contact that checks the
+// moves of the unknowns) a generalized-alpha step is Wood, Bossak and Zienkiewicz's (alpha_f =
+// 0, alpha_m = (rho_inf - 1) / (rho_inf + 1)) to round-off, evaluates at t^{n+1}, keeps the
+// spectral radius rho_inf at h omega -> infinity (within 1.5 (h omega)^(-2/3), as above) and
+// stays second order (period error below (h omega)^2 / 2 at h omega = 0.1 and 0.3); switched
+// off again it is Chung and Hulbert's.
+TEST(TimeSchemes, GeneralizedAlphaWithForcesAtTheEndIsBossak)
+{
+  const double omega = 2.5;
+  for (double rho_inf : {0.0, 0.5, 0.8, 1.0}) {
+    for (double x : {0.1, 0.3, 0.7, 1000.0}) {
+      const double h = x / omega;
+      Oscillator o({"genalpha", rho_inf}, h, omega);
+      o.s.scheme().set_forces_at_end(true);
+      EXPECT_EQ(o.s.scheme().force_time(), 1.0);
+      o.s.v.rows[0][0] = 0.2;
+      o.s.hist.rows[0][0] = 0.05;    // a^n
+      o.s.hist.rows[0][3] = 1.0;     // valid
+      const Eigen::Vector3d s0(o.u(), h * 0.2, h * h * 0.05);
+      step(o.s);
+      const Eigen::Vector3d s1 = bossak_matrix(rho_inf, x) * s0;
+      const double tol = 50.0 * o.s.tol + 1e-14 * s0.norm();
+      EXPECT_NEAR(o.u(), s1(0), tol) << rho_inf << " " << x;
+      EXPECT_NEAR(h * o.s.v.rows[0][0], s1(1), tol) << rho_inf << " " << x;
+      EXPECT_NEAR(h * h * o.s.hist.rows[0][0], s1(2), tol) << rho_inf << " " << x;
+      if (x < 0.5) {
+        const Eigen::Vector3cd ev = bossak_matrix(rho_inf, x).eigenvalues();
+        double phase = 0.0;
+        for (int k = 0; k < 3; k++) phase = std::max(phase, std::fabs(std::arg(ev(k))));
+        EXPECT_LT(std::fabs(x / phase - 1.0), 0.5 * x * x) << rho_inf << " " << x;
+      }
+    }
+    for (double x : {1e3, 1e7})
+      EXPECT_NEAR(bossak_matrix(rho_inf, x).eigenvalues().cwiseAbs().maxCoeff(), rho_inf,
+                  1.5 * std::pow(x, -2.0 / 3.0))
+          << "rho_inf " << rho_inf << " h omega " << x;
+  }
+  auto ga = make_time_scheme("genalpha", 0.8);
+  ga->set_forces_at_end(true);
+  ga->set_forces_at_end(false);
+  EXPECT_NEAR(ga->force_time(), 1.0 - 0.8 / 1.8, 1e-15);
 }
 
 // BDF2 at variable steps (alternating h and h/2, w = 1/2 and 2) stays second order on the
