@@ -29,7 +29,7 @@ along the seams between triangles (no moire on flat regions).
 Pictures are W x H inches at --dpi exactly (the defaults 8 x 6 at 100: 800 x 600 pixels). With
 several frames (several files, or a .pvd series: its frames in its order) and an output ending
 in .gif, every frame is drawn in the same view (the box holding all frames, or --limits) and
-written as one frame of the GIF (matplotlib's Pillow writer; no ffmpeg). The title may name the
+written as one frame of the GIF (with Pillow, matplotlib's own dependency; no ffmpeg). The title may name the
 frame's time ({time}, from the VTK files' TimeValue) and its step ({step}, the last number of
 the file name). Needs numpy and matplotlib only (the files are read here: the ASCII VTK XML that
 dump nosb/mesh writes, and OBJ v, o and f lines).
@@ -280,13 +280,19 @@ def render(frames, args):
     scene = Scene(args, frames)
     fig, ax = scene.figure()
     if Path(args.output).suffix.lower() == ".gif":
-        from matplotlib.animation import PillowWriter
+        from PIL import Image
 
-        writer = PillowWriter(fps=args.fps)
-        with writer.saving(fig, args.output, args.dpi):
-            for frame in frames:
-                scene.draw(fig, ax, frame)
-                writer.grab_frame(facecolor="white")
+        # each frame's own 256-colour palette by median cut: the shades of one cloth colour
+        # stay smooth (an RGBA frame written as it is gets a few colours and flat patches)
+        images = []
+        for frame in frames:
+            scene.draw(fig, ax, frame)
+            fig.canvas.draw()
+            rgb = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3])
+            images.append(rgb.quantize(256, method=Image.Quantize.MEDIANCUT,
+                                       dither=Image.Dither.NONE))
+        images[0].save(args.output, save_all=True, append_images=images[1:], loop=0,
+                       duration=round(1000 / args.fps))
     else:
         scene.draw(fig, ax, frames[-1])
         fig.savefig(args.output, facecolor="white")
