@@ -28,7 +28,7 @@ lammps_options=(-DCMAKE_BUILD_TYPE=Release -DBUILD_MPI=on -DBUILD_SHARED_LIBS=on
 debian_packages=(cmake g++ make libopenmpi-dev openmpi-bin libeigen3-dev libgtest-dev
   python3-pytest python3-pytest-xdist python3-numpy python3-matplotlib xz-utils ccache
   libjpeg-dev libpng-dev zlib1g-dev ca-certificates python3-sphinx python3-myst-parser libjs-mathjax
-  petsc-dev pkg-config valgrind python3-meshio)
+  petsc-dev pkg-config valgrind python3-meshio python3-pil)
 
 say() { printf '[setup] %s\n' "$*"; }
 die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }

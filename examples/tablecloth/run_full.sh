@@ -2,10 +2,11 @@
 # The tablecloth's bending sweep at the SISSM authors' size (README.md, "Full size"), in one
 # command: makes cloth_full.obj (39911 vertices, 6.5 mm triangles) when it is missing, runs the
 # deck for D = 0 (bend no), 1e-5, 1e-4 and 1e-3 N m for 1.5 s, two runs at a time (one per
-# core), each writing log.full.DX, dump.full.DX.STEP and full.DX.STEP.png every EVERY steps,
-# then lets each drape settle: from the positions at 1.5 s, at rest, SETTLE more steps with the
-# drag raised to SETTLEDAMP (the overhang's swing is still +-0.1 in drape coefficient at 1.5 s
-# with the deck's 2 /s; 25 /s damps it beyond critically), and measures each drape at the end
+# core), each writing log.full.DX, dump.full.DX.STEP and frames/full.DX.STEP.vtp (the cloth's
+# triangles, which ./pictures.sh full renders) every EVERY steps, then lets each drape settle:
+# from the positions at 1.5 s, at rest, SETTLE more steps with the drag raised to SETTLEDAMP
+# (the overhang's swing is still +-0.1 in drape coefficient at 1.5 s with the deck's 2 /s;
+# 25 /s damps it beyond critically), and measures each drape at the end
 # with drape.py (drape.full.DX.svg) and prints the table (at 1.5 s and settled).
 # By default the runs are explicit (fix nve, dt = 50 us: 30000 steps): at this size that is
 # 6.5 to 8 times cheaper than fix sissm at the authors' 1 ms (README.md, "Full size").
@@ -39,8 +40,9 @@ tag=full
 
 run_one() {
   name=$tag.D$1
-  common="-var mesh cloth_full.obj -var a 0.0065 -var every $EVERY -var bend $1 -var solver $SOLVER
-    -var dt $DT -var precond $PRECOND -var wall $WALL -var contact $CONTACT -var name $name"
+  common="-var mesh cloth_full.obj -var a 0.0065 -var every $EVERY -var frames $EVERY
+    -var bend $1 -var solver $SOLVER -var dt $DT -var precond $PRECOND -var wall $WALL
+    -var contact $CONTACT -var name $name"
   # shellcheck disable=SC2086
   "$LMP" -in in.tablecloth $common -var steps "$STEPS" -log "log.$name" > /dev/null 2>&1 ||
     { echo "run $name failed: see log.$name" >&2; return; }

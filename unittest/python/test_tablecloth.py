@@ -151,7 +151,7 @@ def test_settling_continues_from_the_dump_at_rest(scene, tmp_path):
 @pytest.mark.parametrize("nprocs", [1, pytest.param(2, marks=pytest.mark.mpi)])
 def test_self_contact_under_fix_sissm_keeps_the_drape(scene, tmp_path, nprocs):
     run = run_deck(SCENE / "in.tablecloth", tmp_path, nprocs=nprocs, variables={
-        "mesh": SCENE / "cloth_ci.obj", "steps": STEPS, "every": EVERY, "dump": 1, "image": 0,
+        "mesh": SCENE / "cloth_ci.obj", "steps": STEPS, "every": EVERY, "dump": 1,
         "contact": "yes"})
     table = run.thermo[-1]
     assert table["Step"][-1] == STEPS and table["f_integrate[2]"].max() < 1e-6, table
@@ -188,7 +188,7 @@ def test_contact_range_beyond_the_half_triangles_repels_the_flat_cloth(tmp_path)
     same flat cloth at rest has pairs in range: the row ends repel themselves, which the
     deck's choice avoids."""
     run = run_deck(SCENE / "in.tablecloth", tmp_path, variables={
-        "mesh": SCENE / "cloth_ci.obj", "steps": 0, "dump": 0, "image": 0, "contact": "yes",
+        "mesh": SCENE / "cloth_ci.obj", "steps": 0, "dump": 0, "contact": "yes",
         "dhat": 0.02})
     first = {k: v[0] for k, v in run.thermo[-1].items()}
     assert first["f_contact[1]"] > 0 and first["f_contact[3]"] < 0.0174, first
