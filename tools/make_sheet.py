@@ -21,6 +21,10 @@ the diagonals criss-cross (a union-jack pattern: every other interior vertex joi
 rest 4) and no diagonal direction is preferred; --pattern right cuts every cell from its
 lower-left to its upper-right corner.
 
+--grade g (alternate and right, without --jitter): the same cells, each g^(1/(m-1)) times
+the one before along x and along y (m cells that way), the last g times the first; the sheet
+keeps its size. A graded mesh for the bending validation (examples/membranes).
+
 --pattern equilateral: rows of vertices parallel to x, ny = round(LY/h) + 1 of them with
 h = a sqrt(3)/2 (so dy = LY/(ny-1)), every odd row (counting from 0 at the bottom) shifted by
 dx/2; nx = round(LX/a) + 1 and dx = LX/(nx-1) as above. An even row holds the nx vertices
@@ -115,12 +119,13 @@ def _placed(points, center):
 
 
 def rectangle(Lx: float, Ly: float, a: float, pattern: str = "alternate",
-              jitter: float = 0.0, seed: int = 1, center=(0.0, 0.0, 0.0)):
+              jitter: float = 0.0, seed: int = 1, center=(0.0, 0.0, 0.0), grade: float = 1.0):
     """A rectangular sheet Lx (along x) by Ly (along y) centred at `center`.
 
     Inputs:  Lx, Ly > 0 the size; a > 0 the target spacing; pattern "alternate", "right" or
              "equilateral"; jitter f in [0, 0.3) and seed of the irregular version;
-             center (x, y, z).
+             center (x, y, z); grade g in [1, 4] (alternate and right only, no jitter): the
+             cells grow geometrically along x and along y, the last g times the first.
     Outputs: (vertices, faces), row by row from the bottom (y = -Ly/2), x fastest within a row.
              alternate, right: mx = round(Lx/a), my = round(Ly/a) cells (at least 1),
              (mx+1)(my+1) vertices, 2 mx my counter-clockwise triangles (0-based).
@@ -135,18 +140,24 @@ def rectangle(Lx: float, Ly: float, a: float, pattern: str = "alternate",
     _check_common("rectangle", a, jitter)
     _require(pattern in PATTERNS, f"make_sheet rectangle: --pattern must be one of "
              f"{', '.join(PATTERNS)} (got '{pattern}')")
+    _require(math.isfinite(grade) and 1.0 <= grade <= 4.0,
+             f"make_sheet rectangle: --grade g must satisfy 1 <= g <= 4 (got {grade})")
+    _require(grade == 1.0 or (pattern != "equilateral" and jitter == 0.0),
+             "make_sheet rectangle: --grade goes with --pattern alternate or right and no "
+             "--jitter")
     equilateral = pattern == "equilateral"
     row_height = a * math.sqrt(3.0) / 2.0 if equilateral else a
     mx, my = max(1, round(Lx / a)), max(1, round(Ly / row_height))
     # each row's vertices as fractions t of the width, x = Lx (t - 1/2): t = 0 and 1 give the
     # edges at -+Lx/2 exactly (as j/my - 1/2 gives -+Ly/2); shifted rows add the two ends
-    grid = [i / mx for i in range(mx + 1)]
+    grid = _graded(mx, grade)
     shifted = [0.0] + [(k + 0.5) / mx for k in range(mx)] + [1.0]
     rows = [shifted if equilateral and j % 2 else grid for j in range(my + 1)]
     start = [0]                                 # index of each row's first vertex
     for row in rows:
         start.append(start[-1] + len(row))
-    points = [[Lx * (t - 0.5), Ly * (j / my - 0.5)] for j, row in enumerate(rows) for t in row]
+    heights = _graded(my, grade)
+    points = [[Lx * (t - 0.5), Ly * (heights[j] - 0.5)] for j, row in enumerate(rows) for t in row]
     if jitter > 0:
         rng = random.Random(seed)
         sx, sy = jitter * min(a, Lx / mx), jitter * min(a, Ly / my)
@@ -178,6 +189,15 @@ def rectangle(Lx: float, Ly: float, a: float, pattern: str = "alternate",
     check_triangles(vertices, faces, f"rectangle {Lx} {Ly} --spacing {a} --pattern {pattern} "
                                      f"--jitter {jitter}")
     return vertices, faces
+
+
+def _graded(m: int, g: float):
+    """The m + 1 fractions 0 = t_0 < ... < t_m = 1 of cells that grow by the same factor from one
+    to the next, the last g times the first (t_k = k/m when g = 1 or m = 1)."""
+    if g == 1.0 or m == 1:
+        return [k / m for k in range(m + 1)]
+    r = g ** (1.0 / (m - 1))
+    return [0.0] + [(r ** k - 1.0) / (r ** m - 1.0) for k in range(1, m)] + [1.0]
 
 
 def _equilateral_strip(lower: int, upper: int, mx: int, lower_shifted: bool):
@@ -477,6 +497,9 @@ def main(argv=None):
     rect = shapes.add_parser("rectangle", parents=[common], help="LX by LY rectangle")
     rect.add_argument("Lx", type=float, metavar="LX", help="width along x")
     rect.add_argument("Ly", type=float, metavar="LY", help="height along y")
+    rect.add_argument("--grade", type=float, default=1.0, metavar="g",
+                      help="cells growing geometrically along x and y, the last g times the "
+                           "first, 1 <= g <= 4 (alternate and right, no --jitter; default 1)")
     rect.add_argument("--pattern", choices=PATTERNS, default="alternate",
                       help="right triangles with diagonals criss-crossing (alternate, "
                            "default) or all one way (right), or equilateral triangles in rows "
@@ -490,7 +513,7 @@ def main(argv=None):
     try:
         if args.shape == "rectangle":
             vertices, faces = rectangle(args.Lx, args.Ly, args.spacing, args.pattern,
-                                        args.jitter, args.seed, args.center)
+                                        args.jitter, args.seed, args.center, args.grade)
         elif args.shape == "disc":
             vertices, faces = disc(args.R, args.spacing, args.jitter, args.seed, args.center)
         else:

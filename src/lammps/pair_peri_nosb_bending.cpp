@@ -105,6 +105,18 @@ void PairPeriNosb::compute_bending()
 }
 
 /* ----------------------------------------------------------------------
+   compute nosb/atom: the stable time steps dt of the owned atoms (the elastic estimates) with
+   the bending stiffness of the hinges at the current positions (rmass is the density)
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::bending_stable_steps(double *dt)
+{
+  if (!any_bend || !meshfix) return;
+  if (hinges_stale) build_hinges();
+  PeriSISSM::bending_stable_steps(hinges, particles(), atom->rmass, dt);
+}
+
+/* ----------------------------------------------------------------------
    ImplicitForces: the hinges of this rank's list in the current positions, for the coarse
    level's matrix (each hinge once; a vertex's row is where compute_bending() puts its share)
 ------------------------------------------------------------------------- */

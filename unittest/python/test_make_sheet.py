@@ -614,3 +614,34 @@ def test_command_line_refuses_bad_values(tmp_path, args, words):
     for word in words:
         assert word in run.stderr
     assert not out.exists()
+
+
+@pytest.mark.parametrize("pattern", ["alternate", "right"])
+@pytest.mark.parametrize("g", [1.0, 2.0, 4.0])
+def test_rectangle_grade(pattern, g):
+    """--grade g: the grid's columns and rows grow by one factor, the last cell g times the
+    first both ways, the sheet keeps its size and area, and the triangles keep the topology."""
+    Lx, Ly, a = 0.3, 0.2, 0.01
+    vertices, faces = ms.rectangle(Lx, Ly, a, pattern, grade=g)
+    mx, my = rect_cells(Lx, Ly, a, pattern)
+    assert (len(vertices), len(faces)) == rect_counts(mx, my, pattern)[:2]
+    xs = [vertices[i][0] for i in range(mx + 1)]
+    ys = [vertices[j * (mx + 1)][1] for j in range(my + 1)]
+    for coords, length in ((xs, Lx), (ys, Ly)):
+        assert coords[0] == -length / 2 and coords[-1] == length / 2
+        widths = [q - p for p, q in zip(coords, coords[1:])]
+        assert min(widths) > 0
+        assert widths[-1] / widths[0] == pytest.approx(g, rel=1e-12)
+        ratios = [w1 / w0 for w0, w1 in zip(widths, widths[1:])]
+        assert max(ratios) - min(ratios) < 1e-9
+    assert ms.mesh_stats(vertices, faces)["area"] == pytest.approx(Lx * Ly, rel=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    (dict(pattern="equilateral", grade=2.0), "--grade goes with"),
+    (dict(pattern="alternate", grade=2.0, jitter=0.1), "--grade goes with"),
+    (dict(pattern="alternate", grade=0.5), "1 <= g <= 4"),
+    (dict(pattern="right", grade=5.0), "1 <= g <= 4")])
+def test_rectangle_grade_refused(kwargs, words):
+    with pytest.raises(ValueError, match=words):
+        ms.rectangle(0.3, 0.2, 0.01, **kwargs)

@@ -4,6 +4,7 @@
 
 #include "membrane/hinge.h"
 #include "peri/bond_stiffness.h"
+#include "peri/stable_step.h"
 
 #include <algorithm>
 #include <cmath>
@@ -124,6 +125,30 @@ void bending_pass(const std::vector<Hinge> &hinges, const Particles &p, double *
           for (int m = 0; m < 6; m++) virial.peratom[i][m] += w[m];
       }
     }
+  }
+}
+
+void bending_stable_steps(const std::vector<Hinge> &hinges, const Particles &p, const double *rho,
+                          double *dt, double *stiffness)
+{
+  const double *x = p.x;
+  std::vector<double> G(p.nlocal, 0.0);
+  for (const Hinge &h : hinges) {
+    const int *v = h.v;
+    double g[4][3], norm[4], sum = 0.0;
+    hinge_angle(x + 3 * v[0], x + 3 * v[1], x + 3 * v[2], x + 3 * v[3], g);
+    for (int k = 0; k < 4; k++) {
+      norm[k] = std::sqrt(g[k][0] * g[k][0] + g[k][1] * g[k][1] + g[k][2] * g[k][2]);
+      sum += norm[k];
+    }
+    for (int k = 0; k < 4; k++)
+      if (h.own[k] >= 0) G[h.own[k]] += 2.0 * h.c * norm[k] * sum / p.volume[h.own[k]];
+  }
+  for (int i = 0; i < p.nlocal; i++) {
+    if (!(G[i] > 0.0)) continue;
+    if (stiffness) stiffness[i] += G[i];
+    const double dtb = stable_time_step(rho[i], G[i]);
+    dt[i] = std::isinf(dt[i]) ? dtb : 1.0 / std::sqrt(1.0 / (dt[i] * dt[i]) + 1.0 / (dtb * dtb));
   }
 }
 

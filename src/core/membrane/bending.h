@@ -82,6 +82,22 @@ struct BendingEnergy {
 void bending_pass(const std::vector<Hinge> &hinges, const Particles &p, double **block,
                   const BendingEnergy &energy, const Virial &virial);
 
+// The bending term's part of the stable explicit time step (peri/stable_step.h). At rest
+// (theta = theta0) a hinge's Hessian is its Gauss-Newton 2 c g g^T (g = d theta / d x), whose
+// block (k, v) has the 2-norm 2 c |g_k| |g_v|; by the block Gershgorin theorem the squared
+// frequencies of the hinges over the vertices' masses rho_i V_i are at most max_i G_i / rho_i,
+//   G_i = sum over the hinges of owned vertex i (its place k) 2 c |g_k| sum_v |g_v| / V_i.
+// The estimate of peri/stable_step.h with d_i = G_i, kStableStepSafety sqrt(2 rho_i / G_i), is
+// 1.25 sqrt(2) / 2 = 0.88 times that bound's limit 2 sqrt(rho_i / G_i). The elastic estimate
+// dt_e (d_e) and the bending's combine as the estimate of d_e + G_i:
+//   1 / dt^2 = 1 / dt_e^2 + 1 / dt_b^2,   dt_b = stable_time_step(rho_i, G_i).
+// Inputs: hinges, p.x (owned and ghost rows; g at these positions), p.volume, rho of the owned
+//         rows (mass per volume); dt (owned rows) the elastic estimates, +infinity for none.
+// Outputs: dt of the owned rows that take a share of a hinge combined as above; stiffness
+//          (when not null, owned rows, +=) G_i.
+void bending_stable_steps(const std::vector<Hinge> &hinges, const Particles &p, const double *rho,
+                          double *dt, double *stiffness = nullptr);
+
 // The hinges in the current positions p.x for an assembled stiffness (peri/bond_stiffness.h):
 // vertices and rows of each, and with gradients true sqrt(2 c) d theta / d x_v (grad left empty
 // otherwise).

@@ -2,12 +2,14 @@
 // mesh (each interior edge once, in the order of its IDs), the pass's forces against finite
 // differences of its energy, its blocks against the Hessian at a rigidly moved rest shape, its
 // virial against the strain derivative of the energy, the couplings against the blocks, and the
-// same bits for the particles of a mesh split between two ranks as on one.
+// same bits for the particles of a mesh split between two ranks as on one; the stable-step bound
+// against the hinges' frequencies.
 
 #include "membrane/bending.h"
 
 #include "membrane/hinge.h"
 #include "peri/bond_stiffness.h"
+#include "peri/stable_step.h"
 
 #include "test_helpers.h"
 
@@ -18,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -413,3 +416,64 @@ TEST(Bending, MissingVertexIsReported)
 }
 
 }    // namespace
+
+// The stable-step bound: the largest squared frequency of the hinges' Hessian at rest over the
+// vertices' masses (rho_i V_i) is at most max_i G_i / rho_i, and the estimate of G_i alone
+// (kStableStepSafety sqrt(2 rho / G)) stays below the limit 2 / omega of central differences;
+// combined with an elastic estimate it is the estimate of the summed stiffness.
+TEST(Bending, StableStepBoundsTheHingeFrequencies)
+{
+  const Grid grid;
+  const View view(grid, all_vertices());
+  std::vector<PeriSISSM::Hinge> hinges;
+  PeriSISSM::build_hinges(view, view.x0.data(), PeriSISSM::ReferenceBox(), hinges);
+  const int n = Grid::N;
+  std::vector<double> rho(n), dt(n, std::numeric_limits<double>::infinity()), G(n, 0.0);
+  for (int i = 0; i < n; i++) rho[i] = 800.0 + 50.0 * ((i * 5) % 3);
+  PeriSISSM::Particles p;
+  p.nlocal = n;
+  p.nall = n;
+  p.x = view.x0.data();
+  p.volume = view.volume.data();
+  PeriSISSM::bending_stable_steps(hinges, p, rho.data(), dt.data(), G.data());
+
+  // the Gauss-Newton Hessian K = sum 2 c g g^T and the lumped masses
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+  for (const PeriSISSM::Hinge &h : hinges) {
+    double g[4][3];
+    const double *x = view.x0.data();
+    PeriSISSM::hinge_angle(x + 3 * h.v[0], x + 3 * h.v[1], x + 3 * h.v[2], x + 3 * h.v[3], g);
+    for (int a = 0; a < 4; a++)
+      for (int b = 0; b < 4; b++)
+        for (int r = 0; r < 3; r++)
+          for (int c = 0; c < 3; c++)
+            K(3 * h.v[a] + r, 3 * h.v[b] + c) += 2.0 * h.c * g[a][r] * g[b][c];
+  }
+  Eigen::VectorXd minv(3 * n);
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++) minv(3 * i + k) = 1.0 / std::sqrt(rho[i] * view.volume[i]);
+  const Eigen::MatrixXd S = minv.asDiagonal() * K * minv.asDiagonal();
+  const double omega2 = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S).eigenvalues().maxCoeff();
+  double bound = 0.0, dtmin = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; i++) {
+    bound = std::max(bound, G[i] / rho[i]);
+    dtmin = std::min(dtmin, dt[i]);
+    EXPECT_DOUBLE_EQ(dt[i], PeriSISSM::stable_time_step(rho[i], G[i])) << i;
+  }
+  ASSERT_GT(omega2, 0.0);
+  EXPECT_GE(bound, omega2);
+  // how far the bound is from the frequency on this curved, uneven grid: measured 1.59, and
+  // the smallest estimate 0.70 times the limit 2 / omega
+  EXPECT_LT(bound, 2.0 * omega2);
+  EXPECT_LT(dtmin, 0.9 * 2.0 / std::sqrt(omega2));
+  EXPECT_GT(dtmin, 0.5 * 2.0 / std::sqrt(omega2));
+
+  // with an elastic estimate of d_e: the estimate of d_e + G_i
+  std::vector<double> dt2(n), G2(n, 0.0);
+  for (int i = 0; i < n; i++) dt2[i] = PeriSISSM::stable_time_step(rho[i], 3.0 * G[i] + 1.0);
+  PeriSISSM::bending_stable_steps(hinges, p, rho.data(), dt2.data(), G2.data());
+  for (int i = 0; i < n; i++) {
+    EXPECT_EQ(G2[i], G[i]);
+    EXPECT_NEAR(dt2[i], PeriSISSM::stable_time_step(rho[i], 4.0 * G[i] + 1.0), 1e-14 * dt2[i]);
+  }
+}

@@ -1,0 +1,54 @@
+// A bending energy of a flat triangle mesh that is the Kirchhoff plate's on any triangulation
+// (examples/membranes/README.md, "Choosing a bending energy"): per triangle T the mid-edge shape
+// operator
+//   k_T = 1/A_T sum_i |e_i| (d_i - g_T . t_i) t_i t_i^T,
+// g_T the slope of the piecewise linear field on T, t_i the outward in-plane unit normal of its
+// edge i, d_i the slope across edge i at its midpoint: the mean over the edge's one or two
+// triangles of the slope there of the quadratic fitted to each triangle's stencil (its three
+// vertices and the far vertices of the triangles across its edges; least squares over its
+// vertices' 1-rings where an edge is on the boundary). Exact for quadratic fields (each fit
+// is), and sum_T A_T k_T depends only on the boundary values (d_i is one value per edge,
+// shared by both triangles, and cancels). For the sheet in 3D the coefficients apply to the
+// positions y: three vectors Q_xx, Q_xy, Q_yy per triangle (zero on any rigid motion of the flat
+// rest shape), and
+//   E_T = A_T D/2 [|Q_xx + Q_yy|^2 - 2 (1 - nu) (Q_xx . Q_yy - |Q_xy|^2)],
+// the plate energy D/2 [(tr k)^2 - 2 (1 - nu) det k] per area for bending without stretching
+// (whose second derivatives of y are normal to the sheet). E is quadratic in y: its Hessian is
+// constant and positive semi-definite (|nu| <= 1). LAMMPS-free.
+
+#ifndef PERISISSM_MEMBRANE_CURVATURE_H
+#define PERISISSM_MEMBRANE_CURVATURE_H
+
+#include <array>
+#include <vector>
+
+namespace PeriSISSM {
+
+// The coefficients of one triangle: Q_c = sum_k coef[3 k + c] y_{vertex[k]}, c = xx, xy, yy
+// (in an orthonormal frame of the rest plane; E does not depend on which).
+struct CurvatureStencil {
+  std::vector<int> vertex;
+  std::vector<double> coef;    // 3 per vertex (1 / length^2)
+  double area = 0.0;           // A_T at rest
+};
+
+// Inputs: nv vertices X (3 per vertex, all in one plane), tri (0-based, any orientation).
+// Outputs: stencils, one per triangle, in tri's order. Returns false (stencils cleared) when the
+// vertices are not in one plane (to 1e-9 of the mesh's size), a triangle is degenerate, or a fit
+// has fewer than six points not on one conic.
+bool build_curvature_stencils(int nv, const double *X, const std::vector<std::array<int, 3>> &tri,
+                              std::vector<CurvatureStencil> &stencils);
+
+// E_T at positions y (3 per vertex, indexed as the mesh). Outputs: when force is not null,
+// force[3 k + d] = -dE_T / dy_{vertex[k], d} (3 per stencil vertex).
+double curvature_energy(const CurvatureStencil &s, const double *y, double D, double nu,
+                        double *force = nullptr);
+
+// The constant Hessian of E_T: block (k, l) = h[m k + l] I (3x3), m = vertex.size(),
+//   h[m k + l] = A_T D sum_cd W_cd coef[3 k + c] coef[3 l + d],
+// W = [[1, 0, nu], [0, 2 (1 - nu), 0], [nu, 0, 1]] over (xx, xy, yy). Output h (resized).
+void curvature_hessian(const CurvatureStencil &s, double D, double nu, std::vector<double> &h);
+
+}    // namespace PeriSISSM
+
+#endif    // PERISISSM_MEMBRANE_CURVATURE_H
