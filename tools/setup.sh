@@ -142,8 +142,14 @@ build_lammps() {
 build_project() {
   local tree=$1 lbuild=$2
   say "PERI-SISSM: building in $here/build" >&2
+  # ccache in the cache folder, with paths taken relative to the checkout: a fresh clone of the
+  # same sources compiles from the cache
+  local launcher=()
+  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_DIR="$cache/ccache" CCACHE_BASEDIR="$here" CCACHE_NOHASHDIR=1
   cmake -S "$here" -B "$here/build" -DCMAKE_BUILD_TYPE=Release \
     -DLAMMPS_SOURCE_DIR="$tree/src" -DLAMMPS_BINARY_DIR="$lbuild" -DPERISISSM_TESTS=ON \
+    "${launcher[@]}" \
     >"$here/build/configure.log" 2>&1 || { cat "$here/build/configure.log"; die "configure failed"; }
   cmake --build "$here/build" -j "$jobs" 2>&1 | tail -n 20
   [ "${PIPESTATUS[0]}" = 0 ] || die "PERI-SISSM build failed"
