@@ -146,8 +146,7 @@ void FixSissm::init()
   choose_external();
   // a contact that checks every move of the unknowns: the forces at the step's end
   scheme->set_forces_at_end(!limiters.empty());
-  if (!limiters.empty() && scheme->force_time() == 1.0 && opt.scheme == "genalpha" &&
-      comm->me == 0)
+  if (!limiters.empty() && opt.scheme == "genalpha" && comm->me == 0)
     utils::logmesg(lmp,
                    "Fix sissm {}: scheme genalpha with a contact fix that limits moves: alpha_f "
                    "= 0 (Wood-Bossak-Zienkiewicz), the forces at the end of the step\n",

@@ -41,8 +41,6 @@ class GeneralizedAlpha : public TimeScheme {
   explicit GeneralizedAlpha(double rho_inf);
   std::string name() const override { return "genalpha"; }
   void set_forces_at_end(bool on) override;
-  double alpha_f() const { return alpha_f_; }
-  double alpha_m() const { return alpha_m_; }
   int history_columns() const override { return kColumns; }
   void set_step(double h) override;
   double force_time() const override { return 1.0 - alpha_f_; }
