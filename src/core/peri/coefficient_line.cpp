@@ -64,6 +64,11 @@ namespace {
       c.contact = read.logical(value);
     } else if (key == "membrane") {
       c.membrane = read.logical(value);
+    } else if (key == "deviation") {
+      if (value != "length" && value != "vector")
+        return kIllegal + "deviation must be length or vector, got " + value;
+      c.length = value == "length";
+      line.length_given = c.length;
     } else if (key == "bend") {
       if (value == "auto") {
         line.bend = -1.0;
@@ -85,8 +90,8 @@ namespace {
 
 const std::vector<std::string> &coefficient_keywords()
 {
-  static const std::vector<std::string> keys = {"stabilize", "break", "contact",
-                                                "membrane",  "bend",  "G0"};
+  static const std::vector<std::string> keys = {"stabilize", "deviation", "break", "contact",
+                                                "membrane",  "bend",      "G0"};
   return keys;
 }
 
@@ -144,13 +149,18 @@ std::string read_coefficient_line(const std::vector<std::string> &args,
     const std::string &key = args[iarg];
     if (std::find(keys.begin(), keys.end(), key) == keys.end())
       return kIllegal + "unknown keyword '" + key +
-          "' (allowed: stabilize, break, contact, membrane, bend, G0)";
+          "' (allowed: stabilize, deviation, break, contact, membrane, bend, G0)";
     if (iarg + 2 > narg)
       return "Illegal pair_coeff peri/nosb " + key + " command: missing argument(s)";
     problem = read_keyword(key, args[iarg + 1], read, line, g0_text);
     if (!problem.empty()) return problem;
   }
 
+  if (line.length_given && c.membrane)
+    return kIllegal + "deviation length is a form of volume particles; the membranes of type " +
+        args[0] + " keep the vector form in their tangent planes (drop the keyword)";
+  // membranes: the tangent-plane vector form whatever the default
+  if (c.membrane) c.length = false;
   if (line.bend != 0.0 && !c.membrane)
     return kIllegal + "bend is a term of membranes (add 'membrane yes' to the line of type " +
         args[0] + ")";

@@ -27,6 +27,7 @@ PairCoefficients mix_coefficients(const PairCoefficients &ii, const PairCoeffici
   m.s00 = weak->s00;
   m.alpha = weak->alpha;
   m.cs = 0.0;
+  m.length = ii.length && jj.length;
   m.g0 = 0.0;
   m.breaks = ii.breaks || jj.breaks;
   m.contact = ii.contact || jj.contact;
@@ -155,13 +156,15 @@ bool CoefficientTable::set_s00_from_g0(const std::vector<double> &sums, std::str
         bad_j = j;
         return false;
       }
-      const double s00 = s00_from_fracture_energy(c.g0, c.moduli.k, c.moduli.g, c.cs, c.horizon, h);
+      const double s00 =
+          s00_from_fracture_energy(c.g0, c.moduli.k, c.moduli.g, c.cs, c.horizon, h, c.length);
       if (s00 != c.s00) {
         char line[256];
         std::snprintf(line, sizeof(line),
                       "peri/nosb: types %d %d: G0 = %.6g gives s00 = %.6g (K = %.6g, G = %.6g, "
-                      "Cs = %.6g, horizon = %.6g = %.5g h)\n",
-                      i, j, c.g0, s00, c.moduli.k, c.moduli.g, c.cs, c.horizon, c.horizon / h);
+                      "Cs = %.6g%s, horizon = %.6g = %.5g h)\n",
+                      i, j, c.g0, s00, c.moduli.k, c.moduli.g, c.cs,
+                      c.length ? " deviation length" : "", c.horizon, c.horizon / h);
         log += line;
       }
       c.s00 = s00;
@@ -178,6 +181,7 @@ void CoefficientTable::configure(Model &model) const
     const PairCoefficients &own = at(i, i);
     model.set_type(i, make_material(own.moduli), own.cs, bulk_modulus(own.moduli));
     model.set_membrane(i, own.membrane);
+    model.set_length_deviation(i, own.length);
     for (int j = i; j <= n; j++) {
       const PairCoefficients &c = at(i, j);
       model.set_pair(i, j, c.horizon, c.contact, contact_stiffness(c.moduli.k, c.horizon));
@@ -220,9 +224,10 @@ std::string coefficients_restart_bytes(const CoefficientTable &table,
       const int len = (int) c.moduli.model.size() + 1;
       append(bytes, &len, 1);
       append(bytes, c.moduli.model.c_str(), len);
-      const int flags[3] = {c.breaks ? 1 : 0, c.contact ? 1 : 0, c.membrane ? 1 : 0};
+      const int flags[4] = {c.breaks ? 1 : 0, c.contact ? 1 : 0, c.membrane ? 1 : 0,
+                            c.length ? 1 : 0};
       const double values[6] = {c.moduli.k, c.moduli.g, c.horizon, c.s00, c.alpha, c.cs};
-      append(bytes, flags, 3);
+      append(bytes, flags, 4);
       append(bytes, values, 6);
     }
   }
@@ -253,7 +258,7 @@ std::string read_coefficients_restart(const std::function<void(void *, std::size
         return "Pair peri/nosb: restart file is corrupt (model name of " + std::to_string(len) +
             " chars)";
       std::vector<char> name(len);
-      int flags[3];
+      int flags[4];
       double values[6];
       read(name.data(), len);
       read(flags, sizeof(flags));
@@ -268,6 +273,7 @@ std::string read_coefficients_restart(const std::function<void(void *, std::size
       c.breaks = flags[0] != 0;
       c.contact = flags[1] != 0;
       c.membrane = flags[2] != 0;
+      c.length = flags[3] != 0;
       c.moduli.k = values[0];
       c.moduli.g = values[1];
       c.horizon = values[2];

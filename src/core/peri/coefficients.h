@@ -27,14 +27,19 @@ namespace PeriSISSM {
 // 0.5 ~2.6e-7, 1 ~1.9e-7, 2 ~1.5e-7, peri/lps ~2.6e-7 for the impact material and spacing).
 constexpr double kDefaultCs = 2.0;
 
+// Default of pair_coeff's deviation keyword (true: length, false: vector): what the
+// stabilization of volume particles penalizes (peri/stabilization.h).
+constexpr bool kDefaultLengthDeviation = false;
+
 // One line of pair_coeff (with the numbers or with a material file entry).
 struct PairCoefficients {
   Moduli moduli;    // model and its two moduli
   double horizon = 0.0;
   double s00 = 0.0;    // critical stretch (with g0 > 0: set from g0 at init)
   double alpha = 0.0;
-  double cs = kDefaultCs;    // stabilization factor
-  double g0 = 0.0;           // critical energy release rate of the G0 keyword, 0: s00 given
+  double cs = kDefaultCs;                   // stabilization factor
+  bool length = kDefaultLengthDeviation;    // deviation keyword: length (true) or vector
+  double g0 = 0.0;    // critical energy release rate of the G0 keyword, 0: s00 given
   bool breaks = true;
   bool contact = true;
   bool membrane = false;    // a type property (the line I I)
@@ -113,7 +118,7 @@ class CoefficientTable {
 // if so, the model's name with its terminating NUL (an int length first), the flags break,
 // contact and membrane (3 ints) and K, G, horizon, s00, alpha, Cs (6 doubles); then the bending
 // moduli of the types 1 .. ntypes (bend[1 .. ntypes]). Native sizes and byte order.
-constexpr int kCoefficientsRestartVersion = 3;
+constexpr int kCoefficientsRestartVersion = 4;
 std::string coefficients_restart_bytes(const CoefficientTable &table,
                                        const std::vector<double> &bend);
 

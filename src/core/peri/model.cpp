@@ -26,6 +26,12 @@ void Model::set_type(int itype, std::unique_ptr<Material> material, double cs, d
 void Model::set_membrane(int itype, bool membrane)
 {
   types_[itype].membrane = membrane;
+  if (membrane) types_[itype].length = false;
+}
+
+void Model::set_length_deviation(int itype, bool length)
+{
+  types_[itype].length = length && !types_[itype].membrane;
 }
 
 void Model::set_pair(int itype, int jtype, double horizon, bool contact, double kcontact)
@@ -50,6 +56,20 @@ bool Model::any_membrane() const
   for (int i = 1; i < n_; i++)
     if (types_[i].membrane) return true;
   return false;
+}
+
+bool Model::any_length_deviation() const
+{
+  for (int i = 1; i < n_; i++)
+    if (types_[i].length) return true;
+  return false;
+}
+
+bool Model::all_length_deviation() const
+{
+  for (int i = 1; i < n_; i++)
+    if (!types_[i].length) return false;
+  return n_ > 1;
 }
 
 bool Model::any_contact() const

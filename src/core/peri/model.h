@@ -26,6 +26,11 @@ class Model {
   // Inputs: itype; whether its particles are membranes (vertices of a triangle mesh, whose
   // correspondence works in their tangent plane: membrane/membrane.h). Default: no.
   void set_membrane(int itype, bool membrane);
+  // Inputs: itype; whether the stabilization of its bonds penalizes the deviation of the bond's
+  // length only (|eta| - |Fbar xi|) instead of the whole vector z = eta - Fbar xi
+  // (peri/stabilization.h). A bond uses the length form when both ends' types do and neither
+  // is a membrane. Default: no.
+  void set_length_deviation(int itype, bool length);
   // Inputs: type pair (set for both orders); horizon; contact on/off; contact stiffness.
   void set_pair(int itype, int jtype, double horizon, bool contact, double kcontact);
 
@@ -34,6 +39,15 @@ class Model {
   double bulk(int itype) const { return types_[itype].bulk; }
   bool membrane(int itype) const { return types_[itype].membrane; }
   bool any_membrane() const;
+  bool length_deviation(int itype) const { return types_[itype].length; }
+  // the bond between particles of types itype and jtype uses the length form
+  bool length_bond(int itype, int jtype) const
+  {
+    return types_[itype].length && types_[jtype].length;
+  }
+  bool any_length_deviation() const;
+  // every type uses the length form (then no type is a membrane)
+  bool all_length_deviation() const;
   // the reference normal a particle of type itype passes to update_shape(): its row of
   // fam.normal if the type is a membrane, else null
   const double *reference_normal(const Families &fam, int itype, int i) const
@@ -63,6 +77,7 @@ class Model {
     std::unique_ptr<Material> material;
     double cs = 0.0, bulk = 0.0;
     bool membrane = false;
+    bool length = false;    // length form of the stabilization (membranes: never)
   };
   struct Pair {
     double horizon = 0.0, kcontact = 0.0;

@@ -223,11 +223,37 @@ namespace {
   }
 #endif
 
-  // FUSED: the version with fused multiply-adds (linalg/fused.h, peri/instances.h)
-  template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, bool FUSED>
-  [[gnu::always_inline]] inline void pass(const Particles &p, const Families &fam,
-                                          const ReferenceBox &box, ParticleFields &fields,
-                                          const Virial &virial)
+  // The length form of bond ij (stabilization.h) from e = eta, z = eta - Fbar xi and q2 =
+  // |xi|^2: with g = Fbar xi = e - z and d = (|e|^2 - |g|^2) / (2 |xi|), the direct force density
+  // t = cw d e / |xi| on i, and u = qa cw d g / |xi| for Q_i (in place of qa cw z); returns cw d^2
+  // (the energy sum's term).
+  template <bool FUSED>
+  [[gnu::always_inline]] inline double length_form(double cw, double qa, double e0, double e1,
+                                                   double e2, double z0, double z1, double z2,
+                                                   double q2, double t[3], double u[3])
+  {
+    const double g0 = e0 - z0, g1 = e1 - z1, g2 = e2 - z2;
+    const double e2n = madd<FUSED>(e2, e2, madd<FUSED>(e1, e1, e0 * e0));
+    const double g2n = madd<FUSED>(g2, g2, madd<FUSED>(g1, g1, g0 * g0));
+    // cw d / |xi| and cw d^2
+    const double s = 0.5 * cw * (e2n - g2n) / q2;
+    const double sq = qa * s;
+    t[0] = s * e0;
+    t[1] = s * e1;
+    t[2] = s * e2;
+    u[0] = sq * g0;
+    u[1] = sq * g1;
+    u[2] = sq * g2;
+    return 0.5 * s * (e2n - g2n);
+  }
+
+  // FUSED: the version with fused multiply-adds (linalg/fused.h, peri/instances.h); LENGTH: 0 the
+  // vector form, 1 the length form where model.length_bond() says so, 2 the length form for every
+  // bond not between membranes
+  template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, int LENGTH, bool FUSED>
+  [[gnu::always_inline]] inline void pass(const Model &model, const Particles &p,
+                                          const Families &fam, const ReferenceBox &box,
+                                          ParticleFields &fields, const Virial &virial)
   {
     constexpr int NG = ParticleFields::NG;
     const double *xf = p.x;
@@ -320,6 +346,18 @@ namespace {
             continue;
           }
         }
+        if (LENGTH == 2 || (LENGTH == 1 && model.length_bond(p.type[i], p.type[j]))) {
+          double t[3], u[3];
+          const double q2 = madd<FUSED>(x2, x2, madd<FUSED>(x1, x1, x0 * x0));
+          const double wd = length_form<FUSED>(cw, qa, e0, e1, e2, z0, z1, z2, q2, t, u);
+          fx += t[0];
+          fy += t[1];
+          fz += t[2];
+          if (EFLAG) ws += wd;
+          rows.push(u[0], u[1], u[2], x0, x1, x2);
+          if (EVFLAG) vir.add(e0, e1, e2, t[0], t[1], t[2]);
+          continue;
+        }
         const double t0 = cw * z0, t1 = cw * z1, t2 = cw * z2;
         fx += t0;
         fy += t1;
@@ -359,19 +397,30 @@ void stabilization_pass(const Model &model, const Particles &p, const Families &
   // membranes only in decks that have them (the volume decks' loop is unchanged)
   const bool membranes = fam.normal && fields.normal && model.any_membrane();
   if (membranes) current_normals(model, p, fam, fields);
+  // the length form only in decks that use it (the 4-wide pass has the vector form alone)
+  const int length = model.all_length_deviation() ? 2 : (model.any_length_deviation() ? 1 : 0);
   with_version([&](auto fused) PERISISSM_INLINE {
     with_flags(energy, membranes, [&](auto eflag, auto membrane) PERISISSM_INLINE {
       with_flags(virial.any(), box.any(), [&](auto ev, auto pbc) PERISISSM_INLINE {
+        constexpr int EF = decltype(eflag)::value, EV = decltype(ev)::value;
+        constexpr int PBC = decltype(pbc)::value, MB = decltype(membrane)::value;
+        constexpr bool FU = decltype(fused)::value;
+        if (length == 2) {
+          pass<EF, EV, PBC, MB, 2, FU>(model, p, fam, box, fields, virial);
+          return;
+        }
+        if (length == 1) {
+          pass<EF, EV, PBC, MB, 1, FU>(model, p, fam, box, fields, virial);
+          return;
+        }
 #ifdef PERISISSM_CPU_DISPATCH
-        if constexpr (decltype(fused)::value)
+        if constexpr (FU)
           if (fields.cols) {
-            pass_columns<decltype(eflag)::value, decltype(ev)::value, decltype(pbc)::value,
-                         decltype(membrane)::value>(p, fam, box, fields, virial);
+            pass_columns<EF, EV, PBC, MB>(p, fam, box, fields, virial);
             return;
           }
 #endif
-        pass<decltype(eflag)::value, decltype(ev)::value, decltype(pbc)::value,
-             decltype(membrane)::value, decltype(fused)::value>(p, fam, box, fields, virial);
+        pass<EF, EV, PBC, MB, 0, FU>(model, p, fam, box, fields, virial);
       });
     });
   });

@@ -143,7 +143,8 @@ TEST(CoefficientLine, FirstProblemAsTheLammpsError)
        "K = 1e-300 and G = 1 give Poisson's ratio -1 outside (-1, 0.5)"},
       {"1 1 linear 1 0.6 -0.003 0.5 0.25", "horizon must be > 0, got -0.003"},
       {"1 1 linear 1 0.6 0.003 0.5 0.25 damping 0.3",
-       "unknown keyword 'damping' (allowed: stabilize, break, contact, membrane, bend, G0)"},
+       "unknown keyword 'damping' (allowed: stabilize, deviation, break, contact, membrane, bend, "
+       "G0)"},
       {"1 1 linear 1 0.6 0.003 0.5 0.25 stabilize",
        "Illegal pair_coeff peri/nosb stabilize command: missing argument(s)"},
       {"1 1 linear 1 0.6 0.003 0.5 0.25 stabilize -0.1", "stabilize Cs must be >= 0, got -0.1"},

@@ -219,12 +219,13 @@ TEST(Coefficients, RestartSectionKeepsTheGivenLines)
   a.membrane = true;
   PairCoefficients b = line("xu", 6.0, 0.0, 0.5, 0.01, 0.0);
   b.contact = false;
+  b.length = !kDefaultLengthDeviation;
   table.set(1, 1, a);
   table.set(2, 3, b);
   const std::vector<double> bend = {0.0, 2.5, 0.0, -1.0};
   const std::string bytes = coefficients_restart_bytes(table, bend);
   EXPECT_EQ(bytes.size(),
-            7 * sizeof(int) + 2 * (4 * sizeof(int) + 6 * sizeof(double)) + sizeof("neohookean") +
+            7 * sizeof(int) + 2 * (5 * sizeof(int) + 6 * sizeof(double)) + sizeof("neohookean") +
                 sizeof("xu") + 3 * sizeof(double));
 
   CoefficientTable back;
@@ -249,6 +250,7 @@ TEST(Coefficients, RestartSectionKeepsTheGivenLines)
     EXPECT_EQ(r.breaks, c.breaks);
     EXPECT_EQ(r.contact, c.contact);
     EXPECT_EQ(r.membrane, c.membrane);
+    EXPECT_EQ(r.length, c.length);
   }
 }
 
@@ -266,7 +268,7 @@ TEST(Coefficients, RestartSectionProblemsAreNamed)
   const int two = 2;
   old.replace(0, sizeof(int), reinterpret_cast<const char *>(&two), sizeof(int));
   EXPECT_NE(read_coefficients_restart(reader(old, at), table, bend)
-                .find("format version 2, this build reads version 3"),
+                .find("format version 2, this build reads version 4"),
             std::string::npos);
   EXPECT_EQ(at, sizeof(int));
 
@@ -340,7 +342,8 @@ TEST(Coefficients, CriticalStretchFromFractureEnergy)
   std::string log;
   int bi = 0, bj = 0;
   ASSERT_TRUE(t.set_s00_from_g0(sums, log, bi, bj));
-  const double s00 = s00_from_fracture_energy(5.0, 2.0, 1.0, kDefaultCs, 0.3, 0.1);
+  const double s00 =
+      s00_from_fracture_energy(5.0, 2.0, 1.0, kDefaultCs, 0.3, 0.1, kDefaultLengthDeviation);
   EXPECT_EQ(t.at(1, 1).s00, s00);
   EXPECT_EQ(t.at(2, 2).s00, 0.01);    // given without G0: kept
   EXPECT_NE(log.find("types 1 1: G0 = 5 gives s00 = "), std::string::npos) << log;

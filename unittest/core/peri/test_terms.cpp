@@ -27,13 +27,15 @@ namespace {
 
 using PeriSISSMTest::Cluster;
 
-// K = 1, G = 0.6 (nu = 0.25); horizon 1.6 spacings
-PeriSISSM::Model make_model(const std::string &name, double cs)
+// K = 1, G = 0.6 (nu = 0.25); horizon 1.6 spacings; length: the length form of the
+// stabilization
+PeriSISSM::Model make_model(const std::string &name, double cs, bool length = false)
 {
   PeriSISSM::Model m;
   m.set_ntypes(1);
   const auto lame = PeriSISSM::lame_from_bulk_shear(1.0, 0.6);
   m.set_type(1, PeriSISSM::make_material(name, lame.mu, lame.lambda), cs, 1.0);
+  m.set_length_deviation(1, length);
   m.set_pair(1, 1, 1.6, false, 0.0);
   PeriSISSMTest::never_breaks(m, 1);
   return m;
@@ -71,6 +73,12 @@ struct Case {
   std::string model;
   double cs;
   bool periodic;
+  bool length;    // the length form of the stabilization
+  std::string name() const
+  {
+    return model + " Cs " + std::to_string(cs) + (length ? " length" : "") +
+        (periodic ? " periodic" : "");
+  }
 };
 
 std::vector<Case> cases()
@@ -78,7 +86,9 @@ std::vector<Case> cases()
   std::vector<Case> out;
   for (const std::string &name : PeriSISSM::material_names())
     for (double cs : {0.0, 1.5})
-      for (bool periodic : {false, true}) out.push_back({name, cs, periodic});
+      for (bool periodic : {false, true})
+        for (bool length : {false, true})
+          if (cs > 0.0 || !length) out.push_back({name, cs, periodic, length});
   return out;
 }
 
@@ -88,8 +98,8 @@ std::vector<Case> cases()
 TEST(BondTerms, ForcesAreEnergyGradients)
 {
   for (const Case &c : cases()) {
-    SCOPED_TRACE(c.model + " Cs " + std::to_string(c.cs) + (c.periodic ? " periodic" : ""));
-    const PeriSISSM::Model model = make_model(c.model, c.cs);
+    SCOPED_TRACE(c.name());
+    const PeriSISSM::Model model = make_model(c.model, c.cs, c.length);
     Cluster cl(c.periodic ? 5 : 3, 3, 3, 1.6, c.periodic, 11u);
     if (!c.periodic) cl.add_lonely(1.5);
     cl.build(model);
@@ -127,8 +137,8 @@ TEST(BondTerms, VirialIsTheStrainDerivativeOfTheEnergy)
 {
   for (const Case &c : cases()) {
     if (c.periodic) continue;    // (the images would have to be strained with the box)
-    SCOPED_TRACE(c.model + " Cs " + std::to_string(c.cs));
-    const PeriSISSM::Model model = make_model(c.model, c.cs);
+    SCOPED_TRACE(c.name());
+    const PeriSISSM::Model model = make_model(c.model, c.cs, c.length);
     Cluster cl(3, 3, 3, 1.6, false, 13u);
     cl.add_lonely(1.5);
     cl.build(model);
@@ -151,6 +161,44 @@ TEST(BondTerms, VirialIsTheStrainDerivativeOfTheEnergy)
         EXPECT_NEAR(r.virial[v], -dE, 1e-7 * wmax) << "component " << v << " a " << a << " b " << b;
       }
   }
+}
+
+// The length form of the stabilization stores, per bond, (Cbar / 2) omega V_i d^2 with
+// d = (|eta|^2 - |Fbar xi|^2) / (2 |xi|) (a quarter at each end): the energy with Cs = 1.5 minus
+// the energy without stabilization equals that sum computed here from the evaluation's F and C
+// of every particle, to round-off (1e-12 of the sum); an affine deformation stores nothing.
+TEST(BondTerms, LengthFormStoresTheBondLengthDeviation)
+{
+  const PeriSISSM::Model length = make_model("neohookean", 1.5, true);
+  const PeriSISSM::Model none = make_model("neohookean", 0.0);
+  Cluster cl(3, 3, 3, 1.6, false, 17u);
+  cl.build(length);
+  const std::vector<double> y = deformed(cl, 9u, 0.04);
+  const Cluster::Result r = cl.evaluate(length, y);
+  const double stored = r.energy - cl.evaluate(none, y).energy;
+  constexpr int NG = PeriSISSM::ParticleFields::NG;
+  double sum = 0.0;
+  for (int i = 0; i < cl.nlocal; i++)
+    for (int b = 0; b < cl.npartner[i]; b++) {
+      const int j = cl.jl[i][b];
+      const double *Fi = r.g.data() + NG * i, *Fj = r.g.data() + NG * j;
+      Eigen::Vector3d e, xi, g = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; k++) {
+        e(k) = cl.x[3 * j + k] - cl.x[3 * i + k];
+        xi(k) = cl.ref[3 * j + k] - cl.ref[3 * i + k];
+      }
+      for (int a = 0; a < 3; a++)
+        for (int k = 0; k < 3; k++) g(a) += 0.5 * (Fi[3 * a + k] + Fj[3 * a + k]) * xi(k);
+      const double cbar =
+          0.5 * (Fi[PeriSISSM::ParticleFields::G_C] + Fj[PeriSISSM::ParticleFields::G_C]);
+      const double d = (e.squaredNorm() - g.squaredNorm()) / (2.0 * xi.norm());
+      sum += 0.25 * cbar * cl.om[i][b] * cl.volume[i] * d * d;
+    }
+  ASSERT_GT(sum, 1e-8);
+  EXPECT_NEAR(stored, sum, 1e-12 * std::fabs(sum) + 1e-15);
+  const std::vector<double> affine = deformed(cl, 9u, 0.0);
+  EXPECT_NEAR(cl.evaluate(length, affine).energy, cl.evaluate(none, affine).energy,
+              1e-12 * std::fabs(cl.evaluate(none, affine).energy));
 }
 
 // The SISSM blocks: symmetric positive semi-definite for every model and state, and, where the
