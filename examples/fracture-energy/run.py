@@ -224,17 +224,25 @@ def kappa(res, m, s0, a=A_LATTICE):
 
 # the relation of pair_coeff peri/nosb ... G0 (doc/pair_peri_nosb.rst, "Fracture energy"):
 #   G0 = delta s00^2 (C_M (K + 4G/3) + C_S Cs K delta/h)
+# and with `deviation length`
+#   G0 = delta s00^2 (C_M (K + 4G/3) + C_L Cs K)
 C_M = 0.58376
 C_S = 1.19321
+C_L = 1.00391
 FIT_S0 = 1.0e-6         # the relation is the small-strain limit; fitted at this s00
 
 
-def g0_nosb_relation(k, g, cs, delta, s0, h):
-    return delta * s0 ** 2 * (C_M * (k + 4.0 * g / 3.0) + C_S * cs * k * delta / h)
+def nosb_modulus(k, g, cs, delta, h, length=False):
+    stab = C_L * cs * k if length else C_S * cs * k * delta / h
+    return C_M * (k + 4.0 * g / 3.0) + stab
 
 
-def s00_nosb_relation(g0, k, g, cs, delta, h):
-    return math.sqrt(g0 / (delta * (C_M * (k + 4.0 * g / 3.0) + C_S * cs * k * delta / h)))
+def g0_nosb_relation(k, g, cs, delta, s0, h, length=False):
+    return delta * s0 ** 2 * nosb_modulus(k, g, cs, delta, h, length)
+
+
+def s00_nosb_relation(g0, k, g, cs, delta, h, length=False):
+    return math.sqrt(g0 / (delta * nosb_modulus(k, g, cs, delta, h, length)))
 
 
 FIT_CASES = [(0.25, 0.0), (0.0, 0.0), (0.4, 0.0), (0.25, 2.0), (0.25, 1.0)]   # (nu, Cs)

@@ -77,6 +77,29 @@ def test_g0_keyword_gives_the_measured_fracture_energy(tmp_path, model, nu, cs, 
     assert 1.0 - 5.1 * s00 - 2e-4 <= ratio <= 1.0 - 2.2 * s00 + 2e-4, (ratio, s00)
 
 
+@pytest.mark.parametrize("model,nu,cs", [("linear", 0.3, 2.0), ("neohookean", 0.1, 3.0)])
+def test_length_form_g0_keyword_gives_the_measured_fracture_energy(tmp_path, model, nu, cs):
+    """With `deviation length` the stabilization's share of G0 is C_L Cs K delta s00^2
+    (doc/pair_peri_nosb.rst): a type set with `s00 NULL ... G0 value deviation length`
+    dissipates G0 per area in the separation test.  The relation is the small-strain limit
+    (C_L fitted at s00 = 1e-6, 6 digits); at the s00 here (about 3e-4) the measured G0 is
+    lower by less than 5.1 s00 relative, as for the vector form; the vector form's relation
+    (stabilization share Cs K delta/h times 1.19) would be off by a factor 2.5 or more."""
+    g0, k, a = 1.0, 1.0e9, 1.0e-3
+    g = fe.shear_from_nu(k, nu)
+    d = fe.horizon(3, a)
+    s00 = fe.s00_nosb_relation(g0, k, g, cs, d, a, length=True)
+    coeff = f"{model} {k!r} {g!r} {d!r} NULL 0.0 G0 {g0} stabilize {cs} deviation length"
+    res = fe.separate("peri/nosb", coeff, 3, s00, a, lmp=LMP, workdir=tmp_path)
+    assert "deviation length" in res["log"]
+    logged = [float(m[3]) for m in S00_LINE.findall(res["log"])]
+    assert logged and logged[0] == pytest.approx(s00, rel=1e-5)  # printed with 6 digits
+    ratio = res["g0_work"] / g0
+    assert 1.0 - 5.1 * s00 - 2e-4 <= ratio <= 1.0 + 2e-4, (ratio, s00)
+    vector = fe.g0_nosb_relation(k, g, cs, d, s00, a)
+    assert vector > 2.5 * res["g0_work"]
+
+
 BLOCK = TWO_TYPE_BLOCK + """set             type 1 type/fraction 2 0.5 1234
 pair_style      peri/nosb
 {coeff}
@@ -139,6 +162,10 @@ BAD_G0 = [
     ("G0-missing-value", f"{COEFF} NULL 0.25 G0", ["pair_coeff peri/nosb", "G0", "missing"]),
     ("G0-not-a-number", f"{COEFF} NULL 0.25 G0 tough", ["pair_coeff peri/nosb", "G0", "tough"]),
     ("s00-NULL-without-G0", f"{COEFF} NULL 0.25", ["pair_coeff peri/nosb", "NULL", "G0"]),
+    ("deviation-unknown", f"{COEFF} 0.001 0.25 deviation sideways",
+     ["pair_coeff peri/nosb", "deviation", "length or vector", "sideways"]),
+    ("deviation-length-membrane", f"{COEFF} 0.001 0.25 membrane yes deviation length",
+     ["pair_coeff peri/nosb", "deviation length", "membranes", "vector"]),
 ]
 
 
