@@ -103,6 +103,23 @@ namespace {
         h[3 * r + c] += G[3 * r] * k[c] + G[3 * r + 1] * k[3 + c] + G[3 * r + 2] * k[6 + c];
   }
 
+  // The length form of bond ij (stabilization.h): with g = Fbar xi = e - z and
+  // |e|^2 - |g|^2 = z . (e + g) (diff below; no cancellation), d = diff / (2 |xi|), s = cw d / |xi|
+  // = cw diff / (2 q2) from q2 = |xi|^2; the direct force density on i is t = s e, the term of
+  // Q_i u = qa s g (in place of qa cw z), and cw d^2 = s diff / 2 the energy sum's term. The
+  // 4-wide pass does the same operations on the lanes of e, z and g.
+  struct LengthForm {
+    double s, diff;
+  };
+  inline LengthForm length_form(double cw, double q2, double e0, double e1, double e2, double z0,
+                                double z1, double z2)
+  {
+    const double p0 = z0 * (e0 + (e0 - z0)), p1 = z1 * (e1 + (e1 - z1));
+    const double p2 = z2 * (e2 + (e2 - z2));
+    const double diff = (p0 + p1) + p2;
+    return {0.5 * cw * diff / q2, diff};
+  }
+
 #ifdef PERISISSM_CPU_DISPATCH
   // The fused pass, 4-wide (linalg/double4.h): the same operations
   // in the same order as pass<..., FUSED = true> below, so the same bits. F of each particle
@@ -110,7 +127,8 @@ namespace {
   // the regular flag); z, the direct force and the columns of Q are 3-vectors in lanes 0-2 (lane
   // 3 carries finite values nobody reads), each component of xi is in every lane of its own
   // register, and Q is summed bond by bond in family order as BondRows::outer_sum sums it.
-  template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE>
+  // LENGTH: the length form for every bond not between membranes (length_form() on the lanes).
+  template <int EFLAG, int EVFLAG, int PBC, int MEMBRANE, int LENGTH>
   PERISISSM_FUSED_TARGET void pass_columns(const Particles &p, const Families &fam,
                                            const ReferenceBox &box, ParticleFields &fields,
                                            const Virial &virial)
@@ -161,6 +179,29 @@ namespace {
         else
           continue;
         const Double4 cw = half * (cmod + bcast(cj + 3)) * bcast(om + b);
+        if constexpr (LENGTH > 0) {
+          // (only in decks without membranes: every bond has the length form)
+          const Double4 g = e - z;
+          double pv[4];
+          store4(pv, z * (e + g));
+          const double diff = (pv[0] + pv[1]) + pv[2];
+          const double xx = lane0(fma4(x2, x2, fma4(x1, x1, x0 * x0)));
+          const double s = 0.5 * lane0(cw) * diff / xx;
+          const double qa = (regi && regj) ? 1.0 : (regi ? 2.0 : 0.0);
+          const Double4 t = splat(s) * e, u = splat(qa * s) * g;
+          fsum += t;
+          q0 = fma4(u, x0, q0);
+          q1 = fma4(u, x1, q1);
+          q2 = fma4(u, x2, q2);
+          if (EFLAG) ws += 0.5 * s * diff;
+          if (EVFLAG) {
+            double tv[4], ev[4];
+            store4(tv, t);
+            store4(ev, e);
+            vir.add(ev[0], ev[1], ev[2], tv[0], tv[1], tv[2]);
+          }
+          continue;
+        }
         Double4 t = cw * z;
         if (MEMBRANE) {
           // the part of z in the tangent planes of the two ends (an end without a normal takes
@@ -222,30 +263,6 @@ namespace {
     }
   }
 #endif
-
-  // The length form of bond ij (stabilization.h) from e = eta, z = eta - Fbar xi and q2 =
-  // |xi|^2: with g = Fbar xi = e - z and d = (|e|^2 - |g|^2) / (2 |xi|), the direct force density
-  // t = cw d e / |xi| on i, and u = qa cw d g / |xi| for Q_i (in place of qa cw z); returns cw d^2
-  // (the energy sum's term).
-  template <bool FUSED>
-  [[gnu::always_inline]] inline double length_form(double cw, double qa, double e0, double e1,
-                                                   double e2, double z0, double z1, double z2,
-                                                   double q2, double t[3], double u[3])
-  {
-    const double g0 = e0 - z0, g1 = e1 - z1, g2 = e2 - z2;
-    const double e2n = madd<FUSED>(e2, e2, madd<FUSED>(e1, e1, e0 * e0));
-    const double g2n = madd<FUSED>(g2, g2, madd<FUSED>(g1, g1, g0 * g0));
-    // cw d / |xi| and cw d^2
-    const double s = 0.5 * cw * (e2n - g2n) / q2;
-    const double sq = qa * s;
-    t[0] = s * e0;
-    t[1] = s * e1;
-    t[2] = s * e2;
-    u[0] = sq * g0;
-    u[1] = sq * g1;
-    u[2] = sq * g2;
-    return 0.5 * s * (e2n - g2n);
-  }
 
   // FUSED: the version with fused multiply-adds (linalg/fused.h, peri/instances.h); LENGTH: 0 the
   // vector form, 1 the length form where model.length_bond() says so, 2 the length form for every
@@ -347,15 +364,16 @@ namespace {
           }
         }
         if (LENGTH == 2 || (LENGTH == 1 && model.length_bond(p.type[i], p.type[j]))) {
-          double t[3], u[3];
           const double q2 = madd<FUSED>(x2, x2, madd<FUSED>(x1, x1, x0 * x0));
-          const double wd = length_form<FUSED>(cw, qa, e0, e1, e2, z0, z1, z2, q2, t, u);
-          fx += t[0];
-          fy += t[1];
-          fz += t[2];
-          if (EFLAG) ws += wd;
-          rows.push(u[0], u[1], u[2], x0, x1, x2);
-          if (EVFLAG) vir.add(e0, e1, e2, t[0], t[1], t[2]);
+          const LengthForm lf = length_form(cw, q2, e0, e1, e2, z0, z1, z2);
+          const double t0 = lf.s * e0, t1 = lf.s * e1, t2 = lf.s * e2;
+          const double sq = qa * lf.s;
+          fx += t0;
+          fy += t1;
+          fz += t2;
+          if (EFLAG) ws += 0.5 * lf.s * lf.diff;
+          rows.push(sq * (e0 - z0), sq * (e1 - z1), sq * (e2 - z2), x0, x1, x2);
+          if (EVFLAG) vir.add(e0, e1, e2, t0, t1, t2);
           continue;
         }
         const double t0 = cw * z0, t1 = cw * z1, t2 = cw * z2;
@@ -405,10 +423,7 @@ void stabilization_pass(const Model &model, const Particles &p, const Families &
         constexpr int EF = decltype(eflag)::value, EV = decltype(ev)::value;
         constexpr int PBC = decltype(pbc)::value, MB = decltype(membrane)::value;
         constexpr bool FU = decltype(fused)::value;
-        if (length == 2) {
-          pass<EF, EV, PBC, MB, 2, FU>(model, p, fam, box, fields, virial);
-          return;
-        }
+        // (a deck with some types of each form goes through the scalar pass, asking per bond)
         if (length == 1) {
           pass<EF, EV, PBC, MB, 1, FU>(model, p, fam, box, fields, virial);
           return;
@@ -416,10 +431,17 @@ void stabilization_pass(const Model &model, const Particles &p, const Families &
 #ifdef PERISISSM_CPU_DISPATCH
         if constexpr (FU)
           if (fields.cols) {
-            pass_columns<EF, EV, PBC, MB>(p, fam, box, fields, virial);
+            if (length == 2)
+              pass_columns<EF, EV, PBC, 0, 1>(p, fam, box, fields, virial);
+            else
+              pass_columns<EF, EV, PBC, MB, 0>(p, fam, box, fields, virial);
             return;
           }
 #endif
+        if (length == 2) {
+          pass<EF, EV, PBC, 0, 2, FU>(model, p, fam, box, fields, virial);
+          return;
+        }
         pass<EF, EV, PBC, MB, 0, FU>(model, p, fam, box, fields, virial);
       });
     });

@@ -81,17 +81,19 @@ void expect_same(const Cluster::Result &a, const Cluster::Result &b)
 
 }    // namespace
 
-// Whole evaluations (state, stabilization, force and SISSM blocks) of volume clusters.
+// Whole evaluations (state, stabilization, force and SISSM blocks) of volume clusters, the
+// stabilization in the vector form (Cs 1.5) and in the length form (Cs 2.5).
 TEST(FourWidePasses, EvaluationHasTheBitsOfTheScalarCode)
 {
   if (!PeriSISSM::fused_passes()) GTEST_SKIP() << "the fused version does not run here";
   for (const char *name : {"linear", "neohookean"})
-    for (double cs : {0.0, 1.5})
+    for (double cs : {0.0, 1.5, 2.5})
       for (bool periodic : {false, true})
         for (int flags = 0; flags < 4; flags++) {
           SCOPED_TRACE(std::string(name) + " cs " + std::to_string(cs) +
                        (periodic ? " periodic" : "") + " flags " + std::to_string(flags));
-          const PeriSISSM::Model model = make_model(name, cs, 1, 1.8, false, false);
+          PeriSISSM::Model model = make_model(name, cs, 1, 1.8, false, false);
+          model.set_length_deviation(1, cs == 2.5);
           Cluster cl(4, 3, 3, 1.8, periodic, 11u);
           if (!periodic) cl.add_lonely(1.5);
           cl.build(model);
