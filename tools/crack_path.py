@@ -24,8 +24,8 @@ spacings of the tip (default 2.5: the tips of a moving notch move). Per tip:
   forks or meets other damage is fitted along its main branch; once a frame of the file has a
   crack at the tip, later frames look for that direction within 30 degrees of the last one
   found, so a crack is followed, not replaced by damage that joins it later; dump often enough
-  for that); the line oriented away from the tip; 0 degrees is straight ahead, 90 square to the notch; dx dy: that direction as a unit
-  vector;
+  for that); the line is oriented away from the tip; 0 degrees is straight ahead, 90 square to
+  the notch; dx dy: that direction as a unit vector;
 - width: the median, over the main branch cut into pieces one spacing long along the line,
   of the number of its particles in a piece (a band w spacings wide holds about w per piece).
 For the layer: off-path, the fraction of its particles that are damaged but on no tip's path
