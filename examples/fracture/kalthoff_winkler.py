@@ -4,22 +4,23 @@ set-up, measures the cracks from the two notch tips at several times with tools/
 prints one table, and with --pictures draws the mid-plane damage at those times.
 
     python3 kalthoff_winkler.py [--lmp ../../build/lmp] [--spacing 2|1] [--np N]
-        [--pair "peri/nosb keywords"] [--nosb-var NAME VALUE] [--label NAME]
-        [--styles lps nosb] [--times 30 60 90]
-        [--step NS] [--out DIR] [--pictures]
+        [--pair "peri/nosb keywords"] [--nosb-var NAME VALUE] [--lps-var NAME VALUE]
+        [--label NAME] [--styles lps nosb] [--times 30 60 90] [--step NS] [--out DIR]
+        [--pictures]
 
 Each style runs in --out (default frames/kalthoff-<spacing>mm) with the decks copied there,
 -var a (the spacing), -var dt (--step, default the deck's), -var t_end (the last of --times),
 -var dump (every --every us, default 10), and for peri/nosb -var keys (--pair: keywords
 appended to its pair_coeff line, e.g. "stabilize 0.1") and the -var of --nosb-var (e.g.
-alpha 0); --label names the peri/nosb run in the table and the file names. The table has per
-style and time the crack's angle to the notch (0 straight ahead; the experiment's is about 70
-degrees) at tip 1 (x = 75 mm) and tip 2 (x = 125 mm), "-" where no crack left the tip, their
-lengths and widths (particles across the path), the fraction of the mid-plane's particles
-damaged beyond 0.4 off both paths (diffuse damage and cracks that do not start at a tip), the
-mean damage of the mid-plane, and the wall time of the run. The pictures (--pictures) are
-kalthoff-<spacing>mm.png in --out: a row per style, a column per time, in the current
-configuration. Needs numpy (and matplotlib for the pictures).
+alpha 0), for peri/lps those of --lps-var (e.g. s00 0.0048); --label names the peri/nosb run in
+the table and the file names. The table has per style and time the crack's angle to the notch
+(0 straight ahead; the experiment's is about 70 degrees) at tip 1 (x = 75 mm) and tip 2
+(x = 125 mm), "-" where no crack left the tip, their lengths and widths (particles across the
+path), the fraction of the mid-plane's particles damaged beyond 0.4 off both paths (diffuse
+damage and cracks that do not start at a tip), the mean damage of the mid-plane, and the wall
+time of the run. The pictures (--pictures) are kalthoff-<spacing>mm.png in --out: a row per
+style, a column per time, in the current configuration. Needs numpy (and matplotlib for the
+pictures).
 """
 import argparse
 import shutil
@@ -52,9 +53,8 @@ def run(args, style, out, a, name):
            "-screen", "none"]
     if style == "nosb" and args.pair:
         cmd += ["-var", "keys", args.pair]
-    if style == "nosb":
-        for name, value in args.nosb_var:
-            cmd += ["-var", name, value]
+    for name, value in args.nosb_var if style == "nosb" else args.lps_var:
+        cmd += ["-var", name, value]
     if args.np > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(args.np)] + cmd
     start = time.time()
@@ -93,6 +93,8 @@ def main(argv=None):
     ap.add_argument("--pair", default="", help="keywords appended to peri/nosb's pair_coeff")
     ap.add_argument("--nosb-var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
                     help="a -var for the peri/nosb run only, e.g. alpha 0 (repeat)")
+    ap.add_argument("--lps-var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
+                    help="a -var for the peri/lps run only, e.g. s00 0.0048 (repeat)")
     ap.add_argument("--label", help="the name of the peri/nosb run (default nosb)")
     ap.add_argument("--styles", nargs="+", default=["lps", "nosb"], choices=["lps", "nosb"])
     ap.add_argument("--times", type=float, nargs="+", default=[30.0, 60.0, 90.0],
