@@ -103,8 +103,8 @@ def main(argv=None):
             if style == "nosb" and args.pair:
                 cmd += ["-var", "keys", args.pair]
             if style == "nosb":
-                for name, value in args.nosb_var:
-                    cmd += ["-var", name, value]
+                for var, value in args.nosb_var:
+                    cmd += ["-var", var, value]
             if args.np > 1:
                 cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
                        str(args.np)] + cmd

@@ -53,8 +53,8 @@ def run(args, style, out, a, name):
            "-screen", "none"]
     if style == "nosb" and args.pair:
         cmd += ["-var", "keys", args.pair]
-    for name, value in args.nosb_var if style == "nosb" else args.lps_var:
-        cmd += ["-var", name, value]
+    for var, value in args.nosb_var if style == "nosb" else args.lps_var:
+        cmd += ["-var", var, value]
     if args.np > 1:
         cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(args.np)] + cmd
     start = time.time()
