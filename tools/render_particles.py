@@ -6,13 +6,14 @@ damage or stress map of a solid, several runs side by side.
     python3 tools/render_particles.py dump.nosb dump.lps --column v_damage --slice z \\
         --labels peri/nosb peri/lps --range 0 1 -o damage.png
 
-Of each file the last frame is drawn: the particles within half a --thickness of the plane
-AXIS = --at (default: the median of the particles' coordinates along AXIS; thickness default:
-the spacing, the median distance of a particle to its nearest neighbour, so that one lattice
-plane is taken), as squares of that size in the plane's two other coordinates, coloured by the
-column on one colour scale for all files (--range, default the smallest and largest value in
-the slices), in --window (default: around every particle of the slices). Prints per file how
-many particles are in the slice and the column's range there.
+Of each file the last frame is drawn (or the frame at the timestep that --steps gives for it):
+the particles within half a --thickness of the plane AXIS = --at (default: the median of the
+particles' coordinates along AXIS; thickness default: the spacing, the median distance of a
+particle to its nearest neighbour, so that one lattice plane is taken), as squares of that size
+in the plane's two other coordinates, coloured by the column on one colour scale for all files
+(--range, default the smallest and largest value in the slices), in --window (default: around
+every particle of the slices); one picture per file, in --rows rows. Prints per file how many
+particles are in the slice and the column's range there.
 Pictures are W x H inches at --dpi (default 8 x 4.5 at 100: 800 x 450 pixels). Needs numpy and
 matplotlib; reads the dumps with tools/dump_to_vtu.py's reader.
 """
@@ -28,9 +29,15 @@ from dump_to_vtu import position_columns, read_dump  # noqa: E402
 AXES = "xyz"
 
 
-def last_frame(path, column):
-    """(positions n x 3, values n, step) of the last frame of a dump file."""
-    step, columns, rows = read_dump(path)[-1]
+def last_frame(path, column, step=None):
+    """(positions n x 3, values n, step) of the last frame of a dump file, or of the frame at
+    timestep `step`."""
+    frames = read_dump(path)
+    if step is not None:
+        frames = [f for f in frames if f[0] == step]
+        if not frames:
+            raise ValueError(f"{path}: no frame at step {step}")
+    step, columns, rows = frames[-1]
     if column not in columns:
         raise ValueError(f"{path}: no column {column} (columns: {' '.join(columns)})")
     table = np.array(rows, dtype=float).reshape(len(rows), len(columns))
@@ -65,6 +72,9 @@ def main(argv=None):
     ap.add_argument("--window", type=float, nargs=4, metavar=("ULO", "UHI", "VLO", "VHI"),
                     help="the region of the plane shown, in its two coordinates (x y for a z "
                     "slice; default: all particles of the slices)")
+    ap.add_argument("--steps", type=int, nargs="+", help="a timestep per file: the frame drawn "
+                    "(default: the last)")
+    ap.add_argument("--rows", type=int, default=1, help="the pictures in this many rows")
     ap.add_argument("--labels", nargs="+", help="a title per file (default: the file names)")
     ap.add_argument("--range", type=float, nargs=2, metavar=("LO", "HI"),
                     help="column values at the ends of the colour map")
@@ -79,8 +89,12 @@ def main(argv=None):
     if len(labels) != len(args.dumps):
         print("render_particles.py: --labels needs one label per dump file", file=sys.stderr)
         return 1
+    if args.steps and len(args.steps) != len(args.dumps):
+        print("render_particles.py: --steps needs one step per dump file", file=sys.stderr)
+        return 1
+    steps = args.steps or [None] * len(args.dumps)
     try:
-        frames = [last_frame(d, args.column) for d in args.dumps]
+        frames = [last_frame(d, args.column, n) for d, n in zip(args.dumps, steps)]
     except (ValueError, OSError) as e:
         print(f"render_particles.py: {e}", file=sys.stderr)
         return 1
@@ -107,7 +121,12 @@ def main(argv=None):
     lo, hi = args.range or (min(s[1].min() for s in slices), max(s[1].max() for s in slices))
     norm = Normalize(lo, hi if hi > lo else lo + 1.0)
     cmap = plt.get_cmap(args.cmap)
-    fig, axes = plt.subplots(1, len(slices), figsize=args.size, dpi=args.dpi, squeeze=False)
+    rows = max(1, min(args.rows, len(slices)))
+    cols = -(-len(slices) // rows)
+    fig, grid = plt.subplots(rows, cols, figsize=args.size, dpi=args.dpi, squeeze=False)
+    axes = grid.reshape(1, -1)
+    for ax in axes[0][len(slices):]:
+        ax.set_visible(False)
     every = np.concatenate([s[0] for s in slices])
     pad = max(s[2] for s in slices)
     limits = ([args.window[:2], args.window[2:]] if args.window else

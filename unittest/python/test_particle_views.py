@@ -137,3 +137,24 @@ def test_render_particles_names_bad_input(block, tmp_path, args, message):
     done = tool("render_particles.py", block / "dump.atoms", *args, "-o", tmp_path / "x.png",
                 cwd=tmp_path)
     assert done.returncode == 1 and message in done.stderr, done.stderr
+
+
+def test_frames_by_step_in_rows(block, tmp_path):
+    """--steps picks each file's frame by its timestep, --rows stacks the pictures; a step the
+    dump does not hold is an error."""
+    import matplotlib.image
+
+    out = tmp_path / "steps.png"
+    done = tool("render_particles.py", block / "dump.atoms", block / "dump.atoms",
+                block / "dump.atoms", "--column", "c_s[1]", "--at", 3 * A, "--steps", 0, 1, 2,
+                "--rows", 2, "--size", 6, 6, "-o", out, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    for step in (0, 1, 2):
+        assert done.stdout.count(f"step {step}, 49 particles in the slice") == 1, done.stdout
+    assert matplotlib.image.imread(str(out)).shape[:2] == (600, 600)
+    done = tool("render_particles.py", block / "dump.atoms", "--column", "c_s[1]", "--steps", 7,
+                "-o", out, cwd=tmp_path)
+    assert done.returncode == 1 and "no frame at step 7" in done.stderr, done.stderr
+    done = tool("render_particles.py", block / "dump.atoms", "--column", "c_s[1]", "--steps", 0,
+                1, "-o", out, cwd=tmp_path)
+    assert done.returncode == 1 and "--steps needs one step per dump file" in done.stderr

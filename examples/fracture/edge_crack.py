@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""Mode-I edge-cracked plate: runs in.edge.lps and in.edge.nosb (edge.geometry) under a slowly
+rising tension and compares the stress at crack growth with linear elastic fracture mechanics.
+
+    python3 edge_crack.py [--lmp ../../build/lmp] [--nw 60 30] [--np N] [--pair "keywords"]
+        [--nosb-var NAME VALUE] [--styles lps nosb] [--transits 8] [--damp 1]
+        [--max-load 2.5] [--out DIR]
+
+LEFM: a single edge crack of length c in a strip of width W under a remote tension sigma has
+K_I = sigma sqrt(pi c) F(c/W), F = 1.12 - 0.231 r + 10.55 r^2 - 21.72 r^3 + 30.39 r^4 (r = c/W;
+Brown and Srawley 1966, as given by Tada, Paris and Irwin, The Stress Analysis of Cracks
+Handbook: within 0.5% for r <= 0.6, ends free to rotate, a long strip). The crack grows when
+K_I = K_Ic = sqrt(G0 E'), E' = E for a plane-stress plate (3 layers of particles, 3 mm in a
+60 mm wide plate at the default 1 mm spacing), so sigma_LEFM = sqrt(G0 E) / (F sqrt(pi c)).
+The tension rises at sigma_LEFM per --transits times (default 8) the time a P wave takes to
+cross the plate's height, after a smooth start over 1.33 of those transit times, under a
+viscous damping with a decay time of --damp transit times (default 1); the damping force on
+the stretching halves lowers the stress at the crack below the applied one by about
+rho v_end H / (4 t_damp), 2% of sigma_LEFM at the defaults (v_end: the ends' speed). Per style and
+width (--nw, in spacings; the crack is half of it): sigma at crack growth (2 nz ligament
+particles beyond 0.4 damage per spacing of growth: the first thermo row with growth of one
+horizon, 3 spacings), sigma when half the ligament is broken, both over sigma_LEFM, the wall time.
+Runs in --out (default frames/edge), decks copied there.
+"""
+import argparse
+import math
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+FILES = ["edge.geometry", "edge.run", "in.edge.lps", "in.edge.nosb"]
+E, NU, RHO, G0 = 190e9, 0.25, 8000.0, 22170.0
+A = 0.001          # lattice spacing (m)
+NZ = 3
+
+
+def shape_factor(r):
+    """F(c/W) of a single edge crack in a strip under tension (Brown-Srawley / Tada)."""
+    return 1.12 - 0.231 * r + 10.55 * r**2 - 21.72 * r**3 + 30.39 * r**4
+
+
+def sigma_lefm(nw, ratio=0.5):
+    crack = ratio * nw * A
+    return math.sqrt(G0 * E) / (shape_factor(ratio) * math.sqrt(math.pi * crack))
+
+
+def thermo(log):
+    """Rows (dicts) of the last thermo table of a LAMMPS log."""
+    header, rows = None, []
+    for line in Path(log).read_text().splitlines():
+        words = line.split()
+        if words and words[0] == "Step":
+            header, rows = words, []
+        elif header and len(words) == len(header) and words[0].isdigit():
+            rows.append(dict(zip(header, map(float, words))))
+        elif line.startswith("Loop time"):
+            header = None
+    return rows
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--lmp", default=str(ROOT / "build" / "lmp"))
+    ap.add_argument("--nw", type=int, nargs="+", default=[60], help="plate widths (spacings)")
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--pair", default="", help="keywords appended to peri/nosb's pair_coeff")
+    ap.add_argument("--nosb-var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
+                    help="a -var for the peri/nosb runs only, e.g. alpha 0 (repeat)")
+    ap.add_argument("--styles", nargs="+", default=["lps", "nosb"], choices=["lps", "nosb"])
+    ap.add_argument("--transits", type=float, default=8.0)
+    ap.add_argument("--max-load", type=float, default=2.5,
+                    help="the run ends at this multiple of sigma_LEFM (or when the ligament "
+                    "is broken through)")
+    ap.add_argument("--damp", type=float, default=1.0,
+                    help="damping time in transit times (0: undamped)")
+    ap.add_argument("--out", help="working folder (default frames/edge)")
+    args = ap.parse_args(argv)
+    lmp = str(Path(args.lmp).resolve())
+    out = Path(args.out) if args.out else HERE / "frames" / "edge"
+    out.mkdir(parents=True, exist_ok=True)
+    for name in FILES:
+        shutil.copy(HERE / name, out / name)
+    wave = math.sqrt((E / (3 * (1 - 2 * NU)) + 4 / 3 * E / (2 * (1 + NU))) / RHO)
+    lines = []
+    for nw in args.nw:
+        target = sigma_lefm(nw)
+        transit = 2 * nw * A / wave
+        rate = target / (args.transits * transit)
+        t_start = 1.33 * transit
+        t_end = args.max_load * target / rate + 0.5 * t_start
+        t_damp = args.damp * transit
+        for style in args.styles:
+            log = f"log.{style}.{nw}"
+            cmd = [lmp, "-in", f"in.edge.{style}", "-var", "nw", str(nw), "-var", "sig_rate",
+                   f"{rate:.6g}", "-var", "t_start", f"{t_start:.6g}", "-var", "t_damp",
+                   f"{t_damp:.6g}", "-var", "t_end", f"{t_end:.6g}", "-log", log, "-screen",
+                   "none"]
+            if style == "nosb" and args.pair:
+                cmd += ["-var", "keys", args.pair]
+            if style == "nosb":
+                for var, value in args.nosb_var:
+                    cmd += ["-var", var, value]
+            if args.np > 1:
+                cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
+                       str(args.np)] + cmd
+            start = time.time()
+            proc = subprocess.run(cmd, cwd=out, capture_output=True, text=True)
+            wall = time.time() - start
+            if proc.returncode:
+                sys.exit(f"edge_crack.py: {' '.join(cmd)} failed: {proc.stderr[-500:]}")
+            rows = thermo(out / log)
+            growth = next((r["v_sigma"] for r in rows if r["c_broken"] >= 2 * NZ * 3), None)
+            half = next((r["v_sigma"] for r in rows
+                         if r["c_broken"] >= NZ * (nw - nw // 2)), None)
+            lines.append((style, nw, target, growth, half, rows[-1]["c_dmax"], wall))
+    print(f"Edge-cracked plate (crack = W/2, H = 2W, {NZ} layers, spacing {A * 1e3:g} mm), "
+          f"loaded to sigma_LEFM in {args.transits:g} transit times; peri/nosb keywords: "
+          f"{args.pair or '(none)'}")
+    print(f"{'style':>6s} {'W/a':>4s} {'crack/delta':>11s} {'sigma_LEFM (MPa)':>16s} "
+          f"{'growth/LEFM':>11s} {'half/LEFM':>9s} {'max d':>6s} {'wall (s)':>8s}")
+    for style, nw, target, growth, half, dmax, wall in lines:
+        ratio = [f"{s / target:.3f}" if s is not None else "none" for s in (growth, half)]
+        print(f"{style:>6s} {nw:4d} {nw / 2 / 3.0002:11.1f} {target / 1e6:16.2f} {ratio[0]:>11s} "
+              f"{ratio[1]:>9s} {dmax:6.3f} {wall:8.0f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
