@@ -39,7 +39,6 @@ class Model {
   double bulk(int itype) const { return types_[itype].bulk; }
   bool membrane(int itype) const { return types_[itype].membrane; }
   bool any_membrane() const;
-  bool length_deviation(int itype) const { return types_[itype].length; }
   // the bond between particles of types itype and jtype uses the length form
   bool length_bond(int itype, int jtype) const
   {

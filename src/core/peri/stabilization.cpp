@@ -104,20 +104,14 @@ namespace {
   }
 
   // The length form of bond ij (stabilization.h): with g = Fbar xi = e - z and
-  // |e|^2 - |g|^2 = z . (e + g) (diff below; no cancellation), d = diff / (2 |xi|), s = cw d / |xi|
-  // = cw diff / (2 q2) from q2 = |xi|^2; the direct force density on i is t = s e, the term of
-  // Q_i u = qa s g (in place of qa cw z), and cw d^2 = s diff / 2 the energy sum's term. The
-  // 4-wide pass does the same operations on the lanes of e, z and g.
-  struct LengthForm {
-    double s, diff;
-  };
-  inline LengthForm length_form(double cw, double q2, double e0, double e1, double e2, double z0,
-                                double z1, double z2)
+  // |e|^2 - |g|^2 = z . (e + g) = diff (summed (p0 + p1) + p2 over the components p_k = z_k
+  // (e_k + g_k); no cancellation), d = diff / (2 |xi|) and s = cw d / |xi| = length_scale(cw,
+  // diff, q2) with q2 = |xi|^2; the direct force density on i is t = s e, the term of Q_i
+  // u = qa s g (in place of qa cw z), and cw d^2 = s diff / 2 the energy sum's term. Both passes
+  // form p with the same operations (the 4-wide one on the lanes of e, z and g).
+  inline double length_scale(double cw, double diff, double q2)
   {
-    const double p0 = z0 * (e0 + (e0 - z0)), p1 = z1 * (e1 + (e1 - z1));
-    const double p2 = z2 * (e2 + (e2 - z2));
-    const double diff = (p0 + p1) + p2;
-    return {0.5 * cw * diff / q2, diff};
+    return 0.5 * cw * diff / q2;
   }
 
 #ifdef PERISISSM_CPU_DISPATCH
@@ -186,7 +180,7 @@ namespace {
           store4(pv, z * (e + g));
           const double diff = (pv[0] + pv[1]) + pv[2];
           const double xx = lane0(fma4(x2, x2, fma4(x1, x1, x0 * x0)));
-          const double s = 0.5 * lane0(cw) * diff / xx;
+          const double s = length_scale(lane0(cw), diff, xx);
           const double qa = (regi && regj) ? 1.0 : (regi ? 2.0 : 0.0);
           const Double4 t = splat(s) * e, u = splat(qa * s) * g;
           fsum += t;
@@ -365,14 +359,16 @@ namespace {
         }
         if (LENGTH == 2 || (LENGTH == 1 && model.length_bond(p.type[i], p.type[j]))) {
           const double q2 = madd<FUSED>(x2, x2, madd<FUSED>(x1, x1, x0 * x0));
-          const LengthForm lf = length_form(cw, q2, e0, e1, e2, z0, z1, z2);
-          const double t0 = lf.s * e0, t1 = lf.s * e1, t2 = lf.s * e2;
-          const double sq = qa * lf.s;
+          const double g0 = e0 - z0, g1 = e1 - z1, g2 = e2 - z2;
+          const double diff = (z0 * (e0 + g0) + z1 * (e1 + g1)) + z2 * (e2 + g2);
+          const double s = length_scale(cw, diff, q2);
+          const double t0 = s * e0, t1 = s * e1, t2 = s * e2;
+          const double sq = qa * s;
           fx += t0;
           fy += t1;
           fz += t2;
-          if (EFLAG) ws += 0.5 * lf.s * lf.diff;
-          rows.push(sq * (e0 - z0), sq * (e1 - z1), sq * (e2 - z2), x0, x1, x2);
+          if (EFLAG) ws += 0.5 * s * diff;
+          rows.push(sq * g0, sq * g1, sq * g2, x0, x1, x2);
           if (EVFLAG) vir.add(e0, e1, e2, t0, t1, t2);
           continue;
         }
