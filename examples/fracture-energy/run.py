@@ -213,8 +213,11 @@ def coeff_lps(k, g, m, s0, a=A_LATTICE):
     return f"{k:.17g} {g:.17g} {horizon(m, a):.17g} {s0:.17g} 0.0"
 
 
-def coeff_nosb(k, g, m, s0, cs=2.0, model="linear", a=A_LATTICE):
-    return f"{model} {k:.17g} {g:.17g} {horizon(m, a):.17g} {s0:.17g} 0.0 stabilize {cs:.17g}"
+def coeff_nosb(k, g, m, s0, cs=2.0, model="linear", a=A_LATTICE, length=True):
+    """peri/nosb's pair_coeff arguments, the deviation form named (length: the default)."""
+    form = "length" if length else "vector"
+    return (f"{model} {k:.17g} {g:.17g} {horizon(m, a):.17g} {s0:.17g} 0.0 stabilize {cs:.17g} "
+            f"deviation {form}")
 
 
 def kappa(res, m, s0, a=A_LATTICE):
@@ -223,38 +226,39 @@ def kappa(res, m, s0, a=A_LATTICE):
 
 
 # the relation of pair_coeff peri/nosb ... G0 (doc/pair_peri_nosb.rst, "Fracture energy"):
-#   G0 = delta s00^2 (C_M (K + 4G/3) + C_S Cs K delta/h)
-# and with `deviation length`
-#   G0 = delta s00^2 (C_M (K + 4G/3) + C_L Cs K)
+#   G0 = delta s00^2 (C_M (K + 4G/3) + C_L Cs K)            (deviation length, the default)
+#   G0 = delta s00^2 (C_M (K + 4G/3) + C_S Cs K delta/h)    (deviation vector)
 C_M = 0.58376
 C_S = 1.19321
 C_L = 1.00391
 FIT_S0 = 1.0e-6         # the relation is the small-strain limit; fitted at this s00
 
 
-def nosb_modulus(k, g, cs, delta, h, length=False):
+def nosb_modulus(k, g, cs, delta, h, length=True):
     stab = C_L * cs * k if length else C_S * cs * k * delta / h
     return C_M * (k + 4.0 * g / 3.0) + stab
 
 
-def g0_nosb_relation(k, g, cs, delta, s0, h, length=False):
+def g0_nosb_relation(k, g, cs, delta, s0, h, length=True):
     return delta * s0 ** 2 * nosb_modulus(k, g, cs, delta, h, length)
 
 
-def s00_nosb_relation(g0, k, g, cs, delta, h, length=False):
+def s00_nosb_relation(g0, k, g, cs, delta, h, length=True):
     return math.sqrt(g0 / (delta * nosb_modulus(k, g, cs, delta, h, length)))
 
 
 FIT_CASES = [(0.25, 0.0), (0.0, 0.0), (0.4, 0.0), (0.25, 2.0), (0.25, 1.0)]   # (nu, Cs)
 
 
-def fit_nosb(m, lmp, workdir, s0=FIT_S0, a=A_LATTICE):
-    """G0 / (delta s0^2) = cK K + cG G + cS Cs K for peri/nosb linear: least squares on the
-    FIT_CASES; returns the coefficients and the largest relative residual."""
+def fit_nosb(m, lmp, workdir, s0=FIT_S0, a=A_LATTICE, length=True):
+    """G0 / (delta s0^2) = cK K + cG G + cS Cs K for peri/nosb linear with the deviation form
+    `length` or vector: least squares on the FIT_CASES; returns the coefficients and the
+    largest relative residual."""
     rows, rhs = [], []
     for nu, cs in FIT_CASES:
         g = shear_from_nu(K_REF, nu)
-        res = separate("peri/nosb", coeff_nosb(K_REF, g, m, s0, cs, a=a), m, s0, a, lmp, workdir)
+        res = separate("peri/nosb", coeff_nosb(K_REF, g, m, s0, cs, a=a, length=length), m, s0,
+                       a, lmp, workdir)
         rows.append([1.0, g / K_REF, cs])
         rhs.append(kappa(res, m, s0, a) / K_REF)
     coef, *_ = np.linalg.lstsq(np.array(rows), np.array(rhs), rcond=None)
@@ -288,6 +292,8 @@ def main():
          g0_nosb_relation(k, g, 2.0, d3, s0, A_LATTICE), "G0 keyword relation"),
         ("peri/nosb linear Cs=0", coeff_nosb(k, g, 3, s0, 0.0),
          g0_nosb_relation(k, g, 0.0, d3, s0, A_LATTICE), "G0 keyword relation"),
+        ("peri/nosb linear Cs=2 deviation vector", coeff_nosb(k, g, 3, s0, 2.0, length=False),
+         g0_nosb_relation(k, g, 2.0, d3, s0, A_LATTICE, False), "G0 keyword relation"),
     ]
     measured = {}
     for name, coeff, formula, fname in rows:
@@ -326,19 +332,22 @@ def main():
 
     print("\nperi/nosb linear, fit G0 = delta s00^2 (cK K + cG G + cS Cs K) on (nu, Cs) = "
           f"{FIT_CASES}, at s00 = {FIT_S0:g} (small-strain limit):\n")
-    print("| delta/a | cK | cG | cG/cK | cS | cS/(delta/a) | largest relative residual |")
-    print("|---|---|---|---|---|---|---|")
+    print("| deviation | delta/a | cK | cG | cG/cK | cS | cS/(delta/a) | "
+          "largest relative residual |")
+    print("|---|---|---|---|---|---|---|---|")
     ms = [3, 2.5, 2.8, 3.015, 3.5, 4, 4.5, 5, 6] if args.full else [3]
-    for m in ms:
-        coef, resid = fit_nosb(m, lmp, workdir)
-        dh = horizon(m, 1.0)
-        print(f"| {dh:.4f} | {coef[0]:.5f} | {coef[1]:.5f} | {coef[1] / coef[0]:.5f} | "
-              f"{coef[2]:.5f} | {coef[2] / dh:.5f} | {resid:.1e} |", flush=True)
+    for length in (True, False):
+        for m in ms:
+            coef, resid = fit_nosb(m, lmp, workdir, length=length)
+            dh = horizon(m, 1.0)
+            print(f"| {'length' if length else 'vector'} | {dh:.4f} | {coef[0]:.5f} | "
+                  f"{coef[1]:.5f} | {coef[1] / coef[0]:.5f} | {coef[2]:.5f} | "
+                  f"{coef[2] / dh:.5f} | {resid:.1e} |", flush=True)
 
     print("\nChecks: peri/nosb G0 measured against the G0 keyword relation "
-          f"(C_M = {C_M}, C_S = {C_S}, h = a):\n")
-    print("| case | G0 measured (J/m^2) | relation | measured/relation |")
-    print("|---|---|---|---|")
+          f"(C_M = {C_M}, C_L = {C_L}, C_S = {C_S}, h = a):\n")
+    print("| case | deviation | G0 measured (J/m^2) | relation | measured/relation |")
+    print("|---|---|---|---|---|")
     checks = [
         ("linear nu=0.1 Cs=0.5", "linear", K_REF, shear_from_nu(K_REF, 0.1), 0.5, s0, 3, A_LATTICE),
         ("linear nu=-0.3 Cs=3", "linear", K_REF, shear_from_nu(K_REF, -0.3), 3.0, s0, 3,
@@ -354,12 +363,13 @@ def main():
     if args.full:
         checks += [(f"linear delta = {m} a (nu=0.25, Cs=2)", "linear", K_REF, g, 2.0, s0, m,
                     A_LATTICE) for m in [2.5, 2.8, 3.015, 3.5, 4, 4.5, 5, 6]]
-    for name, model, kk, gg, cs, ss, m, aa in checks:
-        res = separate("peri/nosb", coeff_nosb(kk, gg, m, ss, cs, model, aa), m, ss, aa, lmp,
-                       workdir)
-        rel = g0_nosb_relation(kk, gg, cs, horizon(m, aa), ss, aa)
-        print(f"| {name} | {res['g0_work']:.5g} | {rel:.5g} | {res['g0_work'] / rel:.4f} |",
-              flush=True)
+    for length in (True, False):
+        for name, model, kk, gg, cs, ss, m, aa in checks:
+            res = separate("peri/nosb", coeff_nosb(kk, gg, m, ss, cs, model, aa, length), m, ss,
+                           aa, lmp, workdir)
+            rel = g0_nosb_relation(kk, gg, cs, horizon(m, aa), ss, aa, length)
+            print(f"| {name} | {'length' if length else 'vector'} | {res['g0_work']:.5g} | "
+                  f"{rel:.5g} | {res['g0_work'] / rel:.4f} |", flush=True)
 
     if not args.keep:
         import shutil

@@ -31,7 +31,8 @@ STEEL = {"K": 160e9, "Gr": 0.5, "rho": 7800}  # G = 80 GPa
 # Explicit (fix nve, velocity Verlet) stability limits of the decks, measured by bisection:
 # fix nve at growing dt from a pseudo-random velocity field (vrand = 0.01 m/s excites every
 # mode), 3000 steps, "stable" = finite and etotal below twice its initial value (cantilevers:
-# 6000 steps under gravity, bisection between 4e-7 and 9e-7). Values are the largest stable
+# 6000 steps under gravity, bisection between 3e-7 and 1.2e-6; pair_coeff defaults, measured
+# 2026-11-29). Values are the largest stable
 # dt found (the smallest unstable one is within 0.3 %). Small blocks are limited by their
 # corner/edge particles, whose shape tensors are small (large K^-1), so the limit is not
 # monotonic in the block size. explicit_limit_brackets() re-checks them cheaply.
@@ -39,11 +40,11 @@ EXPLICIT_LIMIT = {
     "block 2x2x2": 5.72e-7,
     "block 3x3x3": 9.35e-7,
     "block 4x3x3": 9.70e-7,
-    "block 6x6x6": 1.54e-6,
+    "block 6x6x6": 1.558e-6,
     "steel 4x3x3": 2.15e-7,
-    "steel 6x6x6": 3.48e-7,
-    "cantilever 16x4x4": 7.15e-7,
-    "cantilever 10x3x3": 5.95e-7,
+    "steel 6x6x6": 3.508e-7,
+    "cantilever 16x4x4": 1.048e-6,
+    "cantilever 10x3x3": 8.06e-7,
 }
 
 

@@ -71,10 +71,14 @@ def test_restart_continues_the_run(tmp_path, case, write_ranks, read_ranks):
     # and runs up to step 200. Families, broken bonds, s0, x0, velocities and the time step
     # all come from the file, so the continued run repeats the unsplit one operation by
     # operation, bit for bit, also when the file was written on another rank count (per-atom
-    # arithmetic does not depend on it, test_one_and_two_ranks_agree). The thermo sums are
-    # bit-identical too: both runs compared run on read_ranks, and the setup of every run
-    # sorts the atoms spatially (atom_modify sort), so the same atoms are added in the same
-    # order (measured: same order, all columns bit-identical in all four cases).
+    # arithmetic does not depend on it, test_one_and_two_ranks_agree). On 1 rank the thermo
+    # sums are bit-identical too. On 2 ranks an atom that migrated to the other rank before
+    # the split is appended to that rank's atoms, while the continued run sorts them at its
+    # setup (atom_modify sort): the sums add the same values in another order (REORDERED_SUM),
+    # and the short-range contact forces of particles that touch after their bonds broke are
+    # summed in the neighbor list's order (measured: 1 ulp of the largest force at step 200,
+    # "fracture 1 2"; positions and velocities bit-identical; without contact the forces are
+    # bit-identical too, test_length_form_per_atom_results_do_not_depend_on_ranks_or_restarts).
     args = ELASTIC if case == "elastic" else FRACTURE
     unsplit = run_deck(BLOCK, tmp_path / "unsplit", nprocs=read_ranks, variables=args)
     first = run_deck(BLOCK, tmp_path / "split", nprocs=write_ranks,
@@ -89,12 +93,19 @@ def test_restart_continues_the_run(tmp_path, case, write_ranks, read_ranks):
     rows = np.searchsorted(t_all["Step"], t_cont["Step"])
     assert np.array_equal(t_all["Step"][rows], t_cont["Step"])
     for col in SUMS:
-        assert np.array_equal(t_all[col][rows], t_cont[col]), col
+        if read_ranks == 1:
+            assert np.array_equal(t_all[col][rows], t_cont[col]), col
+        else:
+            assert relative_difference(t_all[col][rows], t_cont[col]) < REORDERED_SUM, col
     whole = read_dump(tmp_path / "unsplit/dump.atoms")[-1]
     cont = read_dump(tmp_path / "split/dump.atoms")[-1]
     assert whole["step"] == cont["step"] == 200
     for col in DUMPED:
-        assert np.array_equal(whole[col], cont[col]), col
+        if read_ranks == 1 or col not in ("fx", "fy", "fz"):
+            assert np.array_equal(whole[col], cont[col]), col
+        else:
+            scale = np.abs(whole[col]).max()
+            assert np.abs(whole[col] - cont[col]).max() <= 1e-14 * scale, col
     if case == "fracture":
         assert np.count_nonzero(damage_column(cont)) > 100
 

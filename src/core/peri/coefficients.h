@@ -29,7 +29,7 @@ constexpr double kDefaultCs = 2.0;
 
 // Default of pair_coeff's deviation keyword (true: length, false: vector): what the
 // stabilization of volume particles penalizes (peri/stabilization.h).
-constexpr bool kDefaultLengthDeviation = false;
+constexpr bool kDefaultLengthDeviation = true;
 
 // One line of pair_coeff (with the numbers or with a material file entry).
 struct PairCoefficients {
