@@ -12,7 +12,7 @@ mid-plane damage at several times.
 Each style runs in --out (default frames/branching-<spacing>mm) with the decks copied there,
 -var a (the spacing), -var dt (--step, default the deck's 25 ns per mm), -var sigma (--sigma,
 MPa), -var t_end (--t-end, us), -var dump (every --every us), and for peri/nosb -var keys
-(--pair, default the deck's "deviation length") and the -var of --nosb-var, for peri/lps those
+(--pair, default none: the pair style's defaults) and the -var of --nosb-var, for peri/lps those
 of --lps-var.
 
 What is measured, per dump frame, in the reference configuration (the positions of the first
