@@ -2,11 +2,13 @@
 notches and the crack (the families have fewer bonds than the same plate without the
 neigh_modify exclude line), and edge_crack.py's LEFM reference is the Brown-Srawley / Tada
 shape factor."""
+import itertools
 import math
 import re
 import shutil
 import sys
 
+import numpy as np
 import pytest
 
 from lammps_run import REPO, run_deck
@@ -55,6 +57,69 @@ def test_the_decks_cut_the_bonds_across_notches_and_cracks(tmp_path, deck, files
     for line in counts:
         assert line in runs[True].stdout + runs[True].log, line
     assert bonds_per_atom(runs[True]) < bonds_per_atom(runs[False]) - 0.1
+
+
+def edge_plate_bonds(nw, nz, periodic_z, crack_rule, horizon=3.0002):
+    """Bonds (pairs within the horizon) of edge.geometry's plate, nw x 2 nw x nz spacings, less
+    those the crack cuts: crack_rule "crossing" cuts every bond that crosses the plane y = nw
+    at x < nw / 2, "blocks" only those with both ends at x < nw / 2."""
+    points = np.array(list(itertools.product(range(nw), range(2 * nw), range(nz)))) + 0.5
+    offsets = [d for d in itertools.product(range(-3, 4), repeat=3)
+               if d > (0, 0, 0) and sum(c * c for c in d) <= horizon**2]
+    total = 0
+    for offset in offsets:
+        other = points + offset
+        inside = (other[:, 0] < nw) & (other[:, 1] > 0) & (other[:, 1] < 2 * nw)
+        if periodic_z:
+            other[:, 2] %= nz
+        else:
+            inside &= (other[:, 2] > 0) & (other[:, 2] < nz)
+        p, q = points[inside], other[inside]
+        crosses = (p[:, 1] - nw) * (q[:, 1] - nw) < 0
+        if crack_rule == "crossing":
+            rise = np.where(crosses, q[:, 1] - p[:, 1], 1.0)
+            at = p[:, 0] + (q[:, 0] - p[:, 0]) * (nw - p[:, 1]) / rise
+            cut = crosses & (at < nw / 2)
+        else:
+            cut = crosses & (p[:, 0] < nw / 2) & (q[:, 0] < nw / 2)
+        total += int(np.count_nonzero(~cut))
+    return total
+
+
+@pytest.mark.parametrize("cut_tip, nz, zb", [(1, 3, "s"), (0, 3, "s"), (1, 7, "p")])
+def test_the_edge_crack_cuts_the_bonds_that_cross_it_short_of_the_tip(tmp_path, cut_tip, nz,
+                                                                      zb):
+    """edge.geometry's bond families against a count of the lattice's pairs within the horizon:
+    with cut_tip 1 every bond crossing the crack plane short of the tip is cut (50 more than
+    the two blocks' exclusion at nw = 12, nz = 3), with cut_tip 0 only those between the
+    blocks; periodic in z with 7 layers (more than two horizons) no particle bonds to its own
+    image."""
+    for name in ("in.edge.nosb", "edge.geometry", "edge.run"):
+        shutil.copy(SCENES / name, tmp_path / name)
+    run = run_deck(tmp_path / "in.edge.nosb", tmp_path,
+                   variables={"t_end": 0, "nw": 12, "nz": nz, "zb": zb, "cut_tip": cut_tip})
+    total = int(re.search(r"total # of bonds = ([0-9]+)", run.stdout + run.log).group(1))
+    rule = "crossing" if cut_tip else "blocks"
+    assert total == 2 * edge_plate_bonds(12, nz, zb == "p", rule)
+    if cut_tip and zb == "s":
+        assert edge_plate_bonds(12, 3, False, "blocks") - total // 2 == 50
+
+
+@pytest.mark.slow
+def test_the_edge_crack_grows_within_ten_percent_of_the_lefm_stress(tmp_path):
+    """in.edge.nosb as it is (W = 30 spacings, the tension reaching sigma_LEFM in 32 transit
+    times, damping over 3) with `deviation length`, alpha 0: the crack has grown by one horizon
+    at 1.014 sigma_LEFM on one rank (README, "Mode-I edge-cracked plate"; a held tension grows
+    it at 0.89 and not at 0.86 sigma_LEFM, the rest is the loading rate's); within 10%."""
+    for name in ("in.edge.nosb", "edge.geometry", "edge.run"):
+        shutil.copy(SCENES / name, tmp_path / name)
+    run = run_deck(tmp_path / "in.edge.nosb", tmp_path, nprocs=2,
+                   variables={"keys": "deviation length", "alpha": 0})
+    table = run.thermo[-1]
+    grown = np.flatnonzero(table["c_broken"] >= 2 * 3 * 3)
+    assert grown.size, "the crack did not grow by one horizon"
+    ratio = table["v_sigma"][grown[0]] / edge_crack.sigma_lefm(30)
+    assert 0.9 <= ratio <= 1.1, ratio
 
 
 def cracks(tmp_path, name, keys):
