@@ -54,7 +54,9 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
+sys.path.insert(0, str(HERE))
 import crack_path  # noqa: E402
+import damage_maps  # noqa: E402
 
 TIP = (0.05, 0.02)
 WIDTH = 0.1
@@ -307,22 +309,9 @@ def main(argv=None):
               f"{s['v_x']:7.0f} {s['v_path']:10.0f} "
               f"{s['right'] if s['right'] is not None else nan:15.1f} {wall:8.0f}")
     if args.pictures:
-        dumps, steps, labels = [], [], []
-        for style in args.styles:
-            for t in args.times:
-                dumps.append(str(results[style][0]))
-                steps.append(str(round(t * 1e-6 / dt)))
-                labels.append(f"peri/{style} {t:g} us")
-        picture = out / f"branching-{args.spacing:g}mm-{args.sigma:g}MPa.png"
-        cmd = [sys.executable, str(ROOT / "tools" / "render_particles.py"), *dumps,
-               "--column", "v_damage", "--steps", *steps, "--rows", str(len(args.styles)),
-               "--labels", *labels, "--thickness", f"{a:g}", "--range", "0", "1",
-               "--window", "-0.002", "0.102", "-0.002", "0.042",
-               "--label", "damage", "--size", str(3.0 * len(args.times) + 1.5),
-               str(1.5 * len(args.styles) + 0.4), "-o", str(picture)]
-        proc = subprocess.run(cmd, capture_output=True, text=True)
-        if proc.returncode:
-            sys.exit(proc.stderr)
+        picture = damage_maps.draw([(f"peri/{s}", results[s][0]) for s in args.styles],
+                                   args.times, dt, a, (-0.002, 0.102, -0.002, 0.042), (3.0, 1.5),
+                                   out / f"branching-{args.spacing:g}mm-{args.sigma:g}MPa.png")
         print(f"pictures: {picture}")
     return 0
 

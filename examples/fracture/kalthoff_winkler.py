@@ -32,7 +32,9 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
+sys.path.insert(0, str(HERE))
 import crack_path  # noqa: E402
+import damage_maps  # noqa: E402
 
 TIPS = [(0.075, 0.05), (0.125, 0.05)]
 FILES = ["kalthoff.geometry", "kalthoff.run", "in.kalthoff.lps", "in.kalthoff.nosb"]
@@ -130,23 +132,9 @@ def main(argv=None):
                   f"{tips[0]['length'] * 1e3:6.1f} {tips[1]['length'] * 1e3:6.1f} {width} "
                   f"{stats['off_path']:8.4f} {stats['mean_layer']:6.3f} {wall:8.0f}")
     if args.pictures:
-        dt = step(args, a)
-        dumps, steps, labels = [], [], []
-        for style in args.styles:
-            for t in args.times:
-                dumps.append(str(results[style][0]))
-                steps.append(str(round(t * 1e-6 / dt)))
-                labels.append(f"{names[style]} {t:g} us")
-        picture = out / f"kalthoff-{args.spacing:g}mm.png"
-        cmd = [sys.executable, str(ROOT / "tools" / "render_particles.py"), *dumps,
-               "--column", "v_damage", "--steps", *steps, "--rows", str(len(args.styles)),
-               "--labels", *labels, "--thickness", f"{a:g}", "--range", "0", "1",
-               "--window", "-0.005", "0.205", "-0.005", "0.105",
-               "--label", "damage", "--size", str(3.2 * len(args.times) + 1.5),
-               str(1.9 * len(args.styles) + 0.4), "-o", str(picture)]
-        proc = subprocess.run(cmd, capture_output=True, text=True)
-        if proc.returncode:
-            sys.exit(proc.stderr)
+        picture = damage_maps.draw([(names[s], results[s][0]) for s in args.styles], args.times,
+                                   step(args, a), a, (-0.005, 0.205, -0.005, 0.105), (3.2, 1.9),
+                                   out / f"kalthoff-{args.spacing:g}mm.png")
         print(f"pictures: {picture}")
     return 0
 
