@@ -4,9 +4,10 @@
 //   I J MODEL material FILE NAME horizon s00 alpha [keyword value ...]
 //
 // keywords stabilize Cs, deviation length|vector, break yes/no, contact yes/no, membrane yes/no,
-// bend D|auto|no, G0 value (s00 = NULL with G0). The caller reads numbers, yes/no values and material file entries
-// (LAMMPS: utils::numeric, utils::logical and the potential-file path); the rules of the line
-// and the wording of its errors are here, so that they can be tested without LAMMPS.
+// bend D|auto|no, G0 value (s00 = NULL with G0). The caller reads numbers, yes/no values and
+// material file entries (LAMMPS: utils::numeric, utils::logical and the potential-file path);
+// the rules of the line and the wording of its errors are here, so that they can be tested
+// without LAMMPS.
 
 #ifndef PERISISSM_PERI_COEFFICIENT_LINE_H
 #define PERISISSM_PERI_COEFFICIENT_LINE_H

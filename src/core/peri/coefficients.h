@@ -116,8 +116,9 @@ class CoefficientTable {
 // The coefficients in a restart file (pair peri/nosb's section), format version
 // kCoefficientsRestartVersion: the version; per type pair i <= j whether its line was given and,
 // if so, the model's name with its terminating NUL (an int length first), the flags break,
-// contact, membrane and deviation length (4 ints) and K, G, horizon, s00, alpha, Cs (6 doubles); then the bending
-// moduli of the types 1 .. ntypes (bend[1 .. ntypes]). Native sizes and byte order.
+// contact, membrane and deviation length (4 ints) and K, G, horizon, s00, alpha, Cs (6 doubles);
+// then the bending moduli of the types 1 .. ntypes (bend[1 .. ntypes]). Native sizes and byte
+// order.
 constexpr int kCoefficientsRestartVersion = 4;
 std::string coefficients_restart_bytes(const CoefficientTable &table,
                                        const std::vector<double> &bend);
