@@ -5,7 +5,7 @@ rising tension and compares the stress at crack growth with linear elastic fract
     python3 edge_crack.py [--lmp ../../build/lmp] [--nw 60 30] [--np N] [--pair "keywords"]
         [--nosb-var NAME VALUE] [--styles lps nosb] [--transits 32] [--damp 3]
         [--max-load 2.5] [--hold X] [--hold-time 10] [--nz 3] [--periodic-z]
-        [--keep-tip-bonds] [--broken 0.3] [--out DIR]
+        [--keep-tip-bonds] [--broken 0.3] [--sissm-step 0.125] [--sissm "keywords"] [--out DIR]
 
 LEFM: a single edge crack of length c in a strip of width W under a remote tension sigma has
 K_I = sigma sqrt(pi c) F(c/W), F = 1.12 - 0.231 r + 10.55 r^2 - 21.72 r^3 + 30.39 r^4 (r = c/W;
@@ -25,6 +25,10 @@ at crack growth (2 nz ligament particles beyond --broken damage, default 0.3, pe
 growth: the first thermo row with growth of one horizon, 3 spacings), sigma when half the
 ligament is broken, both over sigma_LEFM, the wall time; with --hold, when the crack grew
 after the tension reached the held value.
+Style sissm: in.edge.nosb with `fix sissm` (keywords from --sissm) instead of `fix nve`, at a
+step of --sissm-step transit times (default 1/8: 28 times the explicit step at W = 30), the same
+loading and damping; its bonds break at the end of each step (doc/fix_sissm.rst, "Bond
+breaking"), and the run prints the evaluations per step.
 Runs in --out (default frames/edge), decks copied there.
 """
 import argparse
@@ -68,6 +72,19 @@ def thermo(log):
     return rows
 
 
+def evaluations(log):
+    """Force evaluations of the run in a log: its steps (fix nve), or fix sissm's iterations
+    per step times its steps plus one per step (the evaluation that ends each step)."""
+    for line in Path(log).read_text().splitlines():
+        if line.startswith("Fix sissm") and " run: " in line:
+            words = line.split(" run: ")[1].split()
+            return round(float(words[0]) * (float(words[2]) + 1))
+    for line in Path(log).read_text().splitlines():
+        if line.startswith("Loop time of"):
+            return int(line.split(" steps")[0].split()[-1]) + 1
+    return 0
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -84,7 +101,11 @@ def main(argv=None):
                     help="a ligament particle counts as broken beyond this damage")
     ap.add_argument("--keep-tip-bonds", action="store_true",
                     help="cut only the bonds between the blocks beside the crack (-var cut_tip 0)")
-    ap.add_argument("--styles", nargs="+", default=["lps", "nosb"], choices=["lps", "nosb"])
+    ap.add_argument("--styles", nargs="+", default=["lps", "nosb"],
+                    choices=["lps", "nosb", "sissm"])
+    ap.add_argument("--sissm-step", type=float, default=0.125,
+                    help="style sissm: the time step in transit times")
+    ap.add_argument("--sissm", default="", help="style sissm: keywords of its fix sissm")
     ap.add_argument("--transits", type=float, default=32.0)
     ap.add_argument("--max-load", type=float, default=2.5,
                     help="the run ends at this multiple of sigma_LEFM (or when the ligament "
@@ -116,19 +137,24 @@ def main(argv=None):
         t_damp = args.damp * transit
         for style in args.styles:
             log = f"log.{style}.{nw}"
+            deck = "nosb" if style == "sissm" else style
             sig_max = f"{args.hold * target:.6g}" if args.hold else "1e30"
-            cmd = [lmp, "-in", f"in.edge.{style}", "-var", "nw", str(nw), "-var", "sig_rate",
+            cmd = [lmp, "-in", f"in.edge.{deck}", "-var", "nw", str(nw), "-var", "sig_rate",
                    f"{rate:.6g}", "-var", "sig_max", sig_max, "-var", "t_start",
                    f"{t_start:.6g}", "-var", "t_damp", f"{t_damp:.6g}", "-var", "t_end",
                    f"{t_end:.6g}", "-var", "nz", str(args.nz), "-var", "zb",
                    "p" if args.periodic_z else "s", "-var", "cut_tip",
                    "0" if args.keep_tip_bonds else "1", "-var", "broken", f"{args.broken:g}",
                    "-log", log, "-screen", "none"]
-            if style == "nosb" and args.pair:
+            if deck == "nosb" and args.pair:
                 cmd += ["-var", "keys", args.pair]
-            if style == "nosb":
+            if deck == "nosb":
                 for var, value in args.nosb_var:
                     cmd += ["-var", var, value]
+            if style == "sissm":
+                dt = args.sissm_step * transit
+                cmd += ["-var", "integrate", f"sissm {args.sissm}".strip(), "-var", "dt",
+                        f"{dt:.6g}", "-var", "thermo_every", "1"]
             if args.np > 1:
                 cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
                        str(args.np)] + cmd
@@ -148,17 +174,19 @@ def main(argv=None):
                             f"times at {args.hold:g} sigma_LEFM")
             half = next((r["v_sigma"] for r in rows
                          if r["c_broken"] >= args.nz * (nw - nw // 2)), None)
-            lines.append((style, nw, target, growth, half, rows[-1]["c_dmax"], wall))
+            lines.append((style, nw, target, growth, half, rows[-1]["c_dmax"], wall,
+                          evaluations(out / log)))
     layers = f"{args.nz} layers" + (", periodic" if args.periodic_z else "")
     print(f"Edge-cracked plate (crack = W/2, H = 2W, {layers}, spacing {A * 1e3:g} mm), "
           f"loaded to sigma_LEFM in {args.transits:g} transit times; peri/nosb keywords: "
           f"{args.pair or '(none)'}")
     print(f"{'style':>6s} {'W/a':>4s} {'crack/delta':>11s} {'sigma_LEFM (MPa)':>16s} "
-          f"{'growth/LEFM':>11s} {'half/LEFM':>9s} {'max d':>6s} {'wall (s)':>8s}")
-    for style, nw, target, growth, half, dmax, wall in lines:
+          f"{'growth/LEFM':>11s} {'half/LEFM':>9s} {'max d':>6s} {'wall (s)':>8s} "
+          f"{'evaluations':>11s}")
+    for style, nw, target, growth, half, dmax, wall, evals in lines:
         ratio = [f"{s / target:.3f}" if s is not None else "none" for s in (growth, half)]
         print(f"{style:>6s} {nw:4d} {nw / 2 / 3.0002:11.1f} {target / 1e6:16.2f} {ratio[0]:>11s} "
-              f"{ratio[1]:>9s} {dmax:6.3f} {wall:8.0f}")
+              f"{ratio[1]:>9s} {dmax:6.3f} {wall:8.0f} {evals:11d}")
     for line in held:
         print(line)
     return 0

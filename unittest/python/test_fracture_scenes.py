@@ -105,21 +105,44 @@ def test_the_edge_crack_cuts_the_bonds_that_cross_it_short_of_the_tip(tmp_path, 
         assert edge_plate_bonds(12, 3, False, "blocks") - total // 2 == 50
 
 
-@pytest.mark.slow
-def test_the_edge_crack_grows_within_ten_percent_of_the_lefm_stress(tmp_path):
+def edge_growth(wd, variables):
     """in.edge.nosb as it is (W = 30 spacings, the tension reaching sigma_LEFM in 32 transit
-    times, damping over 3) with `deviation length`, alpha 0: the crack has grown by one horizon
-    at 1.014 sigma_LEFM on one rank (README, "Mode-I edge-cracked plate"; a held tension grows
-    it at 0.89 and not at 0.86 sigma_LEFM, the rest is the loading rate's); within 10%."""
+    times, damping over 3) with `deviation length`, alpha 0 and `variables`, on two ranks: the
+    tension at which the crack has grown by one horizon, over sigma_LEFM."""
     for name in ("in.edge.nosb", "edge.geometry", "edge.run"):
-        shutil.copy(SCENES / name, tmp_path / name)
-    run = run_deck(tmp_path / "in.edge.nosb", tmp_path, nprocs=2,
-                   variables={"keys": "deviation length", "alpha": 0})
+        shutil.copy(SCENES / name, wd / name)
+    run = run_deck(wd / "in.edge.nosb", wd, nprocs=2,
+                   variables={"keys": "deviation length", "alpha": 0, **variables})
     table = run.thermo[-1]
     grown = np.flatnonzero(table["c_broken"] >= 2 * 3 * 3)
     assert grown.size, "the crack did not grow by one horizon"
-    ratio = table["v_sigma"][grown[0]] / edge_crack.sigma_lefm(30)
-    assert 0.9 <= ratio <= 1.1, ratio
+    return table["v_sigma"][grown[0]] / edge_crack.sigma_lefm(30)
+
+
+@pytest.fixture(scope="module")
+def explicit_growth(tmp_path_factory):
+    return edge_growth(tmp_path_factory.mktemp("edge_nve"), {})
+
+
+@pytest.mark.slow
+def test_the_edge_crack_grows_within_ten_percent_of_the_lefm_stress(explicit_growth):
+    """fix nve at the deck's 50 ns: the crack has grown by one horizon at 1.014 sigma_LEFM on
+    one rank (README, "Mode-I edge-cracked plate"; a held tension grows it at 0.89 and not at
+    0.86 sigma_LEFM, the rest is the loading rate's); within 10%."""
+    assert 0.9 <= explicit_growth <= 1.1, explicit_growth
+
+
+@pytest.mark.slow
+def test_fix_sissm_at_28_explicit_steps_grows_the_crack_within_five_percent_of_fix_nve(
+        tmp_path, explicit_growth):
+    """The same plate and loading with fix sissm (defaults) at 1.405 us, an eighth of the P
+    wave's transit time and 28 times the explicit step; its bonds break at the end of each
+    step. Measured (README, "fix sissm with breaking", one rank, 2026-11-30): growth at 1.057
+    sigma_LEFM, 4.2% above fix nve's 1.014 (steps of 1/2, 1/4, 1/16 transit: 1.135, 1.096,
+    1.035, converging to fix nve's value); within 5% (the issue's bound), and above it: the
+    backward-Euler step slows the opening that runs the crack."""
+    ratio = edge_growth(tmp_path, {"integrate": "sissm", "dt": 1.405e-6, "thermo_every": 1})
+    assert explicit_growth <= ratio <= 1.05 * explicit_growth, (ratio, explicit_growth)
 
 
 def cracks(tmp_path, name, keys):
