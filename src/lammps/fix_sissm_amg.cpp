@@ -66,13 +66,15 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   bigint total_ = 0;                    // unknowns of all ranks when they were numbered
   std::uint64_t signature_ = 0;         // the pattern's (all ranks)
   std::uint64_t matrix_signature_ = 0;    // the pattern PETSc's matrix was made with
+  std::vector<std::uint64_t> matrix_blocks_;    // and this rank's blocks of it (sorted keys)
   bool logged_ = false;
   std::vector<double> values_, coords_, b_, z_;
   std::vector<int> unknown_nodes_;
   bool all_ranks(bool mine);
   bool pattern_current();
-  // the pattern of the current atoms; false (all ranks) when it is the one PETSc's matrix has:
-  // the unknowns still carry the numbers they were given and are coupled as they were
+  // the pattern of the current atoms; false (all ranks) when PETSc's matrix holds it: the
+  // unknowns still carry the numbers they were given and are coupled as they were, or by fewer
+  // of the same blocks (bonds broke; their blocks stay in the matrix as zeros)
   bool build_pattern(const PeriSISSM::Rows &rows);
   // the unknowns numbered contiguously in rank order, and their pattern
   void number_unknowns(const PeriSISSM::Rows &rows);
@@ -159,7 +161,10 @@ bool SissmAmg::build_pattern(const PeriSISSM::Rows &rows)
   MPI_Allreduce(&count, &all, 1, MPI_LMP_BIGINT, MPI_SUM, fix_->world);
   if (amg_ && all == total_ && all_ranks(numbers_carried(rows))) {
     pattern_from_numbers(rows);
-    if (signature_ == matrix_signature_) {
+    // (bonds that broke leave fewer blocks: their values lag until the next set-up, which the
+    // Krylov iterations ask for when they grow)
+    if (signature_ == matrix_signature_ ||
+        all_ranks(PeriSISSM::pattern_within(pattern_, matrix_blocks_))) {
       guarded([&] {
         amg_->set_unknowns(unknown_nodes_);
       });
@@ -188,6 +193,7 @@ void SissmAmg::make_hierarchy()
     amg_->set_unknowns(unknown_nodes_);
   });
   matrix_signature_ = signature_;
+  matrix_blocks_ = PeriSISSM::pattern_blocks(pattern_);
   schedule_.made_hierarchy(built_at_);
 }
 

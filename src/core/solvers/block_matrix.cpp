@@ -2,6 +2,8 @@
 
 #include "solvers/block_matrix.h"
 
+#include <algorithm>
+
 namespace PeriSISSM {
 
 int count_unknowns(const Rows &rows)
@@ -76,6 +78,29 @@ void build_block_pattern(const Rows &rows, const double *node, const BondSprings
   }
 }
 
+static std::uint64_t block_key(int row, int col)
+{
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(row)) << 32) |
+      static_cast<std::uint32_t>(col);
+}
+
+std::vector<std::uint64_t> pattern_blocks(const BlockPattern &pattern)
+{
+  std::vector<std::uint64_t> keys(pattern.col.size());
+  for (std::size_t m = 0; m < keys.size(); m++) keys[m] = block_key(pattern.row[m], pattern.col[m]);
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+bool pattern_within(const BlockPattern &pattern, const std::vector<std::uint64_t> &blocks)
+{
+  for (std::size_t m = 0; m < pattern.col.size(); m++)
+    if (!std::binary_search(blocks.begin(), blocks.end(),
+                            block_key(pattern.row[m], pattern.col[m])))
+      return false;
+  return true;
+}
+
 std::uint64_t pattern_signature(const BlockPattern &pattern)
 {
   std::uint64_t sum = 0;
@@ -103,13 +128,19 @@ void assemble_blocks(const Rows &rows, const double *node, double c, const BondS
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
     int m = pattern.first[r];
+    const int end = pattern.first[r + 1];
     double *diag = &values[9 * m++];
     for (int k = 0; k < 9; k += 4) diag[k] = vol[i] * rho[i];
     for (int s = springs.first[i]; s < springs.first[i + 1]; s++) {
       const double *e = &springs.e[3 * s];
       const double ck = c * springs.k[s];
-      const bool unknown = node[springs.partner[s]] >= 0.0;
-      double *off = unknown ? &values[9 * m++] : nullptr;
+      double *off = nullptr;
+      if (node[springs.partner[s]] >= 0.0) {
+        // the springs' columns in order; a pattern made before bonds broke has more of them
+        const int gj = (int) node[springs.partner[s]];
+        while (m < end && pattern.col[m] != gj) m++;
+        off = &values[9 * (m < end ? m++ : pattern.find(r, gj))];
+      }
       for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
           const double kab = ck * e[a] * e[b];

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -113,6 +114,48 @@ TEST(BlockMatrix, SignatureIsTheSetOfBlocksWhateverTheirOrderAndProcess)
   EXPECT_EQ(pattern_signature(transposed), sig);
   transposed.row[1] = 12;    // a block of row 12 instead of row 11
   EXPECT_NE(pattern_signature(transposed), sig);
+}
+
+TEST(BlockMatrix, APatternLeftByBrokenBondsLiesWithinTheWholeOne)
+{
+  Scene s;
+  BlockPattern whole;
+  build_block_pattern(s.rows, s.node, s.springs, s.hinges, s.index, whole);
+  const std::vector<std::uint64_t> blocks = pattern_blocks(whole);
+  ASSERT_EQ(blocks.size(), whole.col.size());
+  EXPECT_TRUE(std::is_sorted(blocks.begin(), blocks.end()));
+  EXPECT_TRUE(pattern_within(whole, blocks));
+
+  // the bond 1-3 broken (springs 1->3 and 3->1 gone): rows 11 and 12 lose their coupling
+  BondSprings broken;
+  broken.first = {0, 2, 3, 4, 5};
+  broken.partner = {1, 2, 0, 0, 4};
+  for (int s2 : {0, 1, 2, 4, 6}) {
+    broken.k.push_back(s.springs.k[s2]);
+    for (int k = 0; k < 3; k++) broken.e.push_back(s.springs.e[3 * s2 + k]);
+  }
+  BlockPattern fewer;
+  build_block_pattern(s.rows, s.node, broken, s.hinges, s.index, fewer);
+  ASSERT_LT(fewer.col.size(), whole.col.size());
+  EXPECT_TRUE(pattern_within(fewer, blocks));
+  EXPECT_FALSE(pattern_within(whole, pattern_blocks(fewer)));
+
+  // the values of the smaller pattern go into the whole one's blocks, the missing ones zero
+  std::vector<double> values, coords, wvalues, wcoords;
+  assemble_blocks(s.rows, s.node, 0.3, broken, s.hinges, s.index, whole, s.x, wvalues, wcoords);
+  assemble_blocks(s.rows, s.node, 0.3, broken, s.hinges, s.index, fewer, s.x, values, coords);
+  for (std::size_t m = 0; m < whole.col.size(); m++) {
+    int r = 0;
+    while (whole.first[r + 1] <= (int) m) r++;
+    const int f = fewer.find(r, whole.col[m]);
+    for (int k = 0; k < 9; k++)
+      EXPECT_EQ(wvalues[9 * m + k], f < 0 ? 0.0 : values[9 * f + k]) << "block " << m;
+  }
+  EXPECT_EQ(wcoords, coords);
+
+  BlockPattern other = whole;    // a block that the whole pattern does not have
+  other.col[1] = 21;
+  EXPECT_FALSE(pattern_within(other, blocks));
 }
 
 TEST(BlockMatrix, AssembledBlocksMatchTheDenseDefinition)
