@@ -38,6 +38,7 @@ class FixNosbFamily : public Fix {
   void init() override;
   void init_list(int, class NeighList *) override;
   void setup_post_neighbor() override;
+  void setup(int) override;
   void post_neighbor() override;
   void min_post_neighbor() override;
   void post_integrate() override;

@@ -1,21 +1,26 @@
 /* ----------------------------------------------------------------------
    PERI-SISSM: correspondence peridynamics with SVD-split stresses for LAMMPS.
 
-   fix nosb/family: the stable time step estimate (core peri/stable_step.h) and the blow-up
-   guard (doc/pair_peri_nosb.rst, "Blow-ups end in an error"; arithmetic and message text in
-   core peri/blowup_guard.h).
+   fix nosb/family: the stable time step estimate (core peri/stable_step.h), its check at the
+   setup of explicit runs (core peri/step_check.h) and the blow-up guard (doc/pair_peri_nosb.rst,
+   "Blow-ups end in an error"; arithmetic and message text in core peri/blowup_guard.h).
 ------------------------------------------------------------------------- */
 
 #include "fix_nosb_family.h"
 
+#include "pair_peri_nosb.h"
+
 #include "peri/blowup_guard.h"
 #include "peri/model.h"
 #include "peri/stable_step.h"
+#include "peri/step_check.h"
 
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
+#include "modify.h"
 #include "neighbor.h"
 #include "update.h"
 
@@ -61,6 +66,40 @@ double FixNosbFamily::min_stable_time_step()
   for (int i = 0; i < nlocal; i++) one = std::min(one, dt[i]);
   MPI_Allreduce(&one, &all, 1, MPI_DOUBLE, MPI_MIN, world);
   return all;
+}
+
+/* ----------------------------------------------------------------------
+   at the setup of every run (not of minimizations): one warning when the time step is above
+   the estimate (compute nosb/atom column 11: with the bending hinges) of any particle that a
+   fix integrates explicitly (core peri/step_check.h explicit_integrator); nothing is computed
+   in a run without such a fix
+------------------------------------------------------------------------- */
+
+void FixNosbFamily::setup(int /*vflag*/)
+{
+  if (!built) return;
+  int bits = 0;
+  std::string fixes;
+  for (Fix *f : modify->get_fix_list()) {
+    if (!f->time_integrate || !PeriSISSM::explicit_integrator(f->style)) continue;
+    bits |= f->groupbit;
+    fixes += (fixes.empty() ? "" : ", ") + std::string(f->id) + " (" + f->style + ")";
+  }
+  if (!bits) return;
+
+  const int nlocal = atom->nlocal;
+  std::vector<double> dt(nlocal);
+  stable_time_steps(dt.data());
+  auto *pair = dynamic_cast<PairPeriNosb *>(force->pair_match("peri/nosb", 1));
+  if (pair) pair->bending_stable_steps(dt.data());
+  const PeriSISSM::StepExcess one =
+      PeriSISSM::step_excess(nlocal, dt.data(), atom->mask, bits, update->dt);
+  double smallest;
+  bigint counts[2] = {one.above, one.counted}, all[2];
+  MPI_Allreduce(&one.smallest, &smallest, 1, MPI_DOUBLE, MPI_MIN, world);
+  MPI_Allreduce(counts, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (all[0] > 0 && comm->me == 0)
+    error->warning(FLERR, PeriSISSM::step_warning(update->dt, smallest, all[0], all[1], fixes));
 }
 
 /* ---------------------------------------------------------------------- */

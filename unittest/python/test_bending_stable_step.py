@@ -77,6 +77,8 @@ def test_nve_at_0_9_of_the_estimate_is_stable(tmp_path, cloth, bend):
     run = run_deck(DECK, tmp_path, variables={"bend": bend}, files={"cloth.obj": cloth},
                    check=False)
     assert stays_put(run), run.describe()
+    # below the estimate with the hinges: no time step warning (peri/step_check.h)
+    assert not [w for w in run.warnings if "peri/nosb: timestep" in w], run.warnings
     # the estimate falls as the bending stiffens (D / a^4 against the membrane's E t / a^2)
     assert {"no": 8.5e-5, "1e-5": 8.5e-5, "1e-4": 7.5e-5, "1e-3": 4.0e-5}[bend] \
         < estimate(run) < {"no": 9.2e-5, "1e-5": 9.2e-5, "1e-4": 8.3e-5, "1e-3": 4.4e-5}[bend]
@@ -90,3 +92,7 @@ def test_the_estimate_without_bending_is_too_long_for_a_stiff_cloth(tmp_path, cl
     run = run_deck(DECK, tmp_path / "b", files={"cloth.obj": cloth}, check=False,
                    variables={"bend": "1e-3", "dtuse": 0.9 * estimate(plain)})
     assert not stays_put(run)
+    # the time step check of the run takes the hinges into account: it warned
+    told = [w for w in run.warnings if "peri/nosb: timestep" in w]
+    assert len(told) == 1 and "particles integrated by fix integrate (nve)" in told[0], \
+        run.warnings
