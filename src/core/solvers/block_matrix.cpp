@@ -106,8 +106,7 @@ std::uint64_t pattern_signature(const BlockPattern &pattern)
   std::uint64_t sum = 0;
   for (std::size_t m = 0; m < pattern.col.size(); m++) {
     // splitmix64's finalizer of the pair
-    std::uint64_t z = ((std::uint64_t) (std::uint32_t) pattern.row[m] << 32) |
-        (std::uint32_t) pattern.col[m];
+    std::uint64_t z = block_key(pattern.row[m], pattern.col[m]);
     z += 0x9e3779b97f4a7c15ULL;
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
@@ -128,19 +127,13 @@ void assemble_blocks(const Rows &rows, const double *node, double c, const BondS
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
     int m = pattern.first[r];
-    const int end = pattern.first[r + 1];
     double *diag = &values[9 * m++];
     for (int k = 0; k < 9; k += 4) diag[k] = vol[i] * rho[i];
     for (int s = springs.first[i]; s < springs.first[i + 1]; s++) {
       const double *e = &springs.e[3 * s];
       const double ck = c * springs.k[s];
-      double *off = nullptr;
-      if (node[springs.partner[s]] >= 0.0) {
-        // the springs' columns in order; a pattern made before bonds broke has more of them
-        const int gj = (int) node[springs.partner[s]];
-        while (m < end && pattern.col[m] != gj) m++;
-        off = &values[9 * (m < end ? m++ : pattern.find(r, gj))];
-      }
+      const bool unknown = node[springs.partner[s]] >= 0.0;
+      double *off = unknown ? &values[9 * m++] : nullptr;
       for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
           const double kab = ck * e[a] * e[b];

@@ -50,7 +50,8 @@ std::uint64_t pattern_signature(const BlockPattern &pattern);
 
 // The pattern's blocks as sorted keys (global row << 32 | global column), and whether every
 // block of another pattern is among them (a pattern left by broken bonds within the one a
-// matrix was made with: its values fit that matrix, the missing blocks being zero).
+// matrix was made with: its blocks can be given to that matrix, whose other blocks are then
+// zero).
 std::vector<std::uint64_t> pattern_blocks(const BlockPattern &pattern);
 bool pattern_within(const BlockPattern &pattern, const std::vector<std::uint64_t> &blocks);
 
@@ -61,8 +62,7 @@ void build_block_pattern(const Rows &rows, const double *node, const BondSprings
                          const HingeCouplings &hinges, const HingeIndex &index,
                          BlockPattern &pattern);
 
-// Inputs: as build_block_pattern, the pattern built from them (or one that holds its blocks,
-// pattern_within, with the springs' columns in the same order), c, hinges with gradients, and x
+// Inputs: as build_block_pattern, the pattern built from them, c, hinges with gradients, and x
 // (3 per local row). Outputs: values (9 per block of the pattern, row-major; resized) = the
 // blocks of M; coords (3 per unknown, in row order; resized) = their positions, for the
 // rigid-body modes of the near-null space.

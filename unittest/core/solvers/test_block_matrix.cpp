@@ -140,19 +140,6 @@ TEST(BlockMatrix, APatternLeftByBrokenBondsLiesWithinTheWholeOne)
   EXPECT_TRUE(pattern_within(fewer, blocks));
   EXPECT_FALSE(pattern_within(whole, pattern_blocks(fewer)));
 
-  // the values of the smaller pattern go into the whole one's blocks, the missing ones zero
-  std::vector<double> values, coords, wvalues, wcoords;
-  assemble_blocks(s.rows, s.node, 0.3, broken, s.hinges, s.index, whole, s.x, wvalues, wcoords);
-  assemble_blocks(s.rows, s.node, 0.3, broken, s.hinges, s.index, fewer, s.x, values, coords);
-  for (std::size_t m = 0; m < whole.col.size(); m++) {
-    int r = 0;
-    while (whole.first[r + 1] <= (int) m) r++;
-    const int f = fewer.find(r, whole.col[m]);
-    for (int k = 0; k < 9; k++)
-      EXPECT_EQ(wvalues[9 * m + k], f < 0 ? 0.0 : values[9 * f + k]) << "block " << m;
-  }
-  EXPECT_EQ(wcoords, coords);
-
   BlockPattern other = whole;    // a block that the whole pattern does not have
   other.col[1] = 21;
   EXPECT_FALSE(pattern_within(other, blocks));
