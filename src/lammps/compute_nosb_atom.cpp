@@ -75,10 +75,7 @@ void ComputeNosbAtom::compute_peratom()
     error->all(FLERR,
                "Compute nosb/atom: pair peri/nosb has not evaluated the current atoms yet (the "
                "compute reports the state of the last force evaluation; use 'run 0' first)");
-  if (ready) {
-    family->stable_time_steps(dtstable);    // all ranks (a forward communication)
-    pair->bending_stable_steps(dtstable);
-  }
+  if (ready) pair->stable_time_steps(dtstable);
 
   for (int i = 0; i < nlocal; i++) {
     double *v = values[i];

@@ -89,9 +89,8 @@ void FixNosbFamily::setup(int /*vflag*/)
 
   const int nlocal = atom->nlocal;
   std::vector<double> dt(nlocal);
-  stable_time_steps(dt.data());
-  auto *pair = dynamic_cast<PairPeriNosb *>(force->pair_match("peri/nosb", 1));
-  if (pair) pair->bending_stable_steps(dt.data());
+  // (init has checked that the pair style is peri/nosb: this fix is its family)
+  static_cast<PairPeriNosb *>(force->pair_match("peri/nosb", 1))->stable_time_steps(dt.data());
   const PeriSISSM::StepExcess one =
       PeriSISSM::step_excess(nlocal, dt.data(), atom->mask, bits, update->dt);
   double smallest;

@@ -67,9 +67,9 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   // W(F) + stabilization energy density of owned atom i (what pe tallies per atom)
   double energy_density(int i) const { return wdens[i]; }
   class FixNosbFamily *family;
-  // dt (owned atoms) of compute nosb/atom's stable-step column: the elastic estimates combined
-  // with the bending hinges' (core membrane/bending.h bending_stable_steps)
-  void bending_stable_steps(double *dt);
+  // dt (owned atoms; all ranks) of compute nosb/atom's stable-step column: the family's elastic
+  // estimates combined with the bending hinges' (core membrane/bending.h bending_stable_steps)
+  void stable_time_steps(double *dt);
 
   // ---- ImplicitForces (fix sissm) ----
 

@@ -105,12 +105,14 @@ void PairPeriNosb::compute_bending()
 }
 
 /* ----------------------------------------------------------------------
-   compute nosb/atom: the stable time steps dt of the owned atoms (the elastic estimates) with
-   the bending stiffness of the hinges at the current positions (rmass is the density)
+   compute nosb/atom and the time step check: the stable time steps dt of the owned atoms (the
+   family's elastic estimates) with the bending stiffness of the hinges at the current positions
+   (rmass is the density)
 ------------------------------------------------------------------------- */
 
-void PairPeriNosb::bending_stable_steps(double *dt)
+void PairPeriNosb::stable_time_steps(double *dt)
 {
+  family->stable_time_steps(dt);    // all ranks (a forward communication)
   if (!any_bend || !meshfix) return;
   if (hinges_stale) build_hinges();
   PeriSISSM::bending_stable_steps(hinges, particles(), atom->rmass, dt);
