@@ -57,6 +57,7 @@ sys.path.insert(0, str(ROOT / "tools"))
 sys.path.insert(0, str(HERE))
 import crack_path  # noqa: E402
 import damage_maps  # noqa: E402
+from dump_to_vtu import read_dump  # noqa: E402
 
 TIP = (0.05, 0.02)
 WIDTH = 0.1
@@ -71,26 +72,6 @@ FIT = 20            # columns beyond branch x in the branches' angle fit
 def step(args, a):
     """The time step (s): --step in ns, default the deck's 2.5e-5 a (25 ns at 1 mm)."""
     return args.step * 1e-9 if args.step else 2.5e-5 * a
-
-
-def read_frames(path):
-    """Yield (timestep, columns, n x k array) for each frame of a dump custom text file."""
-    with open(path) as f:
-        while True:
-            line = f.readline()
-            if not line:
-                return
-            if not line.startswith("ITEM: TIMESTEP"):
-                continue
-            timestep = int(f.readline())
-            f.readline()
-            n = int(f.readline())
-            line = f.readline()
-            while not line.startswith("ITEM: ATOMS"):
-                line = f.readline()
-            columns = line.split()[2:]
-            table = np.array([f.readline().split() for _ in range(n)], dtype=float)
-            yield timestep, columns, table.reshape(n, len(columns))
 
 
 def geodesic(points, seeds, link):
@@ -155,7 +136,8 @@ def measure(dump, a, dt):
     (reached the last column), off-path fraction}."""
     rows = []
     reference = None
-    for timestep, columns, table in read_frames(dump):
+    for timestep, columns, words in read_dump(dump):
+        table = np.array(words, dtype=float).reshape(len(words), len(columns))
         ids = table[:, columns.index("id")].astype(int)
         if reference is None:
             reference = table[np.argsort(ids)][:, [columns.index(c) for c in "xyz"]]

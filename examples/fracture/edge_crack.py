@@ -75,11 +75,12 @@ def thermo(log):
 def evaluations(log):
     """Force evaluations of the run in a log: its steps (fix nve), or fix sissm's iterations
     per step times its steps plus one per step (the evaluation that ends each step)."""
-    for line in Path(log).read_text().splitlines():
+    lines = Path(log).read_text().splitlines()
+    for line in lines:
         if line.startswith("Fix sissm") and " run: " in line:
             words = line.split(" run: ")[1].split()
             return round(float(words[0]) * (float(words[2]) + 1))
-    for line in Path(log).read_text().splitlines():
+    for line in lines:
         if line.startswith("Loop time of"):
             return int(line.split(" steps")[0].split()[-1]) + 1
     return 0
