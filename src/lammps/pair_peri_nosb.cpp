@@ -18,6 +18,7 @@
 #include "linalg/fused.h"
 #include "materials/moduli.h"
 #include "membrane/bending.h"
+#include "membrane/plate_bending.h"
 #include "peri/bond_stiffness.h"
 #include "peri/box_check.h"
 #include "peri/breaking.h"
@@ -52,7 +53,7 @@ using namespace LAMMPS_NS;
 
 PairPeriNosb::PairPeriNosb(LAMMPS *lmp) :
     Pair(lmp), family(nullptr), coeffs(new PeriSISSM::CoefficientTable),
-    model_(new PeriSISSM::Model), any_bend(0), meshfix(nullptr), hinges_stale(1), any_break(0),
+    model_(new PeriSISSM::Model), any_bend(0), any_plate(0), meshfix(nullptr), hinges_stale(1), any_break(0),
     any_contact(0), external_breaking(0), block_rows(nullptr), contact_groupbit(0),
     contact_crossings(0), state_nlocal(-1), nmax(0), gstate(nullptr), hstate(nullptr),
     kstate(nullptr), wdens(nullptr), s0_new(nullptr), cnormal(nullptr), cols(nullptr),
@@ -124,6 +125,7 @@ void PairPeriNosb::init_style()
   configure_model();    // coefficients of all type pairs (pair_peri_nosb_coeff.cpp)
   check_membranes();
   hinges_stale = 1;    // bending moduli, types or meshes may have changed since the last run
+  if (any_plate && meshfix) plate_ghost_cutoff();
 
   // every bond partner must have one image within reach (core peri/box_check.h)
 
@@ -197,6 +199,15 @@ void PairPeriNosb::check_membranes()
   any_bend = std::any_of(bend.begin() + 1, bend.end(), [](double b) {
     return b != 0.0;
   });
+  bend_plate.assign(n + 1, 0);
+  bend_nu.assign(n + 1, 0.0);
+  any_plate = 0;
+  for (int t = 1; t <= n; t++) {
+    if (bend[t] == 0.0) continue;
+    bend_plate[t] = coeffs->at(t, t).plate ? 1 : 0;
+    bend_nu[t] = PeriSISSM::poisson_ratio(coeffs->at(t, t).moduli);
+    any_plate = any_plate || bend_plate[t];
+  }
   if (!model_->any_membrane()) return;
   tagint bad = 0;
   int badtype = 0;

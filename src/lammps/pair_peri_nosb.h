@@ -32,6 +32,7 @@ class Model;
 class CoefficientTable;
 struct MaterialEntry;
 struct Hinge;
+class PlateBending;
 }    // namespace PeriSISSM
 
 namespace LAMMPS_NS {
@@ -103,12 +104,19 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   // per type: bending modulus of pair_coeff I I ... bend (0 = none, -1 = auto), and for auto
   // coeffs->bending_factors() (set at init; D = that times the thickness cubed)
   std::vector<double> bend, bend_auto_factor;
-  int any_bend;
+  // per type: bending plate (1) or hinge (0) of pair_coeff I I, and Poisson's ratio of its
+  // material (set at init)
+  std::vector<int> bend_plate;
+  std::vector<double> bend_nu;
+  int any_bend, any_plate;
   class MeshView *meshfix;    // the meshes (read_mesh), null if none
   // the hinges of the bending term with an owned vertex here, each once per rank (straddling
   // ones on every rank; core membrane/bending.h)
   std::vector<PeriSISSM::Hinge> hinges;
   int hinges_stale;    // local indices may have changed: build the list again
+  // the triangles of the plate bending term whose stencil holds an owned vertex (core
+  // membrane/plate_bending.h; kept for the run: its stencils depend on the rest shape only)
+  std::unique_ptr<PeriSISSM::PlateBending> plates;
   // summary flags
   int any_break, any_contact;
   int passes_reported = 0;    // the bond passes' version was written to the log
@@ -154,6 +162,7 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   void compute_contact(int, int);
   void compute_bending();
   void build_hinges();
+  void plate_ghost_cutoff();
   double bending_modulus(int i) const;
   void neighbor_rebuilt();
   friend class NosbHalo;

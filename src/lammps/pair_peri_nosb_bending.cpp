@@ -1,10 +1,12 @@
 /* ----------------------------------------------------------------------
-   PERI-SISSM: pair_style peri/nosb, the bending term of membranes (pair_coeff ... bend D|auto).
+   PERI-SISSM: pair_style peri/nosb, the bending term of membranes (pair_coeff ... bend D|auto
+   bending plate|hinge).
 
-   The hinge list and its pass are the core's (membrane/bending.h); this file gives it the
-   meshes of read_mesh as this rank holds them (a hinge's other vertices are ghost atoms) and
-   the bending moduli. The list is built again only after a neighbor list build or a new run's
-   init: evaluating the hinges is cheap next to finding their vertices and rest shape.
+   The hinge list, the plate triangles' list and their passes are the core's
+   (membrane/bending.h, membrane/plate_bending.h); this file gives them the meshes of read_mesh
+   as this rank holds them (a hinge's or a stencil's other vertices are ghost atoms), the
+   bending moduli and Poisson's ratios. The lists are built again only after a neighbor list
+   build or a new run's init: evaluating them is cheap next to finding their vertices.
 ------------------------------------------------------------------------- */
 
 #include "pair_peri_nosb.h"
@@ -13,11 +15,15 @@
 #include "mesh_view.h"
 
 #include "membrane/bending.h"
+#include "membrane/plate_bending.h"
 #include "peri/bond_stiffness.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
+
+#include <cmath>
 
 using namespace LAMMPS_NS;
 
@@ -65,6 +71,8 @@ class NosbHingeMesh : public PeriSISSM::HingeMesh {
     return shares ? j : -1;
   }
   double modulus(int i) const override { return pair_->bending_modulus(i); }
+  bool plate(int i) const override { return pair_->bend_plate[atom_->type[i]] != 0; }
+  double poisson(int i) const override { return pair_->bend_nu[atom_->type[i]]; }
 
  private:
   const PairPeriNosb *pair_;
@@ -87,7 +95,66 @@ void PairPeriNosb::build_hinges()
                "atom here: the ghost cutoff is shorter than two edges of its mesh (comm_modify "
                "cutoff)",
                missing);
+  if (any_plate) {
+    if (!plates) plates = std::make_unique<PeriSISSM::PlateBending>();
+    const PeriSISSM::PlateProblem p = plates->build(mesh, atom->x0[0], family->box);
+    using PeriSISSM::StencilStatus;
+    const auto &t = p.triangle;
+    if (p.status == StencilStatus::missing)
+      error->one(FLERR,
+                 "Pair peri/nosb bending plate: the curvature stencil of triangle ({} {} {}) near "
+                 "atom {} reaches a vertex that is neither owned nor a ghost atom here: the ghost "
+                 "cutoff ({}) is shorter than the stencil (comm_modify cutoff)",
+                 t[0], t[1], t[2], p.vertex, comm->get_comm_cutoff());
+    if (p.status == StencilStatus::not_flat)
+      error->one(FLERR,
+                 "Pair peri/nosb bending plate: the mesh is not flat at rest around triangle "
+                 "({} {} {}) near atom {}: the plate energy needs a flat rest shape (use "
+                 "'bending hinge' for meshes curved at rest)",
+                 t[0], t[1], t[2], p.vertex);
+    if (p.status == StencilStatus::degenerate)
+      error->one(FLERR,
+                 "Pair peri/nosb bending plate: triangle ({} {} {}) near atom {} has no area, or "
+                 "its neighbourhood is too narrow to fit a curvature (a strip one triangle wide): "
+                 "use 'bending hinge'",
+                 t[0], t[1], t[2], p.vertex);
+  }
   hinges_stale = 0;
+}
+
+/* ----------------------------------------------------------------------
+   init: the plate stencils reach two rings of triangles around each triangle, so a rank needs
+   the vertices up to kPlateReach of its longest rest edges away as ghosts; the ghost cutoff is
+   raised to that (comm_modify cutoff: as the REBO styles do for their bond orders)
+------------------------------------------------------------------------- */
+
+static constexpr double kPlateReach = 5.0;
+
+void PairPeriNosb::plate_ghost_cutoff()
+{
+  double longest = 0.0;
+  double **x0 = atom->x0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!meshfix->mesh_of(i) || !bend_plate[atom->type[i]]) continue;
+    for (int k = 0; k < meshfix->ntri_of(i); k++) {
+      const int j = atom->map(meshfix->corner_of(i, k, 0));
+      if (j < 0) continue;
+      double d[3] = {x0[j][0] - x0[i][0], x0[j][1] - x0[i][1], x0[j][2] - x0[i][2]};
+      domain->minimum_image(d[0], d[1], d[2]);
+      longest = std::max(longest, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    }
+  }
+  double all = 0.0;
+  MPI_Allreduce(&longest, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double reach = kPlateReach * all;
+  if (reach > comm->cutghostuser) {
+    comm->cutghostuser = reach;
+    if (comm->me == 0)
+      utils::logmesg(lmp,
+                     "Pair peri/nosb bending plate: ghost cutoff at least {:.6g} ({} x the "
+                     "longest mesh edge {:.6g})\n",
+                     reach, kPlateReach, all);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -102,6 +169,7 @@ void PairPeriNosb::compute_bending()
   if (eflag_global) energy.total = &eng_vdwl;
   if (eflag_atom) energy.per_particle = eatom;
   PeriSISSM::bending_pass(hinges, particles(), block_rows, energy, virial_tallies());
+  if (any_plate && plates) plates->pass(particles(), block_rows, energy, virial_tallies());
 }
 
 /* ----------------------------------------------------------------------
@@ -116,6 +184,7 @@ void PairPeriNosb::stable_time_steps(double *dt)
   if (!any_bend || !meshfix) return;
   if (hinges_stale) build_hinges();
   PeriSISSM::bending_stable_steps(hinges, particles(), atom->rmass, dt);
+  if (any_plate && plates) plates->stable_steps(particles(), atom->rmass, dt);
 }
 
 /* ----------------------------------------------------------------------

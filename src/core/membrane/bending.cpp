@@ -32,6 +32,7 @@ std::int64_t build_hinges(const HingeMesh &mesh, const double *x0, const Referen
       h.own[k] = mesh.sharer(mesh.id(v[k]));
       if (h.own[k] >= 0 && h.own[k] < i) return true;    // listed by that smaller vertex
     }
+    if (mesh.plate(v[0]) && mesh.plate(v[1])) return true;
     const double D = 0.5 * (mesh.modulus(v[0]) + mesh.modulus(v[1]));
     if (D <= 0.0) return true;
     // reference positions relative to x0 (minimum image in the reference box)
@@ -144,7 +145,13 @@ void bending_stable_steps(const std::vector<Hinge> &hinges, const Particles &p, 
     for (int k = 0; k < 4; k++)
       if (h.own[k] >= 0) G[h.own[k]] += 2.0 * h.c * norm[k] * sum / p.volume[h.own[k]];
   }
-  for (int i = 0; i < p.nlocal; i++) {
+  combine_stable_steps(G, rho, dt, stiffness);
+}
+
+void combine_stable_steps(const std::vector<double> &G, const double *rho, double *dt,
+                          double *stiffness)
+{
+  for (int i = 0; i < (int) G.size(); i++) {
     if (!(G[i] > 0.0)) continue;
     if (stiffness) stiffness[i] += G[i];
     const double dtb = stable_time_step(rho[i], G[i]);

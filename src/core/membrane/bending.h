@@ -51,6 +51,10 @@ class HingeMesh {
   virtual int sharer(std::int64_t t) const = 0;
   // bending modulus D of the particle in row i (owned or ghost), energy units; 0 without
   virtual double modulus(int i) const = 0;
+  // whether the particle in row i bends by the plate energy (membrane/plate_bending.h) instead
+  // of the hinges (an edge whose two ends do is no hinge), and its Poisson's ratio there
+  virtual bool plate(int) const { return false; }
+  virtual double poisson(int) const { return 0.0; }
 };
 
 // The hinges of this rank, each once, in the order of their edges' IDs (a vertex then sums its
@@ -62,7 +66,8 @@ class HingeMesh {
 // of the edge's two ends (a hinge with D <= 0 is left out) and theta0 from the reference
 // positions x0 (3 per row) relative to the edge's first vertex, in the reference box.
 // Outputs: hinges (replaced); returns 0, or the ID of an owned vertex one of whose hinges has a
-// vertex that is not on this rank (the hinges of the others are listed).
+// vertex that is not on this rank (the hinges of the others are listed). An edge whose two
+// ends are plate vertices is no hinge.
 std::int64_t build_hinges(const HingeMesh &mesh, const double *x0, const ReferenceBox &box,
                           std::vector<Hinge> &hinges);
 
@@ -97,6 +102,11 @@ void bending_pass(const std::vector<Hinge> &hinges, const Particles &p, double *
 //          (when not null, owned rows, +=) G_i.
 void bending_stable_steps(const std::vector<Hinge> &hinges, const Particles &p, const double *rho,
                           double *dt, double *stiffness = nullptr);
+
+// The combination above of a bending term's G_i (owned rows; 0: none) with the estimates dt:
+// dt_i combined where G_i > 0, and stiffness (when not null, +=) G_i.
+void combine_stable_steps(const std::vector<double> &G, const double *rho, double *dt,
+                          double *stiffness);
 
 // The hinges in the current positions p.x for an assembled stiffness (peri/bond_stiffness.h):
 // vertices and rows of each, and with gradients true sqrt(2 c) d theta / d x_v (grad left empty

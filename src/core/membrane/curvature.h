@@ -20,6 +20,7 @@
 #define PERISISSM_MEMBRANE_CURVATURE_H
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace PeriSISSM {
@@ -32,10 +33,45 @@ struct CurvatureStencil {
   double area = 0.0;           // A_T at rest
 };
 
-// Inputs: nv vertices X (3 per vertex, all in one plane), tri (0-based, any orientation).
-// Outputs: stencils, one per triangle, in tri's order. Returns false (stencils cleared) when the
-// vertices are not in one plane (to 1e-9 of the mesh's size), a triangle is degenerate, or a fit
-// has fewer than six points not on one conic.
+// What one triangle's stencil needs of the mesh around it, by vertex ID (any numbering): the
+// triangles at a vertex and the rest positions. A distributed mesh answers for the vertices it
+// holds (membrane/plate_bending.h); a whole mesh for all.
+class CurvatureMesh {
+ public:
+  virtual ~CurvatureMesh() = default;
+  // Outputs: others (replaced) = the triangles at vertex v as their other two corners (a, b),
+  // (v, a, b) in the triangle's orientation. Returns false when v's triangles are not known.
+  virtual bool triangles_at(std::int64_t v, std::vector<std::array<std::int64_t, 2>> &others)
+      const = 0;
+  // Outputs: d = X_to - X_from at rest (3 doubles; the minimum image in a periodic box).
+  // Returns false when either vertex is not known.
+  virtual bool rest_offset(std::int64_t from, std::int64_t to, double d[3]) const = 0;
+};
+
+// The stencil of one triangle by vertex IDs: its three corners first (in the order given), then
+// the other vertices by increasing ID, so that every process that holds the triangle's
+// neighbourhood builds the same coefficients in the same order.
+struct TriangleStencil {
+  std::vector<std::int64_t> vertex;
+  std::vector<double> coef;    // 3 per vertex, as CurvatureStencil's
+  double area = 0.0;
+};
+
+enum class StencilStatus {
+  ok,
+  missing,       // a vertex (or its triangles) that the stencil needs is not known
+  not_flat,      // the stencil's rest positions are not in the triangle's plane (1e-6 of its size)
+  degenerate,    // a triangle of zero area, or a fit with fewer than six points off every conic
+};
+
+// Inputs: mesh; t the triangle's corners (IDs, in its orientation). Outputs: s (replaced; left
+// empty unless ok). The fits use the rest positions in the triangle's own plane frame.
+StencilStatus triangle_stencil(const CurvatureMesh &mesh, const std::array<std::int64_t, 3> &t,
+                               TriangleStencil &s);
+
+// Inputs: nv vertices X (3 per vertex, flat around each triangle), tri (0-based, any
+// orientation). Outputs: stencils, one per triangle, in tri's order (vertex = indices into X).
+// Returns false (stencils cleared) when a triangle_stencil() is not ok.
 bool build_curvature_stencils(int nv, const double *X, const std::vector<std::array<int, 3>> &tri,
                               std::vector<CurvatureStencil> &stencils);
 

@@ -69,6 +69,11 @@ namespace {
         return kIllegal + "deviation must be length or vector, got " + value;
       c.length = value == "length";
       line.length_given = c.length;
+    } else if (key == "bending") {
+      if (value != "plate" && value != "hinge")
+        return kIllegal + "bending must be plate or hinge, got " + value;
+      c.plate = value == "plate";
+      line.bending_given = true;
     } else if (key == "bend") {
       if (value == "auto") {
         line.bend = -1.0;
@@ -90,8 +95,8 @@ namespace {
 
 const std::vector<std::string> &coefficient_keywords()
 {
-  static const std::vector<std::string> keys = {"stabilize", "deviation", "break", "contact",
-                                                "membrane",  "bend",      "G0"};
+  static const std::vector<std::string> keys = {"stabilize", "deviation", "break",   "contact",
+                                                "membrane",  "bend",      "bending", "G0"};
   return keys;
 }
 
@@ -149,7 +154,7 @@ std::string read_coefficient_line(const std::vector<std::string> &args,
     const std::string &key = args[iarg];
     if (std::find(keys.begin(), keys.end(), key) == keys.end())
       return kIllegal + "unknown keyword '" + key +
-          "' (allowed: stabilize, deviation, break, contact, membrane, bend, G0)";
+          "' (allowed: stabilize, deviation, break, contact, membrane, bend, bending, G0)";
     if (iarg + 2 > narg)
       return "Illegal pair_coeff peri/nosb " + key + " command: missing argument(s)";
     problem = read_keyword(key, args[iarg + 1], read, line, g0_text);
@@ -164,6 +169,9 @@ std::string read_coefficient_line(const std::vector<std::string> &args,
   if (line.bend != 0.0 && !c.membrane)
     return kIllegal + "bend is a term of membranes (add 'membrane yes' to the line of type " +
         args[0] + ")";
+  if (line.bending_given && line.bend == 0.0)
+    return kIllegal + "bending chooses the energy of bend (add 'bend D' or 'bend auto' to the "
+        "line of type " + args[0] + ")";
 
   // s00 = NULL without the G0 keyword: the material file's G0, if it gives one
   if (s00_null && c.g0 == 0.0 && file_g0 > 0.0 && c.breaks) c.g0 = file_g0;

@@ -4,7 +4,7 @@
 //   I J MODEL material FILE NAME horizon s00 alpha [keyword value ...]
 //
 // keywords stabilize Cs, deviation length|vector, break yes/no, contact yes/no, membrane yes/no,
-// bend D|auto|no, G0 value (s00 = NULL with G0). The caller reads numbers, yes/no values and
+// bend D|auto|no, bending plate|hinge, G0 value (s00 = NULL with G0). The caller reads numbers, yes/no values and
 // material file entries (LAMMPS: utils::numeric, utils::logical and the potential-file path);
 // the rules of the line and the wording of its errors are here, so that they can be tested
 // without LAMMPS.
@@ -26,6 +26,7 @@ struct CoefficientLine {
   PairCoefficients c;           // with G0: s00 0 (set from g0 at init)
   double bend = 0.0;            // bend keyword: D > 0, -1 auto, 0 no bending
   bool length_given = false;    // deviation length was given
+  bool bending_given = false;   // bending plate|hinge was given
   std::string material;         // name of the material file entry, "" when K and G are numbers
   double density = 0.0;         // that entry's density (0: none)
 };

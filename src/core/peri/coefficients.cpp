@@ -224,10 +224,10 @@ std::string coefficients_restart_bytes(const CoefficientTable &table,
       const int len = (int) c.moduli.model.size() + 1;
       append(bytes, &len, 1);
       append(bytes, c.moduli.model.c_str(), len);
-      const int flags[4] = {c.breaks ? 1 : 0, c.contact ? 1 : 0, c.membrane ? 1 : 0,
-                            c.length ? 1 : 0};
+      const int flags[5] = {c.breaks ? 1 : 0, c.contact ? 1 : 0, c.membrane ? 1 : 0,
+                            c.length ? 1 : 0, c.plate ? 1 : 0};
       const double values[6] = {c.moduli.k, c.moduli.g, c.horizon, c.s00, c.alpha, c.cs};
-      append(bytes, flags, 4);
+      append(bytes, flags, 5);
       append(bytes, values, 6);
     }
   }
@@ -258,7 +258,7 @@ std::string read_coefficients_restart(const std::function<void(void *, std::size
         return "Pair peri/nosb: restart file is corrupt (model name of " + std::to_string(len) +
             " chars)";
       std::vector<char> name(len);
-      int flags[4];
+      int flags[5];
       double values[6];
       read(name.data(), len);
       read(flags, sizeof(flags));
@@ -274,6 +274,7 @@ std::string read_coefficients_restart(const std::function<void(void *, std::size
       c.contact = flags[1] != 0;
       c.membrane = flags[2] != 0;
       c.length = flags[3] != 0;
+      c.plate = flags[4] != 0;
       c.moduli.k = values[0];
       c.moduli.g = values[1];
       c.horizon = values[2];

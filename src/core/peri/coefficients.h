@@ -43,6 +43,7 @@ struct PairCoefficients {
   bool breaks = true;
   bool contact = true;
   bool membrane = false;    // a type property (the line I I)
+  bool plate = false;       // bending keyword: plate (true) or hinge; a type property
 };
 
 // The coefficients of a type pair I J not given, from the lines I I and J J: the model of
@@ -116,10 +117,11 @@ class CoefficientTable {
 // The coefficients in a restart file (pair peri/nosb's section), format version
 // kCoefficientsRestartVersion: the version; per type pair i <= j whether its line was given and,
 // if so, the model's name with its terminating NUL (an int length first), the flags break,
-// contact, membrane and deviation length (4 ints) and K, G, horizon, s00, alpha, Cs (6 doubles);
+// contact, membrane, deviation length and bending plate (5 ints) and K, G, horizon, s00, alpha,
+// Cs (6 doubles);
 // then the bending moduli of the types 1 .. ntypes (bend[1 .. ntypes]). Native sizes and byte
 // order.
-constexpr int kCoefficientsRestartVersion = 4;
+constexpr int kCoefficientsRestartVersion = 5;
 std::string coefficients_restart_bytes(const CoefficientTable &table,
                                        const std::vector<double> &bend);
 

@@ -144,7 +144,11 @@ TEST(CoefficientLine, FirstProblemAsTheLammpsError)
       {"1 1 linear 1 0.6 -0.003 0.5 0.25", "horizon must be > 0, got -0.003"},
       {"1 1 linear 1 0.6 0.003 0.5 0.25 damping 0.3",
        "unknown keyword 'damping' (allowed: stabilize, deviation, break, contact, membrane, bend, "
-       "G0)"},
+       "bending, G0)"},
+      {"1 1 linear 1 0.6 0.003 0.5 0.25 membrane yes bend auto bending flat",
+       "bending must be plate or hinge, got flat"},
+      {"1 1 linear 1 0.6 0.003 0.5 0.25 membrane yes bending plate",
+       "bending chooses the energy of bend (add 'bend D' or 'bend auto' to the line of type 1)"},
       {"1 1 linear 1 0.6 0.003 0.5 0.25 stabilize",
        "Illegal pair_coeff peri/nosb stabilize command: missing argument(s)"},
       {"1 1 linear 1 0.6 0.003 0.5 0.25 stabilize -0.1", "stabilize Cs must be >= 0, got -0.1"},

@@ -220,12 +220,13 @@ TEST(Coefficients, RestartSectionKeepsTheGivenLines)
   PairCoefficients b = line("xu", 6.0, 0.0, 0.5, 0.01, 0.0);
   b.contact = false;
   b.length = !kDefaultLengthDeviation;
+  b.plate = true;
   table.set(1, 1, a);
   table.set(2, 3, b);
   const std::vector<double> bend = {0.0, 2.5, 0.0, -1.0};
   const std::string bytes = coefficients_restart_bytes(table, bend);
   EXPECT_EQ(bytes.size(),
-            7 * sizeof(int) + 2 * (5 * sizeof(int) + 6 * sizeof(double)) + sizeof("neohookean") +
+            7 * sizeof(int) + 2 * (6 * sizeof(int) + 6 * sizeof(double)) + sizeof("neohookean") +
                 sizeof("xu") + 3 * sizeof(double));
 
   CoefficientTable back;
@@ -241,6 +242,7 @@ TEST(Coefficients, RestartSectionKeepsTheGivenLines)
     const PairCoefficients &c = table.at(ij.first, ij.second);
     const PairCoefficients &r = back.at(ij.first, ij.second);
     EXPECT_EQ(r.moduli.model, c.moduli.model);
+    EXPECT_EQ(r.plate, c.plate);
     EXPECT_EQ(r.moduli.k, c.moduli.k);
     EXPECT_EQ(r.moduli.g, c.moduli.g);
     EXPECT_EQ(r.horizon, c.horizon);
@@ -268,7 +270,7 @@ TEST(Coefficients, RestartSectionProblemsAreNamed)
   const int two = 2;
   old.replace(0, sizeof(int), reinterpret_cast<const char *>(&two), sizeof(int));
   EXPECT_NE(read_coefficients_restart(reader(old, at), table, bend)
-                .find("format version 2, this build reads version 4"),
+                .find("format version 2, this build reads version 5"),
             std::string::npos);
   EXPECT_EQ(at, sizeof(int));
 

@@ -1,0 +1,214 @@
+// The plate bending term of membranes over a distributed triangle mesh (see plate_bending.h).
+
+#include "membrane/plate_bending.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace PeriSISSM {
+
+namespace {
+
+  using Id = std::int64_t;
+  using Key = std::array<Id, 3>;
+
+  // a triangle's corners in its orientation with the smallest ID first
+  Key key_of(Id a, Id b, Id c)
+  {
+    if (b < a && b < c) return {b, c, a};
+    if (c < a && c < b) return {c, a, b};
+    return {a, b, c};
+  }
+
+  // The mesh as this rank holds it, by ID, seen from owned row `anchor` (the rows of the
+  // vertices are their images closest to it).
+  class LocalMesh : public CurvatureMesh {
+   public:
+    LocalMesh(const HingeMesh &mesh, const double *x0, const ReferenceBox &box)
+        : mesh_(mesh), x0_(x0), box_(box)
+    {
+    }
+    void anchor(int i) { anchor_ = i; }
+    int row(Id v) const { return mesh_.image(anchor_, v); }
+    bool triangles_at(Id v, std::vector<std::array<Id, 2>> &others) const override
+    {
+      const int r = row(v);
+      if (r < 0) return false;
+      const int n = mesh_.ntri(r);
+      others.resize(n);
+      for (int k = 0; k < n; k++) {
+        std::int64_t a, b;
+        mesh_.triangle(r, k, a, b);
+        others[k] = {a, b};
+      }
+      return true;
+    }
+    bool rest_offset(Id from, Id to, double d[3]) const override
+    {
+      const int a = row(from), b = row(to);
+      if (a < 0 || b < 0) return false;
+      for (int k = 0; k < 3; k++) d[k] = x0_[3 * b + k] - x0_[3 * a + k];
+      if (box_.any()) box_.image(d[0], d[1], d[2]);
+      return true;
+    }
+
+   private:
+    const HingeMesh &mesh_;
+    const double *x0_;
+    const ReferenceBox &box_;
+    int anchor_ = 0;
+  };
+
+}    // namespace
+
+PlateProblem PlateBending::build(const HingeMesh &mesh, const double *x0, const ReferenceBox &box)
+{
+  list_.clear();
+  PlateProblem problem;
+  LocalMesh local(mesh, x0, box);
+  const int nlocal = mesh.nlocal();
+
+  // the candidates, each with the owned sharer that found it first
+  std::map<Key, int> candidates;
+  std::vector<std::array<Id, 2>> at, at2;
+  auto add_plate = [&](Id a, Id b, Id c, int i) {
+    const int ra = local.row(a), rb = local.row(b), rc = local.row(c);
+    if (ra < 0 || rb < 0 || rc < 0) return false;
+    if (mesh.plate(ra) && mesh.plate(rb) && mesh.plate(rc)) candidates.emplace(key_of(a, b, c), i);
+    return true;
+  };
+  for (int i = 0; i < nlocal; i++) {
+    const Id id = mesh.id(i);
+    if (mesh.sharer(id) != i || !mesh.plate(i)) continue;
+    local.anchor(i);
+    std::set<Id> ring = {id};
+    local.triangles_at(id, at);
+    for (const auto &o : at) ring.insert(o.begin(), o.end());
+    for (Id v : ring) {
+      if (!local.triangles_at(v, at)) {
+        problem = {StencilStatus::missing, id, {id, v, v}};
+        return problem;
+      }
+      for (const auto &o : at) {
+        const Id t[3] = {v, o[0], o[1]};
+        if (!add_plate(t[0], t[1], t[2], i)) return {StencilStatus::missing, id, {t[0], t[1], t[2]}};
+        // the triangles across its edges
+        for (int k = 0; k < 3; k++) {
+          const Id a = t[k], b = t[(k + 1) % 3];
+          if (!local.triangles_at(a, at2)) return {StencilStatus::missing, id, {t[0], t[1], t[2]}};
+          for (const auto &o2 : at2)
+            if (o2[0] == b || o2[1] == b)
+              if (!add_plate(a, o2[0], o2[1], i))
+                return {StencilStatus::missing, id, {t[0], t[1], t[2]}};
+        }
+      }
+    }
+  }
+
+  // their stencils (made once), the ones that hold an owned sharer, in local rows
+  for (const auto &kc : candidates) {
+    const Key &t = kc.first;
+    local.anchor(kc.second);
+    auto it = cache_.find(t);
+    if (it == cache_.end()) {
+      TriangleStencil s;
+      const StencilStatus st = triangle_stencil(local, t, s);
+      if (st != StencilStatus::ok) return {st, mesh.id(kc.second), t};
+      it = cache_.emplace(t, std::move(s)).first;
+    }
+    const TriangleStencil &s = it->second;
+    const int m = (int) s.vertex.size();
+    PlateTriangle tri;
+    tri.own.resize(m);
+    bool any = false;
+    for (int k = 0; k < m; k++) {
+      tri.own[k] = mesh.sharer(s.vertex[k]);
+      any = any || tri.own[k] >= 0;
+    }
+    if (!any) continue;
+    tri.stencil.vertex.resize(m);
+    for (int k = 0; k < m; k++) {
+      tri.stencil.vertex[k] = local.row(s.vertex[k]);
+      if (tri.stencil.vertex[k] < 0) return {StencilStatus::missing, mesh.id(kc.second), t};
+    }
+    for (int k = 0; k < 3; k++) {
+      tri.D += mesh.modulus(tri.stencil.vertex[k]) / 3.0;
+      tri.nu += mesh.poisson(tri.stencil.vertex[k]) / 3.0;
+    }
+    if (!(tri.D > 0.0)) continue;
+    tri.stencil.coef = s.coef;
+    tri.stencil.area = s.area;
+    list_.push_back(std::move(tri));
+  }
+  return problem;
+}
+
+void PlateBending::pass(const Particles &p, double **block, const BendingEnergy &energy,
+                        const Virial &virial) const
+{
+  const double *x = p.x;
+  double *f = p.f;
+  const bool tally_energy = energy.total || energy.per_particle;
+  std::vector<double> force;
+  for (const PlateTriangle &t : list_) {
+    const CurvatureStencil &s = t.stencil;
+    const int m = (int) s.vertex.size();
+    force.resize(3 * m);
+    const double E = curvature_energy(s, x, t.D, t.nu, force.data());
+    // the Hessian's diagonal blocks h_kk I (membrane/curvature.h curvature_hessian)
+    const double W[3][3] = {{1.0, 0.0, t.nu}, {0.0, 2.0 * (1.0 - t.nu), 0.0}, {t.nu, 0.0, 1.0}};
+    const double *x0 = x + 3 * s.vertex[0];
+    for (int k = 0; k < m; k++) {
+      const int i = t.own[k];
+      if (i < 0) continue;
+      const double vi = p.volume[i];
+      const double *F = &force[3 * k];
+      for (int d = 0; d < 3; d++) f[3 * i + d] += F[d] / vi;
+      if (block) {
+        const double *c = &s.coef[3 * k];
+        double hkk = 0.0;
+        for (int a = 0; a < 3; a++)
+          for (int b = 0; b < 3; b++) hkk += W[a][b] * c[a] * c[b];
+        hkk *= s.area * t.D / vi;
+        for (int d = 0; d < 3; d++) block[i][d] += hkk;
+      }
+      if (tally_energy && k < 3) {
+        const double e = E / (3.0 * vi);
+        if (energy.total) *energy.total += e;
+        if (energy.per_particle) energy.per_particle[i] += e;
+      }
+      if (virial.any()) {
+        // this vertex's part of sum_k (y_k - y_c0) (x) F_k (translation invariant: sum F_k = 0)
+        double r[3];
+        for (int d = 0; d < 3; d++) r[d] = x[3 * s.vertex[k] + d] - x0[d];
+        const double w[6] = {r[0] * F[0], r[1] * F[1], r[2] * F[2],
+                             r[0] * F[1], r[0] * F[2], r[1] * F[2]};
+        if (virial.global)
+          for (int q = 0; q < 6; q++) virial.global[q] += w[q];
+        if (virial.peratom)
+          for (int q = 0; q < 6; q++) virial.peratom[i][q] += w[q];
+      }
+    }
+  }
+}
+
+void PlateBending::stable_steps(const Particles &p, const double *rho, double *dt,
+                                double *stiffness) const
+{
+  std::vector<double> G(p.nlocal, 0.0), h;
+  for (const PlateTriangle &t : list_) {
+    curvature_hessian(t.stencil, t.D, t.nu, h);
+    const int m = (int) t.stencil.vertex.size();
+    for (int k = 0; k < m; k++) {
+      const int i = t.own[k];
+      if (i < 0) continue;
+      double sum = 0.0;
+      for (int l = 0; l < m; l++) sum += std::abs(h[(std::size_t) m * k + l]);
+      G[i] += sum / p.volume[i];
+    }
+  }
+  combine_stable_steps(G, rho, dt, stiffness);
+}
+
+}    // namespace PeriSISSM

@@ -1,0 +1,229 @@
+// Tests of the distributed plate bending list (membrane/plate_bending.h) on a jittered grid of
+// alternate right triangles split between two "ranks" (each holds its owned vertices and the
+// rest as ghosts): the ranks' forces and energies add up to the whole mesh's
+// (membrane/curvature.h), bit for bit whatever the local order of the rows, the list finds the
+// triangles of every owned vertex, and what it cannot build is reported.
+
+#include "membrane/curvature.h"
+#include "membrane/plate_bending.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+#include <vector>
+
+using PeriSISSM::StencilStatus;
+
+namespace {
+
+struct Sheet {
+  int nv = 0;
+  std::vector<double> X;
+  std::vector<std::array<int, 3>> tri;
+
+  Sheet(int NX, int NY, double h, double jitter)
+  {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int nx = NX + 1, ny = NY + 1;
+    nv = nx * ny;
+    for (int j = 0; j < ny; j++)
+      for (int i = 0; i < nx; i++) {
+        const bool inner = i > 0 && j > 0 && i < nx - 1 && j < ny - 1;
+        X.insert(X.end(), {h * (i + (inner ? jitter * u(rng) : 0.0)),
+                           h * (j + (inner ? jitter * u(rng) : 0.0)), 0.0});
+      }
+    for (int j = 0; j < NY; j++)
+      for (int i = 0; i < NX; i++) {
+        const int p00 = j * nx + i, p10 = p00 + 1, p01 = p00 + nx, p11 = p01 + 1;
+        if ((i + j) % 2 == 0) {
+          tri.push_back({p00, p10, p11});
+          tri.push_back({p00, p11, p01});
+        } else {
+          tri.push_back({p00, p10, p01});
+          tri.push_back({p10, p11, p01});
+        }
+      }
+  }
+};
+
+// One rank's view: rows[r] the sheet vertex of row r (owned first), ID = vertex + 1, volume
+// 1 + vertex / 100, every vertex a plate vertex of modulus D and Poisson's ratio nu.
+class View : public PeriSISSM::HingeMesh {
+ public:
+  View(const Sheet &sheet, std::vector<int> owned, std::vector<int> ghosts, double D, double nu)
+      : sheet_(sheet), nlocal_((int) owned.size()), D_(D), nu_(nu)
+  {
+    rows = owned;
+    rows.insert(rows.end(), ghosts.begin(), ghosts.end());
+    at_.resize(sheet.nv);
+    for (const auto &t : sheet.tri)
+      for (int k = 0; k < 3; k++) at_[t[k]].push_back({t[(k + 1) % 3] + 1, t[(k + 2) % 3] + 1});
+    for (int r = 0; r < (int) rows.size(); r++) {
+      row_of_[rows[r] + 1] = r;
+      for (int d = 0; d < 3; d++) x0.push_back(sheet.X[3 * rows[r] + d]);
+      volume.push_back(1.0 + rows[r] / 100.0);
+    }
+  }
+  int nlocal() const override { return nlocal_; }
+  std::int64_t id(int i) const override { return rows[i] + 1; }
+  int ntri(int i) const override { return (int) at_[rows[i]].size(); }
+  void triangle(int i, int k, std::int64_t &a, std::int64_t &b) const override
+  {
+    a = at_[rows[i]][k][0];
+    b = at_[rows[i]][k][1];
+  }
+  int image(int, std::int64_t t) const override
+  {
+    const auto it = row_of_.find(t);
+    return it == row_of_.end() ? -1 : it->second;
+  }
+  int sharer(std::int64_t t) const override
+  {
+    const int r = image(0, t);
+    return r >= 0 && r < nlocal_ ? r : -1;
+  }
+  double modulus(int) const override { return D_; }
+  bool plate(int) const override { return true; }
+  double poisson(int) const override { return nu_; }
+
+  std::vector<int> rows;
+  std::vector<double> x0, volume;
+
+ private:
+  const Sheet &sheet_;
+  int nlocal_;
+  double D_, nu_;
+  std::vector<std::vector<std::array<std::int64_t, 2>>> at_;
+  std::map<std::int64_t, int> row_of_;
+};
+
+// The pass of one view at sheet positions y: forces (3 per sheet vertex, owned ones) and energy.
+double view_pass(const View &view, const std::vector<double> &y, std::vector<double> &f_sheet)
+{
+  PeriSISSM::PlateBending plates;
+  PeriSISSM::ReferenceBox box;
+  const PeriSISSM::PlateProblem problem = plates.build(view, view.x0.data(), box);
+  EXPECT_TRUE(problem.ok());
+  const int n = (int) view.rows.size();
+  std::vector<double> x(3 * n), f(3 * n, 0.0);
+  for (int r = 0; r < n; r++)
+    for (int d = 0; d < 3; d++) x[3 * r + d] = y[3 * view.rows[r] + d];
+  PeriSISSM::Particles p;
+  p.nlocal = view.nlocal();
+  p.nall = n;
+  p.x = x.data();
+  p.volume = view.volume.data();
+  p.f = f.data();
+  double E = 0.0;
+  PeriSISSM::BendingEnergy energy;
+  energy.total = &E;
+  plates.pass(p, nullptr, energy, PeriSISSM::Virial());
+  for (int r = 0; r < view.nlocal(); r++)
+    for (int d = 0; d < 3; d++) f_sheet[3 * view.rows[r] + d] = f[3 * r + d] * view.volume[r];
+  // (the energy tallies are densities: E / 3 / V of each corner)
+  return E;
+}
+
+std::vector<double> bent_positions(const Sheet &sheet)
+{
+  std::vector<double> y = sheet.X;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < sheet.nv; i++) {
+    y[3 * i + 2] = 0.3 * std::sin(1.1 * y[3 * i]) * std::cos(0.8 * y[3 * i + 1]);
+    for (int d = 0; d < 3; d++) y[3 * i + d] += 0.01 * u(rng);
+  }
+  return y;
+}
+
+}    // namespace
+
+// Two ranks split at x = 2.5 give the whole mesh's forces (to round-off: the stencils are made
+// in each triangle's own frame) and their energy shares add up to the whole energy.
+TEST(PlateBending, TwoRanksAddUpToTheWholeMesh)
+{
+  const Sheet sheet(8, 6, 0.7, 0.2);
+  const double D = 1.3, nu = 0.3;
+  const std::vector<double> y = bent_positions(sheet);
+  std::vector<PeriSISSM::CurvatureStencil> whole;
+  ASSERT_TRUE(PeriSISSM::build_curvature_stencils(sheet.nv, sheet.X.data(), sheet.tri, whole));
+  std::vector<double> f_whole(y.size(), 0.0), fk;
+  double E_whole = 0.0;
+  for (const auto &s : whole) {
+    fk.assign(3 * s.vertex.size(), 0.0);
+    E_whole += PeriSISSM::curvature_energy(s, y.data(), D, nu, fk.data());
+    for (std::size_t k = 0; k < s.vertex.size(); k++)
+      for (int d = 0; d < 3; d++) f_whole[3 * s.vertex[k] + d] += fk[3 * k + d];
+  }
+
+  std::vector<int> left, right;
+  for (int i = 0; i < sheet.nv; i++) (sheet.X[3 * i] < 2.5 ? left : right).push_back(i);
+  std::vector<double> f(y.size(), 0.0);
+  // energy shares are densities: with every volume V_i, E = sum_T sum_corners E_T / 3 / V_c,
+  // so compare against the same weighted sum of the whole mesh
+  double E_weighted = 0.0;
+  for (std::size_t t = 0; t < sheet.tri.size(); t++) {
+    const double Et = PeriSISSM::curvature_energy(whole[t], y.data(), D, nu);
+    for (int k = 0; k < 3; k++) E_weighted += Et / 3.0 / (1.0 + sheet.tri[t][k] / 100.0);
+  }
+  const double E =
+      view_pass(View(sheet, left, right, D, nu), y, f) + view_pass(View(sheet, right, left, D, nu), y, f);
+  EXPECT_NEAR(E, E_weighted, 1e-10 * E_weighted);
+  EXPECT_GT(E_whole, 1e-3);
+  double fmax = 0.0;
+  for (double v : f_whole) fmax = std::max(fmax, std::abs(v));
+  for (std::size_t j = 0; j < f.size(); j++) EXPECT_NEAR(f[j], f_whole[j], 1e-10 * fmax) << j;
+}
+
+// The rows of a view in another order give the same forces to the last bit (a restarted run
+// sorts its atoms anew).
+TEST(PlateBending, ForcesDoNotDependOnTheRowOrder)
+{
+  const Sheet sheet(6, 5, 1.0, 0.25);
+  const std::vector<double> y = bent_positions(sheet);
+  std::vector<int> all(sheet.nv);
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<int> shuffled = all;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(9));
+  std::vector<double> f1(y.size(), 0.0), f2(y.size(), 0.0);
+  const double E1 = view_pass(View(sheet, all, {}, 0.9, 0.2), y, f1);
+  const double E2 = view_pass(View(sheet, shuffled, {}, 0.9, 0.2), y, f2);
+  EXPECT_GT(E1, 0.0);
+  for (std::size_t j = 0; j < f1.size(); j++) EXPECT_EQ(f1[j], f2[j]) << j;
+  EXPECT_NEAR(E1, E2, 1e-13 * E1);    // (energies are summed in list order: corners differ)
+}
+
+// What cannot be built is named: a rank whose ghosts stop one ring short of a stencil, and a
+// mesh that is not flat at rest.
+TEST(PlateBending, ReportsMissingVerticesAndCurvedMeshes)
+{
+  const Sheet sheet(8, 6, 1.0, 0.0);
+  std::vector<int> left, near;
+  for (int i = 0; i < sheet.nv; i++) {
+    if (sheet.X[3 * i] < 3.5)
+      left.push_back(i);
+    else if (sheet.X[3 * i] < 5.5)
+      near.push_back(i);    // two columns of ghosts: too few
+  }
+  PeriSISSM::PlateBending plates;
+  PeriSISSM::ReferenceBox box;
+  const View short_view(sheet, left, near, 1.0, 0.0);
+  PeriSISSM::PlateProblem problem = plates.build(short_view, short_view.x0.data(), box);
+  EXPECT_EQ(problem.status, StencilStatus::missing);
+  EXPECT_GE(problem.vertex, 1);
+
+  Sheet curved(4, 4, 1.0, 0.0);
+  curved.X[3 * 12 + 2] = 0.2;
+  std::vector<int> all(curved.nv);
+  std::iota(all.begin(), all.end(), 0);
+  const View curved_view(curved, all, {}, 1.0, 0.0);
+  PeriSISSM::PlateBending plates2;
+  problem = plates2.build(curved_view, curved_view.x0.data(), box);
+  EXPECT_EQ(problem.status, StencilStatus::not_flat);
+}
