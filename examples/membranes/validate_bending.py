@@ -43,6 +43,7 @@ SIDE = 0.3
 E, T, RHO, G = 1.0e8, 0.02, 1000.0, 9.81
 ANGLES = (0, 30, 45, 60, 90)
 KAPPA = 4.0
+BENDING = ""    # " bending plate|hinge" (--bending), or the pair's default
 
 
 def rows_of(vertices):
@@ -87,7 +88,7 @@ region box block -0.2 0.2 -0.2 0.2 -0.3 0.1
 create_box 1 box
 read_mesh sheet.obj type 1 thickness {T} density {RHO}
 pair_style peri/nosb
-pair_coeff * * linear {E / 3} {E / 2} {3.0006 * a} 0 0 break no membrane yes bend auto
+pair_coeff * * linear {E / 3} {E / 2} {3.0006 * a} 0 0 break no membrane yes bend auto{BENDING}
 neighbor {a} bin
 group held id {ids(held)}
 group free subtract all held
@@ -123,7 +124,7 @@ region box block -0.4 0.4 -0.4 0.4 -0.2 0.4
 create_box 1 box
 read_mesh sheet.obj type 1 thickness 0.001 density 1000
 pair_style peri/nosb
-pair_coeff * * linear {1 / 3} {1 / 2} {3.0006 * a} 0 0 break no membrane yes bend 1.0
+pair_coeff * * linear {1 / 3} {1 / 2} {3.0006 * a} 0 0 break no membrane yes bend 1.0{BENDING}
 neighbor {a} bin
 run 0 post no
 fix ref all store/state 0 x y
@@ -151,19 +152,26 @@ def main():
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--lmp", default=str(HERE.parents[1] / "build" / "lmp"))
     ap.add_argument("--only", choices=("plate", "cylinder"))
+    ap.add_argument("--bending", choices=("plate", "hinge"),
+                    help="the bending energy (pair_coeff bending); default: the pair's")
+    ap.add_argument("--kinds", nargs="+", choices=list(KINDS), default=list(KINDS))
+    ap.add_argument("--cells", nargs="+", type=float, default=[0.01, 0.005],
+                    help="plate cell sizes (m)")
     args = ap.parse_args()
+    global BENDING
+    BENDING = f" bending {args.bending}" if args.bending else ""
     with tempfile.TemporaryDirectory() as tmp:
         if args.only != "cylinder":
-            print("plate sag / (q L^4 / 8D)   " + "  ".join(f"{k:>11s}" for k in KINDS))
-            for a in (0.01, 0.005):
-                vals = [plate(args.lmp, kind, a, tmp) for kind in KINDS]
+            print("plate sag / (q L^4 / 8D)   " + "  ".join(f"{k:>11s}" for k in args.kinds))
+            for a in args.cells:
+                vals = [plate(args.lmp, kind, a, tmp) for kind in args.kinds]
                 for col, what in enumerate(("L mid  ", "L inner")):
                     print(f"  {a * 1000:4.0f} mm cells, {what}   " +
                           "  ".join(f"{v[col]:11.4f}" for v in vals), flush=True)
         if args.only != "plate":
-            print("cylinder E / (D k^2 A / 2) " + "  ".join(f"{k:>11s}" for k in KINDS))
+            print("cylinder E / (D k^2 A / 2) " + "  ".join(f"{k:>11s}" for k in args.kinds))
             for angle in ANGLES:
-                vals = [cylinder(args.lmp, kind, angle, tmp) for kind in KINDS]
+                vals = [cylinder(args.lmp, kind, angle, tmp) for kind in args.kinds]
                 print(f"  axis at {angle:2d} deg            " +
                       "  ".join(f"{v:11.4f}" for v in vals), flush=True)
 

@@ -1,0 +1,207 @@
+"""The plate bending energy of membranes (pair_coeff ... bend D|auto bending plate) through
+LAMMPS: a sheet bent without stretching into a cylinder stores D kappa^2 / 2 per area whatever
+the triangulation and the direction of the axis (where the hinges give 1.5 times that about the
+diagonals of right triangles); forces are the energy's gradient; 1 and 2 ranks agree; the list
+follows the atoms through periodic boundaries and rank changes; a split run continues exactly;
+meshes it cannot serve are refused with a message that names the way out."""
+import math
+import sys
+from pathlib import Path
+
+import pytest
+
+from lammps_run import run_deck
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "tools"))
+import make_sheet  # noqa: E402
+
+DECKS = Path(__file__).parent / "decks"
+CYLINDER = DECKS / "membrane_cylinder.lmp"
+PLATE = DECKS / "membrane_plate.lmp"
+
+
+def sheet(tmp_path, pattern="alternate", a=0.01, side=0.3, **kw):
+    vertices, faces = make_sheet.rectangle(side, side, a, pattern, kw.get("jitter", 0.0),
+                                           kw.get("seed", 1))
+    path = Path(tmp_path) / "sheet.obj"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    make_sheet.write_obj(path, vertices, faces, ["sheet"])
+    return vertices, faces, path
+
+
+def cylinder_ratio(tmp_path, pattern, angle, bending, nu=0.0, jitter=0.0):
+    """Energy of the sheet bent into a cylinder of curvature 2 / m about an axis at `angle`
+    degrees to x, over D kappa^2 / 2 times its area (D = 1 N m, a membrane of 1 Pa)."""
+    vertices, faces, path = sheet(tmp_path, pattern, jitter=jitter, seed=3)
+    area = make_sheet.mesh_stats(vertices, faces)["area"]
+    c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+    R = 0.5
+    E = 1.0
+    deck = f"""units si
+boundary f f f
+atom_style peri
+atom_modify map array
+region box block -0.4 0.4 -0.4 0.4 -0.2 0.4
+create_box 1 box
+read_mesh sheet.obj type 1 thickness 0.001 density 1000
+pair_style peri/nosb
+pair_coeff * * linear {E / (3 * (1 - 2 * nu))} {E / (2 * (1 + nu))} 0.030006 0 0 break no &
+  membrane yes bend 1.0 bending {bending}
+neighbor 0.01 bin
+run 0 post no
+fix ref all store/state 0 x y
+variable u atom -f_ref[1]*{s}+f_ref[2]*{c}
+variable v atom f_ref[1]*{c}+f_ref[2]*{s}
+variable nx atom v_v*{c}-{R}*sin(v_u/{R})*{s}
+variable ny atom v_v*{s}+{R}*sin(v_u/{R})*{c}
+variable nz atom {R}*(1-cos(v_u/{R}))
+set group all x v_nx y v_ny z v_nz
+compute pea all pe/atom
+compute vol all property/atom vfrac
+variable ev atom c_pea*c_vol
+compute etot all reduce sum v_ev
+thermo_style custom step pe c_etot
+thermo_modify format float %.17g
+run 0 post no
+"""
+    run = run_deck(deck, tmp_path, files={"sheet.obj": path.read_text()})
+    energy = run.thermo[-1]["c_etot"][-1]
+    return energy / (0.5 * (1.0 / R) ** 2 * area), run
+
+
+# The plate energy is exact on quadratic deflections (core test Curvature.*); on a cylinder of
+# kappa h = 0.02 the chords' departure from the arcs costs (kappa h)^2 ~ 4e-4 at most (measured
+# 0.9997-0.9998 at kappa = 4, validate_bending.py): asked, 1e-3 on every mesh kind and axis,
+# with nu = 0 and 0.3 (a cylinder has det k = 0: nu does not enter). The hinges on the same
+# alternate mesh store 1.5 times as much about a diagonal (membrane/hinge.h).
+@pytest.mark.parametrize("pattern,angle,nu,jitter", [
+    ("alternate", 0, 0.0, 0.0), ("alternate", 45, 0.3, 0.0), ("right", 45, 0.0, 0.0),
+    ("alternate", 30, 0.0, 0.25), ("equilateral", 60, 0.3, 0.0)])
+def test_cylinder_stores_d_kappa_squared_over_two(tmp_path, pattern, angle, nu, jitter):
+    ratio, run = cylinder_ratio(tmp_path, pattern, angle, "plate", nu=nu, jitter=jitter)
+    assert abs(ratio - 1.0) < 1e-3, ratio
+    assert "Pair peri/nosb bending plate: ghost cutoff at least" in run.log
+
+
+def test_hinges_are_stiffer_about_a_diagonal_of_right_triangles(tmp_path):
+    ratio, _ = cylinder_ratio(tmp_path, "alternate", 45, "hinge")
+    assert 1.4 < ratio < 1.6, ratio
+
+
+def test_bending_force_is_the_energy_gradient(tmp_path):
+    """The z force on an interior vertex of the bent and turned plate (all terms) against central
+    differences of the energy (step 1e-7 m on a 1 cm mesh; the plate term is quadratic, so the
+    truncation is the membrane's ~1e-14; round-off ~1e-8 N): to 1e-5 relative."""
+    _, _, path = sheet(tmp_path / "mesh")
+    probe = 16 * 31 + 14
+    common = {"mesh": path, "dir": "y", "kappa": 2.0, "turn": 30.0, "probe": probe,
+              "extra": "bend auto bending plate"}
+    out = {}
+    for name, step in (("0", 0.0), ("p", 1e-7), ("m", -1e-7)):
+        run = run_deck(CYLINDER, tmp_path / name, variables={**common, "step": step})
+        out[name] = {k: v[-1] for k, v in run.thermo[-1].items()}
+    fd = -(out["p"]["c_energy"] - out["m"]["c_energy"]) / 2e-7
+    fz = out["0"]["v_fz"]
+    assert abs(fz) > 1e-3
+    assert abs(fz - fd) < 1e-5 * abs(fz), (fz, fd)
+
+
+@pytest.mark.mpi
+def test_two_ranks_agree_and_the_list_follows_the_atoms(tmp_path):
+    """The cylinder travels rigidly 1.5 box widths through periodic x on 2 ranks with a neighbor
+    list build every step and the atoms sorted every 5: the stencils' vertices change ranks,
+    local rows and periodic images, and the energy stays that of the first step to round-off;
+    the first step's energy equals the one-rank run's."""
+    _, _, path = sheet(tmp_path / "mesh")
+    deck = CYLINDER.read_text().replace("boundary        f f f",
+                                        "boundary        p f f\nprocessors      * 1 1")
+    head, tail = deck.rsplit("run             0 post no", 1)
+    deck = head + """
+atom_modify     sort 5 0.05
+neighbor        0.001 bin
+neigh_modify    every 1 delay 0 check no
+timestep        0.01
+fix             travel all move linear 1.2 0.0 0.0
+thermo_style    custom step pe c_energy
+thermo_modify   format float %.17g
+thermo          10
+run             100
+""" + tail
+    energies = []
+    for n in (1, 2):
+        run = run_deck(deck, tmp_path / str(n), nprocs=n, variables={
+            "mesh": path, "kappa": 2.0, "extra": "bend auto bending plate stabilize 0"})
+        t = run.thermo[-1]
+        assert t["Step"][-1] == 100
+        e = t["c_energy"]
+        assert e[0] > 10.0
+        assert max(abs(v / e[0] - 1.0) for v in e) < 1e-9, list(e)
+        energies.append(e[0])
+    assert abs(energies[1] / energies[0] - 1.0) < 1e-12, energies
+
+
+def test_split_run_continues_exactly(tmp_path):
+    """write_restart / read_restart keep the keyword (restart format 5); the stencils are made
+    again from the reference positions and the triangles, in the same order: the continuation
+    equals the unsplit run to the last bit."""
+    _, _, path = sheet(tmp_path / "mesh", pattern="alternate", a=0.02)
+    variables = {"mesh": path, "a": 0.02, "extra": "bending plate"}
+    full = run_deck(PLATE, tmp_path / "full", variables={**variables, "steps": 4})
+    first = PLATE.read_text() + "\nwrite_restart plate.restart\n"
+    run_deck(first, tmp_path / "split", variables={**variables, "steps": 2})
+    second = """
+read_restart    plate.restart
+neighbor        0.02 bin
+compute         tipz bottom reduce ave z
+variable        az atom abs(z)
+compute         zmax all reduce max v_az
+fix             grav all gravity 9.81 vector 0 0 -1
+timestep        0.2
+fix             integrate free sissm solver krylov precond block iterations 10000 tolerance 1e-5
+thermo_style    custom step pe ke c_tipz c_zmax f_integrate[1] f_integrate[2] f_integrate[4]
+thermo_modify   format float %.17g
+thermo          1
+run             2
+"""
+    rest = run_deck(second, tmp_path / "split")
+    a = {k: v[-1] for k, v in full.thermo[-1].items()}
+    b = {k: v[-1] for k, v in rest.thermo[-1].items()}
+    assert a["Step"] == b["Step"] == 4
+    assert a["c_tipz"] < -1e-4    # it sags
+    for key in ("PotEng", "KinEng", "c_tipz"):
+        assert a[key] == b[key], (key, a[key], b[key])
+
+
+def test_curved_rest_shape_is_refused(tmp_path):
+    vertices, faces = make_sheet.rectangle(0.3, 0.3, 0.02, "equilateral", 0.0, 1)
+    R = 0.2
+    curved = [(x, R * math.sin(y / R), R * (1 - math.cos(y / R))) for x, y, _ in vertices]
+    mesh = Path(tmp_path) / "patch.obj"
+    make_sheet.write_obj(mesh, curved, faces, ["cylindrical patch"])
+    deck = """
+units si
+boundary f f f
+atom_style peri
+atom_modify map array
+region box block -0.3 0.3 -0.3 0.3 -0.3 0.3
+create_box 1 box
+read_mesh patch.obj type 1 thickness 0.02 density 1000
+pair_style peri/nosb
+pair_coeff * * linear $(1e8/3) $(1e8/2) 0.060012 0 0 break no membrane yes bend auto &
+  bending plate
+run 0 post no
+"""
+    run = run_deck(deck, tmp_path, check=False)
+    assert not run.ok
+    assert any("the mesh is not flat at rest" in e and "'bending hinge'" in e
+               for e in run.errors), run.errors
+
+
+def test_keyword_errors(tmp_path):
+    _, _, path = sheet(tmp_path / "mesh", a=0.02)
+    for extra, message in (("bend auto bending flat", "bending must be plate or hinge, got flat"),
+                           ("bending plate", "bending chooses the energy of bend")):
+        run = run_deck(CYLINDER, tmp_path / extra.split()[-1], check=False,
+                       variables={"mesh": path, "extra": extra})
+        assert any(message in e for e in run.errors), run.errors
