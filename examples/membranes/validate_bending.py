@@ -44,6 +44,7 @@ E, T, RHO, G = 1.0e8, 0.02, 1000.0, 9.81
 ANGLES = (0, 30, 45, 60, 90)
 KAPPA = 4.0
 BENDING = ""    # " bending plate|hinge" (--bending), or the pair's default
+PRECOND = "amg"    # fix sissm's preconditioner of the plate runs (--precond)
 
 
 def rows_of(vertices):
@@ -96,7 +97,7 @@ group tip id {ids(rows[0])}
 compute tipz tip reduce ave z
 fix grav all gravity {G} vector 0 0 -1
 timestep 0.2
-fix integrate free sissm solver krylov precond amg iterations 10000 tolerance 1e-7
+fix integrate free sissm solver krylov precond {PRECOND} iterations 10000 tolerance 1e-7
 thermo_style custom step pe c_tipz f_integrate[1]
 thermo_modify format float %.10g
 run 4
@@ -157,9 +158,11 @@ def main():
     ap.add_argument("--kinds", nargs="+", choices=list(KINDS), default=list(KINDS))
     ap.add_argument("--cells", nargs="+", type=float, default=[0.01, 0.005],
                     help="plate cell sizes (m)")
+    ap.add_argument("--precond", choices=("amg", "block"), default="amg")
     args = ap.parse_args()
-    global BENDING
+    global BENDING, PRECOND
     BENDING = f" bending {args.bending}" if args.bending else ""
+    PRECOND = args.precond
     with tempfile.TemporaryDirectory() as tmp:
         if args.only != "cylinder":
             print("plate sag / (q L^4 / 8D)   " + "  ".join(f"{k:>11s}" for k in args.kinds))
