@@ -213,6 +213,7 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
   // (the hinges' gradients only when the matrix is assembled: most Newton steps keep it)
   fix_->forces->hinge_couplings(hinges_, false);
   PeriSISSM::index_couplings(hinges_.row, rows.n, hinge_index_);
+  fix_->forces->plate_couplings(plates_);    // (constant Hessian: all of it at once)
   PeriSISSM::index_couplings(plates_.row, rows.n, plate_index_);
   const bool same_pattern = pattern_current() || !build_pattern(rows);
   if (!schedule_.setup_wanted(same_pattern, c)) return;
