@@ -57,10 +57,14 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   PeriSISSM::AmgSchedule schedule_;    // when the hierarchy is set up again
   PeriSISSM::BondSprings springs_;
   PeriSISSM::HingeCouplings hinges_;
-  PeriSISSM::HingeIndex hinge_index_;
+  PeriSISSM::CouplingIndex hinge_index_;
+  PeriSISSM::PlateCouplings plates_;
+  PeriSISSM::CouplingIndex plate_index_;
   PeriSISSM::BlockPattern pattern_;     // the blocks of the owned unknowns (solvers/block_matrix.h)
   std::vector<int> first_, partner_;    // the springs the pattern was built for
   std::vector<int> hinge_vertex_;       // and the hinges
+  std::vector<int> plate_first_;        // and the plate stencils
+  std::vector<int> plate_vertex_;
   bigint built_at_ = -1;                // neighbor->lastcall of that build
   int nlocal_ = -1;
   bigint total_ = 0;                    // unknowns of all ranks when they were numbered
@@ -114,7 +118,8 @@ bool SissmAmg::pattern_current()
 {
   return all_ranks(amg_ && built_at_ == fix_->neighbor->lastcall && nlocal_ == fix_->atom->nlocal &&
                    first_ == springs_.first && partner_ == springs_.partner &&
-                   hinge_vertex_ == hinges_.vertex);
+                   hinge_vertex_ == hinges_.vertex && plate_first_ == plates_.first &&
+                   plate_vertex_ == plates_.vertex);
 }
 
 bool SissmAmg::numbers_carried(const PeriSISSM::Rows &rows) const
@@ -127,12 +132,15 @@ bool SissmAmg::numbers_carried(const PeriSISSM::Rows &rows) const
 void SissmAmg::pattern_from_numbers(const PeriSISSM::Rows &rows)
 {
   fix_->comm->forward_comm(fix_);
-  PeriSISSM::build_block_pattern(rows, fix_->gnode, springs_, hinges_, hinge_index_, pattern_);
+  PeriSISSM::build_block_pattern(rows, fix_->gnode, springs_, hinges_, hinge_index_, plates_,
+                                 plate_index_, pattern_);
   std::uint64_t mine = PeriSISSM::pattern_signature(pattern_);
   MPI_Allreduce(&mine, &signature_, 1, MPI_UINT64_T, MPI_SUM, fix_->world);
   first_ = springs_.first;
   partner_ = springs_.partner;
   hinge_vertex_ = hinges_.vertex;
+  plate_first_ = plates_.first;
+  plate_vertex_ = plates_.vertex;
   built_at_ = fix_->neighbor->lastcall;
   nlocal_ = fix_->atom->nlocal;
   unknown_nodes_.clear();
@@ -204,7 +212,9 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
   fix_->forces->bond_springs(springs_);
   // (the hinges' gradients only when the matrix is assembled: most Newton steps keep it)
   fix_->forces->hinge_couplings(hinges_, false);
-  PeriSISSM::index_hinges(hinges_, rows.n, hinge_index_);
+  PeriSISSM::index_couplings(hinges_.row, rows.n, hinge_index_);
+  fix_->forces->plate_couplings(plates_);    // (constant Hessian: all of it at once)
+  PeriSISSM::index_couplings(plates_.row, rows.n, plate_index_);
   const bool same_pattern = pattern_current() || !build_pattern(rows);
   if (!schedule_.setup_wanted(same_pattern, c)) return;
   fix_->forces->hinge_couplings(hinges_, true);
@@ -213,8 +223,8 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
     number_unknowns(rows);
     make_hierarchy();
   }
-  PeriSISSM::assemble_blocks(rows, fix_->gnode, c, springs_, hinges_, hinge_index_, pattern_,
-                             fix_->atom->x, values_, coords_);
+  PeriSISSM::assemble_blocks(rows, fix_->gnode, c, springs_, hinges_, hinge_index_, plates_,
+                             plate_index_, pattern_, fix_->atom->x, values_, coords_);
   guarded([&] {
     amg_->set_values(pattern_.row, pattern_.col, values_, coords_.data());
   });

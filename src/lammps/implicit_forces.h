@@ -13,6 +13,7 @@
 namespace PeriSISSM {
 struct BondSprings;
 struct HingeCouplings;
+struct PlateCouplings;
 }    // namespace PeriSISSM
 
 namespace LAMMPS_NS {
@@ -39,6 +40,9 @@ class ImplicitForces {
   // without bending): their vertices and rows, and with gradients true also their gradients in
   // the current positions (grad left empty otherwise)
   virtual void hinge_couplings(PeriSISSM::HingeCouplings &hinges, bool gradients) = 0;
+  // the plate bending stencils with an owned vertex, each once per rank (core
+  // peri/bond_stiffness.h; empty without them): their vertices, rows and constant factors
+  virtual void plate_couplings(PeriSISSM::PlateCouplings &plates) = 0;
 
   // contact candidates while an implicit step moves the atoms: track_contact_motion(1) at
   // init; contact_follow_motion() after every move (ghost positions current) re-selects the

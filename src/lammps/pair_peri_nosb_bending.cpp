@@ -201,3 +201,10 @@ void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gr
   if (hinges_stale) build_hinges();
   PeriSISSM::hinge_couplings(hinges, particles(), gradients, couplings);
 }
+
+/* ----------------------------------------------------------------------
+   ImplicitForces: the plate bending stencils for the coarse level's matrix
+------------------------------------------------------------------------- */
+
+void PairPeriNosb::plate_couplings(PeriSISSM::PlateCouplings &plates)
+{ plates = PeriSISSM::PlateCouplings(); plates.first.assign(1, 0); }

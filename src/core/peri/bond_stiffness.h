@@ -57,6 +57,24 @@ struct HingeCouplings {
   int count() const { return (int) vertex.size() / 4; }
 };
 
+// The plate bending of membranes in the same matrix: the mid-edge curvature energy is a sum
+// over triangles of a quadratic form in the positions of a stencil of m vertices (the triangle
+// and its neighbours, m about 9 to 15), so its Hessian is constant: with a factor a_k (3
+// numbers per stencil vertex k) of the element,
+//   H_kl = (a_k . a_l) I_3,
+// the block between stencil vertices k and l. It is positive semi-definite (the Gram matrix of
+// the a_k times I_3) with the rigid-body modes in its null space, so the matrix keeps both
+// properties; it is added as it is (no Gauss-Newton step needed).
+struct PlateCouplings {
+  std::vector<int> first;     // count() + 1 offsets: element e's entries are
+                              //   first[e] .. first[e+1]-1, first[0] = 0
+  std::vector<int> vertex;    // local index of each entry's vertex (owned or ghost)
+  std::vector<int> row;       // per entry: the owned index whose row takes the vertex's part,
+                              //   -1 for none on this rank
+  std::vector<double> a;      // 3 per entry: the factor a_k
+  int count() const { return first.empty() ? 0 : (int) first.size() - 1; }
+};
+
 }    // namespace PeriSISSM
 
 #endif    // PERISISSM_PERI_BOND_STIFFNESS_H

@@ -21,23 +21,24 @@ void number_unknowns(const Rows &rows, int first, int nall, double *node)
     if (rows.has(i)) node[i] = first++;
 }
 
-void index_hinges(const HingeCouplings &hinges, int n, HingeIndex &index)
+void index_couplings(const std::vector<int> &row, int n, CouplingIndex &index)
 {
   index.first.assign(n + 1, 0);
-  const int nh = hinges.count();
-  for (int h = 0; h < nh; h++)
-    for (int v = 0; v < 4; v++) {
-      const int i = hinges.row[4 * h + v];
-      if (i >= 0) index.first[i + 1]++;
-    }
+  const int entries = (int) row.size();
+  for (int q = 0; q < entries; q++)
+    if (row[q] >= 0) index.first[row[q] + 1]++;
   for (int i = 0; i < n; i++) index.first[i + 1] += index.first[i];
   index.of.resize(index.first[n]);
   std::vector<int> next(index.first.begin(), index.first.end() - 1);
-  for (int h = 0; h < nh; h++)
-    for (int v = 0; v < 4; v++) {
-      const int i = hinges.row[4 * h + v];
-      if (i >= 0) index.of[next[i]++] = 4 * h + v;
-    }
+  for (int q = 0; q < entries; q++)
+    if (row[q] >= 0) index.of[next[row[q]]++] = q;
+}
+
+// the plate element of entry k
+static int element_of(const PlateCouplings &plates, int k)
+{
+  const auto after = std::upper_bound(plates.first.begin(), plates.first.end(), k);
+  return (int) (after - plates.first.begin()) - 1;
 }
 
 int BlockPattern::find(int r, int gcol) const
@@ -48,8 +49,19 @@ int BlockPattern::find(int r, int gcol) const
   return -1;
 }
 
+// adds to row r, the one being built, the columns of the m vertices v that are unknowns and
+// not yet in it
+static void add_new_columns(const double *node, const int *v, int m, int r, BlockPattern &pattern)
+{
+  for (int b = 0; b < m; b++) {
+    const int gj = (int) node[v[b]];
+    if (gj >= 0 && pattern.find(r, gj) < 0) pattern.col.push_back(gj);
+  }
+}
+
 void build_block_pattern(const Rows &rows, const double *node, const BondSprings &springs,
-                         const HingeCouplings &hinges, const HingeIndex &index,
+                         const HingeCouplings &hinges, const CouplingIndex &hinge_index,
+                         const PlateCouplings &plates, const CouplingIndex &plate_index,
                          BlockPattern &pattern)
 {
   pattern.first.assign(1, 0);
@@ -64,14 +76,12 @@ void build_block_pattern(const Rows &rows, const double *node, const BondSprings
       const int gj = (int) node[springs.partner[s]];
       if (gj >= 0) pattern.col.push_back(gj);
     }
-    for (int q = index.first[i]; q < index.first[i + 1]; q++) {
-      const int *v = &hinges.vertex[4 * (index.of[q] / 4)];
-      for (int b = 0; b < 4; b++) {
-        const int gj = (int) node[v[b]];
-        if (gj < 0) continue;
-        pattern.col.push_back(gj);    // provisionally, to find it below
-        if (pattern.find(r, gj) != (int) pattern.col.size() - 1) pattern.col.pop_back();
-      }
+    for (int q = hinge_index.first[i]; q < hinge_index.first[i + 1]; q++)
+      add_new_columns(node, &hinges.vertex[4 * (hinge_index.of[q] / 4)], 4, r, pattern);
+    for (int q = plate_index.first[i]; q < plate_index.first[i + 1]; q++) {
+      const int e = element_of(plates, plate_index.of[q]);
+      add_new_columns(node, &plates.vertex[plates.first[e]], plates.first[e + 1] - plates.first[e],
+                      r, pattern);
     }
     pattern.first.push_back((int) pattern.col.size());
     pattern.row.resize(pattern.col.size(), gi);
@@ -115,8 +125,16 @@ std::uint64_t pattern_signature(const BlockPattern &pattern)
   return sum;
 }
 
+// the block of row r in column gj among values, null when gj is not an unknown (held: no
+// column)
+static double *block_at(const BlockPattern &pattern, int r, int gj, std::vector<double> &values)
+{
+  return gj < 0 ? nullptr : &values[9 * pattern.find(r, gj)];
+}
+
 void assemble_blocks(const Rows &rows, const double *node, double c, const BondSprings &springs,
-                     const HingeCouplings &hinges, const HingeIndex &index,
+                     const HingeCouplings &hinges, const CouplingIndex &hinge_index,
+                     const PlateCouplings &plates, const CouplingIndex &plate_index,
                      const BlockPattern &pattern, double **x, std::vector<double> &values,
                      std::vector<double> &coords)
 {
@@ -142,16 +160,28 @@ void assemble_blocks(const Rows &rows, const double *node, double c, const BondS
         }
     }
     // the hinges: row v of c g g^T, blocks g_v g_b^T (g = sqrt(2 c_hinge) grad theta)
-    for (int q = index.first[i]; q < index.first[i + 1]; q++) {
-      const int h = index.of[q] / 4, v = index.of[q] % 4;
+    for (int q = hinge_index.first[i]; q < hinge_index.first[i + 1]; q++) {
+      const int h = hinge_index.of[q] / 4, v = hinge_index.of[q] % 4;
       const double *g = &hinges.grad[12 * h];
       for (int b = 0; b < 4; b++) {
         const int j = hinges.vertex[4 * h + b];
-        const int gj = b == v ? (int) node[i] : (int) node[j];
-        if (gj < 0) continue;    // not an unknown: held, no column
-        double *blk = &values[9 * pattern.find(r, gj)];
+        double *blk = block_at(pattern, r, b == v ? (int) node[i] : (int) node[j], values);
+        if (!blk) continue;
         for (int a = 0; a < 3; a++)
           for (int d = 0; d < 3; d++) blk[3 * a + d] += c * g[3 * v + a] * g[3 * b + d];
+      }
+    }
+    // the plate elements: row k of c H, blocks c (a_k . a_l) I
+    for (int q = plate_index.first[i]; q < plate_index.first[i + 1]; q++) {
+      const int k = plate_index.of[q], e = element_of(plates, k);
+      const double *ak = &plates.a[3 * k];
+      for (int l = plates.first[e]; l < plates.first[e + 1]; l++) {
+        const int j = plates.vertex[l];
+        double *blk = block_at(pattern, r, l == k ? (int) node[i] : (int) node[j], values);
+        if (!blk) continue;
+        const double *al = &plates.a[3 * l];
+        const double h = c * (ak[0] * al[0] + ak[1] * al[1] + ak[2] * al[2]);
+        for (int d = 0; d < 9; d += 4) blk[d] += h;
       }
     }
     for (int k = 0; k < 3; k++) coords[3 * r + k] = x[i][k];

@@ -2,12 +2,14 @@
 // doc/theory.rst, "The coarse level") in 3x3 blocks over the unknowns of one process:
 //   M = V (rho I + c P),   c the time scheme's force factor (h^2 for backward Euler),
 // P the bond-projected stiffness of the current configuration plus the Gauss-Newton Hessian of
-// the membranes' bending hinges (peri/bond_stiffness.h). Row r is the r-th unknown row in row
-// order; its columns are global node numbers: the diagonal first, then its unbroken bonds'
-// partners that are unknowns, then the other vertices of its hinges that are not bond
-// partners. Bonds to rows that are not unknowns add their diagonal part only (Dirichlet rows
-// eliminated); hinge vertices that are not unknowns add nothing. The glue numbers the unknowns
-// over the processes and hands the blocks to the multigrid library.
+// the membranes' bending hinges and the (constant) Hessian of their plate bending elements
+// (peri/bond_stiffness.h). Row r is the r-th unknown row in row order; its columns are global
+// node numbers: the diagonal first, then its unbroken bonds' partners that are unknowns, then
+// the other vertices of its hinges that are not yet among them, then the other stencil
+// vertices of its plate elements that are not yet among them (no column twice). Bonds to rows
+// that are not unknowns add their diagonal part only (Dirichlet rows eliminated); hinge and
+// stencil vertices that are not unknowns add nothing. The glue numbers the unknowns over the
+// processes and hands the blocks to the multigrid library.
 
 #ifndef PERISISSM_SOLVERS_BLOCK_MATRIX_H
 #define PERISISSM_SOLVERS_BLOCK_MATRIX_H
@@ -20,12 +22,14 @@
 
 namespace PeriSISSM {
 
-// The hinges of each of n local rows: of[first[i] .. first[i+1]-1] holds 4 h + v for the place
-// v (0..3) of row i in hinge h, in hinge order.
-struct HingeIndex {
+// The coupling entries of each of n local rows, from the owned row of every entry (row: 4 per
+// hinge, HingeCouplings::row; one per stencil vertex, PlateCouplings::row; -1 none here):
+// of[first[i] .. first[i+1]-1] holds the entries whose row is i, in entry order (for hinges,
+// 4 h + v: the place v (0..3) of row i in hinge h).
+struct CouplingIndex {
   std::vector<int> first, of;
 };
-void index_hinges(const HingeCouplings &hinges, int n, HingeIndex &index);
+void index_couplings(const std::vector<int> &row, int n, CouplingIndex &index);
 
 // The unknown rows of this process (rows.has(i)), and their global node numbers: node[i] of
 // each of nall local rows is first + k for the k-th unknown, -1 for the others.
@@ -56,10 +60,12 @@ std::vector<std::uint64_t> pattern_blocks(const BlockPattern &pattern);
 bool pattern_within(const BlockPattern &pattern, const std::vector<std::uint64_t> &blocks);
 
 // Inputs: rows (the unknowns: rows.has(i), i < rows.n); node: global node number of every
-// local row, owned and ghost (-1: not an unknown); springs, hinges and their index.
+// local row, owned and ghost (-1: not an unknown); springs; hinges and plates, each with its
+// index (index_couplings of its row).
 // Output: pattern (rebuilt).
 void build_block_pattern(const Rows &rows, const double *node, const BondSprings &springs,
-                         const HingeCouplings &hinges, const HingeIndex &index,
+                         const HingeCouplings &hinges, const CouplingIndex &hinge_index,
+                         const PlateCouplings &plates, const CouplingIndex &plate_index,
                          BlockPattern &pattern);
 
 // Inputs: as build_block_pattern, the pattern built from them, c, hinges with gradients, and x
@@ -67,7 +73,8 @@ void build_block_pattern(const Rows &rows, const double *node, const BondSprings
 // blocks of M; coords (3 per unknown, in row order; resized) = their positions, for the
 // rigid-body modes of the near-null space.
 void assemble_blocks(const Rows &rows, const double *node, double c, const BondSprings &springs,
-                     const HingeCouplings &hinges, const HingeIndex &index,
+                     const HingeCouplings &hinges, const CouplingIndex &hinge_index,
+                     const PlateCouplings &plates, const CouplingIndex &plate_index,
                      const BlockPattern &pattern, double **x, std::vector<double> &values,
                      std::vector<double> &coords);
 
