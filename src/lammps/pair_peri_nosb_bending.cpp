@@ -206,5 +206,13 @@ void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gr
    ImplicitForces: the plate bending stencils for the coarse level's matrix
 ------------------------------------------------------------------------- */
 
-void PairPeriNosb::plate_couplings(PeriSISSM::PlateCouplings &plates)
-{ plates = PeriSISSM::PlateCouplings(); plates.first.assign(1, 0); }
+void PairPeriNosb::plate_couplings(PeriSISSM::PlateCouplings &couplings)
+{
+  if (!any_plate || !meshfix) {
+    couplings = PeriSISSM::PlateCouplings();
+    couplings.first.assign(1, 0);
+    return;
+  }
+  if (hinges_stale) build_hinges();
+  plates->couplings(couplings);
+}

@@ -2,6 +2,8 @@
 
 #include "membrane/plate_bending.h"
 
+#include "peri/bond_stiffness.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -209,6 +211,31 @@ void PlateBending::stable_steps(const Particles &p, const double *rho, double *d
     }
   }
   combine_stable_steps(G, rho, dt, stiffness);
+}
+
+void PlateBending::couplings(PlateCouplings &plates) const
+{
+  plates.first.assign(1, 0);
+  plates.vertex.clear();
+  plates.row.clear();
+  plates.a.clear();
+  for (const PlateTriangle &t : list_) {
+    const CurvatureStencil &s = t.stencil;
+    // W = [[1, 0, nu], [0, 2 (1 - nu), 0], [nu, 0, 1]] = L L^T over (xx, xy, yy)
+    const double nu = t.nu;
+    const double L[3][3] = {{1.0, 0.0, 0.0},
+                            {0.0, std::sqrt(2.0 * (1.0 - nu)), 0.0},
+                            {nu, 0.0, std::sqrt(std::max(0.0, 1.0 - nu * nu))}};
+    const double scale = std::sqrt(s.area * t.D);
+    for (std::size_t k = 0; k < s.vertex.size(); k++) {
+      plates.vertex.push_back(s.vertex[k]);
+      plates.row.push_back(t.own[k]);
+      const double *c = &s.coef[3 * k];
+      for (int r = 0; r < 3; r++)
+        plates.a.push_back(scale * (c[0] * L[0][r] + c[1] * L[1][r] + c[2] * L[2][r]));
+    }
+    plates.first.push_back((int) plates.vertex.size());
+  }
 }
 
 }    // namespace PeriSISSM

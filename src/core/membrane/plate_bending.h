@@ -74,6 +74,11 @@ class PlateBending {
   void stable_steps(const Particles &p, const double *rho, double *dt,
                     double *stiffness = nullptr) const;
 
+  // The listed triangles for the assembled stiffness (peri/bond_stiffness.h): per triangle its
+  // stencil's rows, owners and the factor a_k = sqrt(A D) L^T coef_k, W = L L^T the Cholesky
+  // factor of the energy's weights (membrane/curvature.h), so that a_k . a_l = h_kl.
+  void couplings(PlateCouplings &plates) const;
+
   const std::vector<PlateTriangle> &triangles() const { return list_; }
 
  private:

@@ -6,6 +6,7 @@
 
 #include "membrane/curvature.h"
 #include "membrane/plate_bending.h"
+#include "peri/bond_stiffness.h"
 
 #include <gtest/gtest.h>
 
@@ -226,4 +227,39 @@ TEST(PlateBending, ReportsMissingVerticesAndCurvedMeshes)
   PeriSISSM::PlateBending plates2;
   problem = plates2.build(curved_view, curved_view.x0.data(), box);
   EXPECT_EQ(problem.status, StencilStatus::not_flat);
+}
+
+// The couplings for the assembled stiffness factor each listed triangle's Hessian:
+// a_k . a_l = h_kl (membrane/curvature.h curvature_hessian), with the rows and owners of the list.
+TEST(PlateBending, CouplingsFactorTheHessian)
+{
+  const Sheet sheet(5, 4, 0.5, 0.2);
+  std::vector<int> all(sheet.nv);
+  std::iota(all.begin(), all.end(), 0);
+  for (double nu : {0.0, 0.3, -0.5}) {
+    const View view(sheet, all, {}, 1.7, nu);
+    PeriSISSM::PlateBending plates;
+    PeriSISSM::ReferenceBox box;
+    ASSERT_TRUE(plates.build(view, view.x0.data(), box).ok());
+    PeriSISSM::PlateCouplings c;
+    plates.couplings(c);
+    ASSERT_EQ(c.count(), (int) plates.triangles().size());
+    ASSERT_EQ(c.count(), (int) sheet.tri.size());
+    std::vector<double> h;
+    for (int e = 0; e < c.count(); e++) {
+      const PeriSISSM::PlateTriangle &t = plates.triangles()[e];
+      PeriSISSM::curvature_hessian(t.stencil, t.D, t.nu, h);
+      const int m = c.first[e + 1] - c.first[e];
+      ASSERT_EQ(m, (int) t.stencil.vertex.size());
+      for (int k = 0; k < m; k++) {
+        EXPECT_EQ(c.vertex[c.first[e] + k], t.stencil.vertex[k]);
+        EXPECT_EQ(c.row[c.first[e] + k], t.own[k]);
+        for (int l = 0; l < m; l++) {
+          const double *ak = &c.a[3 * (c.first[e] + k)], *al = &c.a[3 * (c.first[e] + l)];
+          const double dot = ak[0] * al[0] + ak[1] * al[1] + ak[2] * al[2];
+          EXPECT_NEAR(dot, h[m * k + l], 1e-12 * std::abs(h[m * k + k])) << e << k << l << nu;
+        }
+      }
+    }
+  }
 }
