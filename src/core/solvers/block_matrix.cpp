@@ -41,6 +41,30 @@ static int element_of(const PlateCouplings &plates, int k)
   return (int) (after - plates.first.begin()) - 1;
 }
 
+void significant_plates(const PlateCouplings &all, const Rows &rows, double c, double threshold,
+                        PlateCouplings &kept)
+{
+  kept.first.assign(1, 0);
+  kept.vertex.clear();
+  kept.row.clear();
+  kept.a.clear();
+  for (int e = 0; e < all.count(); e++) {
+    bool significant = false;
+    for (int q = all.first[e]; q < all.first[e + 1] && !significant; q++) {
+      const double *a = &all.a[3 * q];
+      const int v = all.vertex[q];
+      significant = c * (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) >=
+          threshold * rows.density[v] * rows.volume[v];
+    }
+    if (!significant) continue;
+    kept.vertex.insert(kept.vertex.end(), all.vertex.begin() + all.first[e],
+                       all.vertex.begin() + all.first[e + 1]);
+    kept.row.insert(kept.row.end(), all.row.begin() + all.first[e], all.row.begin() + all.first[e + 1]);
+    kept.a.insert(kept.a.end(), all.a.begin() + 3 * all.first[e], all.a.begin() + 3 * all.first[e + 1]);
+    kept.first.push_back((int) kept.vertex.size());
+  }
+}
+
 int BlockPattern::find(int r, int gcol) const
 {
   const int end = r + 1 < (int) first.size() ? first[r + 1] : (int) col.size();

@@ -363,3 +363,35 @@ TEST(BlockMatrix, UnknownsAreNumberedInRowOrderFromTheFirst)
 }
 
 }    // namespace
+
+// A plate element is kept when c |a_k|^2 >= threshold rho_k V_k at one of its vertices (a ghost
+// counts: every process holding the element decides alike), with its entries unchanged.
+TEST(BlockMatrix, OnlyPlatesWhoseStiffnessRivalsTheMassAreKept)
+{
+  double volume[4] = {1.0, 2.0, 1.0, 4.0}, density[4] = {1.0, 1.0, 3.0, 1.0};
+  int mask[4] = {1, 1, 1, 1};
+  Rows rows;
+  rows.n = 2;
+  rows.mask = mask;
+  rows.bit = 1;
+  rows.volume = volume;
+  rows.density = density;
+  PlateCouplings all;
+  // element 0 over rows 0, 1 (|a|^2 = 0.25, 1): rho V = 1, 2; element 1 over 1 and ghost 3
+  // (|a|^2 = 1, 16: rho V = 2, 4); element 2 over ghost 2 and 0 (|a|^2 = 4, 0.01: rho V = 3, 1)
+  all.first = {0, 2, 4, 6};
+  all.vertex = {0, 1, 1, 3, 2, 0};
+  all.row = {0, 1, 1, -1, -1, 0};
+  all.a = {0.5, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 4, 0, 2, 0, 0.1, 0, 0};
+  PlateCouplings kept;
+  significant_plates(all, rows, 1.0, 1.0, kept);    // c |a|^2 / (rho V): 0.25 0.5 | 0.5 4 | 1.33 0.01
+  EXPECT_EQ(kept.first, (std::vector<int>{0, 2, 4}));
+  EXPECT_EQ(kept.vertex, (std::vector<int>{1, 3, 2, 0}));
+  EXPECT_EQ(kept.row, (std::vector<int>{1, -1, -1, 0}));
+  EXPECT_EQ(kept.a, std::vector<double>(all.a.begin() + 6, all.a.end()));
+  significant_plates(all, rows, 3.0, 1.0, kept);    // all three at c = 3 (0.5 x 3 >= 1)
+  EXPECT_EQ(kept.count(), 3);
+  significant_plates(all, rows, 0.1, 1.0, kept);    // none at c = 0.1 (4 x 0.1 < 1)
+  EXPECT_EQ(kept.count(), 0);
+  EXPECT_EQ(kept.first, (std::vector<int>{0}));
+}
