@@ -78,10 +78,10 @@ def test_compute_before_the_first_evaluation_is_an_error(tmp_path):
 
 def test_unknown_model_name_and_other_versions_are_refused(tmp_path):
     data = written(tmp_path)
-    # the pair data: version 4, setflag 1, the model name with its length (5 = "stvk\0")
-    pair = struct.pack("iii", 4, 1, 5) + b"stvk\0"
+    # the pair data: version 5, setflag 1, the model name with its length (5 = "stvk\0")
+    pair = struct.pack("iii", 5, 1, 5) + b"stvk\0"
     assert data.count(pair) == 1
-    run = read_back(tmp_path, "name", data.replace(pair, struct.pack("iii", 4, 1, 5) + b"stvq\0"))
+    run = read_back(tmp_path, "name", data.replace(pair, struct.pack("iii", 5, 1, 5) + b"stvq\0"))
     assert any("model 'stvq'" in e and "allowed: linear, stvk, neohookean" in e
                for e in run.errors), run.errors
     run = read_back(tmp_path, "pairversion", data.replace(pair, struct.pack("iii", 1, 1, 5) +
