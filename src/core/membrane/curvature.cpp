@@ -255,10 +255,16 @@ double curvature_energy(const CurvatureStencil &s, const double *y, double D, do
                         double *force)
 {
   const int m = (int) s.vertex.size();
+  // Q_c = sum_k coef_kc (y_k - y_0): the coefficients sum to zero, and differences of nearby
+  // positions keep the round-off of a body far from the origin out of the curvature
   double Q[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};    // Q[c][d]: component d of Q_c
-  for (int k = 0; k < m; k++)
+  const double *y0 = y + 3 * s.vertex[0];
+  for (int k = 1; k < m; k++) {
+    const double *yk = y + 3 * s.vertex[k];
+    const double r[3] = {yk[0] - y0[0], yk[1] - y0[1], yk[2] - y0[2]};
     for (int c = 0; c < 3; c++)
-      for (int d = 0; d < 3; d++) Q[c][d] += s.coef[3 * k + c] * y[3 * s.vertex[k] + d];
+      for (int d = 0; d < 3; d++) Q[c][d] += s.coef[3 * k + c] * r[d];
+  }
   const double W[3][3] = {{1.0, 0.0, nu}, {0.0, 2.0 * (1.0 - nu), 0.0}, {nu, 0.0, 1.0}};
   // S_c = A D sum_d W_cd Q_d = dE / dQ_c
   double S[3][3], E = 0.0;

@@ -26,6 +26,7 @@
 namespace PeriSISSM {
 
 // The coefficients of one triangle: Q_c = sum_k coef[3 k + c] y_{vertex[k]}, c = xx, xy, yy
+// (they sum to zero: evaluated as sum_k coef[3 k + c] (y_{vertex[k]} - y_{vertex[0]}))
 // (in an orthonormal frame of the rest plane; E does not depend on which).
 struct CurvatureStencil {
   std::vector<int> vertex;
