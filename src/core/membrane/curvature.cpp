@@ -51,7 +51,8 @@ namespace {
       }
       Eigen::Vector3d d = Eigen::Vector3d::Zero();
       if (v != o_ && !mesh_.rest_offset(o_, v, d.data())) return StencilStatus::missing;
-      if (std::abs(d.dot(n_)) > 1e-6 * std::max(d.norm(), h_)) return StencilStatus::not_flat;
+      if (std::abs(d.dot(n_)) > kFlatTolerance * std::max(d.norm(), h_))
+        return StencilStatus::not_flat;
       x = {d.dot(e1_), d.dot(e2_)};
       seen_.emplace(v, x);
       return StencilStatus::ok;

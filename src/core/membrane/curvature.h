@@ -58,15 +58,22 @@ struct TriangleStencil {
   double area = 0.0;
 };
 
+// How far from flat a stencil's rest shape may be: the rest positions are projected on the
+// triangle's plane (the energy's rest state is flat), so a sheet roughened by a small random
+// displacement or round-off is taken as the flat sheet it approximates, while a mesh curved at
+// rest (a slope of 1% over the stencil: a radius of curvature under about 100 edges) is refused.
+constexpr double kFlatTolerance = 1e-2;
+
 enum class StencilStatus {
   ok,
   missing,       // a vertex (or its triangles) that the stencil needs is not known
-  not_flat,      // the stencil's rest positions are not in the triangle's plane (1e-6 of its size)
+  not_flat,      // a rest position of the stencil is off the triangle's plane by more than
+                 //   kFlatTolerance of its distance (or of the triangle's mean edge)
   degenerate,    // a triangle of zero area, or a fit with fewer than six points off every conic
 };
 
 // Inputs: mesh; t the triangle's corners (IDs, in its orientation). Outputs: s (replaced; left
-// empty unless ok). The fits use the rest positions in the triangle's own plane frame.
+// empty unless ok). The fits use the rest positions projected on the triangle's plane.
 StencilStatus triangle_stencil(const CurvatureMesh &mesh, const std::array<std::int64_t, 3> &t,
                                TriangleStencil &s);
 

@@ -246,3 +246,25 @@ TEST(Curvature, RefusesMeshesItCannotFit)
   const Sheet strip(6, 1, 1.0, 0.0);
   EXPECT_FALSE(PeriSISSM::build_curvature_stencils(strip.nv(), strip.X.data(), strip.tri, st));
 }
+
+// A sheet roughened out of its plane by 1e-3 of a cell (a random displacement before the first
+// run) is taken as the flat sheet it approximates: its stencils are made from the projected rest
+// positions and give the flat sheet's energies to the roughness' order; 2% of a cell is refused.
+TEST(Curvature, SlightlyRoughSheetsAreTakenAsFlat)
+{
+  const Sheet flat(6, 6, 1.0, 0.2);
+  Sheet rough = flat;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < rough.nv(); i++) rough.X[3 * i + 2] = 1e-3 * u(rng);
+  const std::vector<CurvatureStencil> a = stencils_of(flat), b = stencils_of(rough);
+  std::vector<double> y = flat.X;
+  for (int i = 0; i < flat.nv(); i++)
+    y[3 * i + 2] = 0.2 * std::sin(0.9 * y[3 * i]) + 0.1 * y[3 * i] * y[3 * i + 1];
+  const double Ea = total_energy(a, y, 1.0, 0.3), Eb = total_energy(b, y, 1.0, 0.3);
+  EXPECT_GT(Ea, 1e-3);
+  EXPECT_NEAR(Eb, Ea, 1e-2 * Ea);
+  for (int i = 0; i < rough.nv(); i++) rough.X[3 * i + 2] = 2e-2 * (i % 2 ? 1.0 : -1.0);
+  std::vector<CurvatureStencil> st;
+  EXPECT_FALSE(PeriSISSM::build_curvature_stencils(rough.nv(), rough.X.data(), rough.tri, st));
+}
