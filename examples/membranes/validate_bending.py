@@ -45,6 +45,7 @@ ANGLES = (0, 30, 45, 60, 90)
 KAPPA = 4.0
 BENDING = ""    # " bending plate|hinge" (--bending), or the pair's default
 PRECOND = "amg"    # fix sissm's preconditioner of the plate runs (--precond)
+TOLERANCE = 1e-7    # fix sissm's tolerance of the plate runs (--tolerance)
 
 
 def rows_of(vertices):
@@ -97,7 +98,7 @@ group tip id {ids(rows[0])}
 compute tipz tip reduce ave z
 fix grav all gravity {G} vector 0 0 -1
 timestep 0.2
-fix integrate free sissm solver krylov precond {PRECOND} iterations 10000 tolerance 1e-7
+fix integrate free sissm solver krylov precond {PRECOND} iterations 10000 tolerance {TOLERANCE}
 thermo_style custom step pe c_tipz f_integrate[1]
 thermo_modify format float %.10g
 run 4
@@ -159,8 +160,11 @@ def main():
     ap.add_argument("--cells", nargs="+", type=float, default=[0.01, 0.005],
                     help="plate cell sizes (m)")
     ap.add_argument("--precond", choices=("amg", "block"), default="amg")
+    ap.add_argument("--tolerance", type=float, default=1e-7,
+                    help="fix sissm tolerance of the plate runs (m)")
     args = ap.parse_args()
-    global BENDING, PRECOND
+    global BENDING, PRECOND, TOLERANCE
+    TOLERANCE = args.tolerance
     BENDING = f" bending {args.bending}" if args.bending else ""
     PRECOND = args.precond
     with tempfile.TemporaryDirectory() as tmp:

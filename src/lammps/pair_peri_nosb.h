@@ -118,6 +118,8 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   // the triangles of the plate bending term whose stencil holds an owned vertex (core
   // membrane/plate_bending.h; kept for the run: its stencils depend on the rest shape only)
   std::unique_ptr<PeriSISSM::PlateBending> plates;
+  // the plate edges' hinges: in the coarse level's matrix only (stand-ins for the plate energy)
+  std::vector<PeriSISSM::Hinge> plate_hinges;
   // summary flags
   int any_break, any_contact;
   int passes_reported = 0;    // the bond passes' version was written to the log

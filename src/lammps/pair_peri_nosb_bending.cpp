@@ -98,6 +98,7 @@ void PairPeriNosb::build_hinges()
   if (any_plate) {
     if (!plates) plates = std::make_unique<PeriSISSM::PlateBending>();
     const PeriSISSM::PlateProblem p = plates->build(mesh, atom->x0[0], family->box);
+    PeriSISSM::build_hinges(mesh, atom->x0[0], family->box, plate_hinges, true);
     using PeriSISSM::StencilStatus;
     const auto &t = p.triangle;
     if (p.status == StencilStatus::missing)
@@ -200,6 +201,15 @@ void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gr
   }
   if (hinges_stale) build_hinges();
   PeriSISSM::hinge_couplings(hinges, particles(), gradients, couplings);
+  if (any_plate) {
+    // the plate edges' hinges stand in for the plate energy's couplings where those are left
+    // out of the matrix (core solvers/block_matrix.h significant_plates)
+    PeriSISSM::HingeCouplings more;
+    PeriSISSM::hinge_couplings(plate_hinges, particles(), gradients, more);
+    couplings.vertex.insert(couplings.vertex.end(), more.vertex.begin(), more.vertex.end());
+    couplings.row.insert(couplings.row.end(), more.row.begin(), more.row.end());
+    couplings.grad.insert(couplings.grad.end(), more.grad.begin(), more.grad.end());
+  }
 }
 
 /* ----------------------------------------------------------------------

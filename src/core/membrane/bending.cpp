@@ -12,7 +12,7 @@
 namespace PeriSISSM {
 
 std::int64_t build_hinges(const HingeMesh &mesh, const double *x0, const ReferenceBox &box,
-                          std::vector<Hinge> &hinges)
+                          std::vector<Hinge> &hinges, bool plate_edges)
 {
   const int nlocal = mesh.nlocal();
   std::int64_t missing = 0;
@@ -32,7 +32,7 @@ std::int64_t build_hinges(const HingeMesh &mesh, const double *x0, const Referen
       h.own[k] = mesh.sharer(mesh.id(v[k]));
       if (h.own[k] >= 0 && h.own[k] < i) return true;    // listed by that smaller vertex
     }
-    if (mesh.plate(v[0]) && mesh.plate(v[1])) return true;
+    if ((mesh.plate(v[0]) && mesh.plate(v[1])) != plate_edges) return true;
     const double D = 0.5 * (mesh.modulus(v[0]) + mesh.modulus(v[1]));
     if (D <= 0.0) return true;
     // reference positions relative to x0 (minimum image in the reference box)

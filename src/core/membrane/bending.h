@@ -68,8 +68,11 @@ class HingeMesh {
 // Outputs: hinges (replaced); returns 0, or the ID of an owned vertex one of whose hinges has a
 // vertex that is not on this rank (the hinges of the others are listed). An edge whose two
 // ends are plate vertices is no hinge.
+// With plate_edges true, the list has the other edges instead: those whose two ends are plate
+// vertices, whose hinges stand in for the plate energy in the coarse level's matrix
+// (peri/bond_stiffness.h; their pattern lies within the bonds' at a horizon of two edges).
 std::int64_t build_hinges(const HingeMesh &mesh, const double *x0, const ReferenceBox &box,
-                          std::vector<Hinge> &hinges);
+                          std::vector<Hinge> &hinges, bool plate_edges = false);
 
 // Where one bending pass puts its energy shares (either may be null): energy (+=) the sum of
 // the shares, each a quarter of a hinge's energy over the vertex's volume; per_particle[i] (+=)

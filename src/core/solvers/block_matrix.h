@@ -61,13 +61,17 @@ bool pattern_within(const BlockPattern &pattern, const std::vector<std::uint64_t
 
 // The plate elements worth their couplings in M: those with c (a_k . a_k) >= threshold rho_k V_k
 // at one of their stencil vertices k (owned or ghost rows of rows.volume and rows.density), the
-// term's diagonal against the mass there. Where the mass dominates the rows normal to a membrane
-// (a coarse cloth at a small step), the stencils' couplings, which reach two rings of triangles
-// beyond the bonds, would double the matrix's nonzeros for nothing: hanging cloth, 3038 vertices,
-// 2 ms, 7.87 Krylov iterations per step with them and 7.83 without (2026-11-30). Decided from the
-// element's own vertices, so that every process that holds an element decides alike.
-// Output: kept (replaced).
-constexpr double kPlateSignificance = 1.0;
+// term's diagonal against the mass there. A stencil reaches two rings of triangles beyond the
+// bonds: its couplings double the matrix's nonzeros. The pair gives the plate edges' hinges as
+// well (their pattern lies within the bonds'), and those serve where the mass is not negligible
+// (measured 2026-11-30, hanging cloth at 2 ms, genalpha, Krylov iterations per step: 3038
+// vertices 7.87 with every plate coupling, 7.9 with the hinges alone, 8.0 for the hinge energy;
+// 33418 vertices 9.8 with the hinges alone, 11.4 with the couplings where c |a|^2 >= rho V as
+// well, 9.3 for the hinge energy), while a static step needs the couplings (the clamped plate of
+// examples/membranes at 0.2 s, alternate 1 cm triangles: 1160 iterations per step with them,
+// 110 s against 11 s without). Decided from the element's own vertices, so that every process
+// that holds an element decides alike. Output: kept (replaced).
+constexpr double kPlateSignificance = 100.0;
 void significant_plates(const PlateCouplings &all, const Rows &rows, double c, double threshold,
                         PlateCouplings &kept);
 
