@@ -98,6 +98,8 @@ void PairPeriNosb::build_hinges()
   if (any_plate) {
     if (!plates) plates = std::make_unique<PeriSISSM::PlateBending>();
     const PeriSISSM::PlateProblem p = plates->build(mesh, atom->x0[0], family->box);
+    // (the plate edges' hinges, for fix sissm's coarse level: their vertices are in the
+    // stencils, which are checked below)
     PeriSISSM::build_hinges(mesh, atom->x0[0], family->box, plate_hinges, true);
     using PeriSISSM::StencilStatus;
     const auto &t = p.triangle;
