@@ -150,21 +150,7 @@ def test_split_run_continues_exactly(tmp_path):
     full = run_deck(PLATE, tmp_path / "full", variables={**variables, "steps": 4})
     first = PLATE.read_text() + "\nwrite_restart plate.restart\n"
     run_deck(first, tmp_path / "split", variables={**variables, "steps": 2})
-    second = """
-read_restart    plate.restart
-neighbor        0.02 bin
-compute         tipz bottom reduce ave z
-variable        az atom abs(z)
-compute         zmax all reduce max v_az
-fix             grav all gravity 9.81 vector 0 0 -1
-timestep        0.2
-fix             integrate free sissm solver krylov precond block iterations 10000 tolerance 1e-5
-thermo_style    custom step pe ke c_tipz c_zmax f_integrate[1] f_integrate[2] f_integrate[4]
-thermo_modify   format float %.17g
-thermo          1
-run             2
-"""
-    rest = run_deck(second, tmp_path / "split")
+    rest = run_deck(DECKS / "membrane_plate_continue.lmp", tmp_path / "split")
     a = {k: v[-1] for k, v in full.thermo[-1].items()}
     b = {k: v[-1] for k, v in rest.thermo[-1].items()}
     assert a["Step"] == b["Step"] == 4

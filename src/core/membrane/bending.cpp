@@ -88,6 +88,18 @@ std::int64_t build_hinges(const HingeMesh &mesh, const double *x0, const Referen
   return missing;
 }
 
+void tally_virial(const Virial &virial, int i, const double *xv, const double *xref,
+                  const double *F)
+{
+  const double r[3] = {xv[0] - xref[0], xv[1] - xref[1], xv[2] - xref[2]};
+  const double w[6] = {r[0] * F[0], r[1] * F[1], r[2] * F[2],
+                       r[0] * F[1], r[0] * F[2], r[1] * F[2]};
+  if (virial.global)
+    for (int m = 0; m < 6; m++) virial.global[m] += w[m];
+  if (virial.peratom)
+    for (int m = 0; m < 6; m++) virial.peratom[i][m] += w[m];
+}
+
 void bending_pass(const std::vector<Hinge> &hinges, const Particles &p, double **block,
                   const BendingEnergy &energy, const Virial &virial)
 {
@@ -113,18 +125,7 @@ void bending_pass(const std::vector<Hinge> &hinges, const Particles &p, double *
         if (energy.total) *energy.total += e;
         if (energy.per_particle) energy.per_particle[i] += e;
       }
-      if (virial.any()) {
-        // this vertex's part of sum_v (x_v - x_0) (x) F_v (translation invariant: sum_v F_v = 0)
-        double r[3];
-        for (int d = 0; d < 3; d++) r[d] = x[3 * v[k] + d] - x[3 * v[0] + d];
-        const double *F = force[k];
-        const double w[6] = {r[0] * F[0], r[1] * F[1], r[2] * F[2],
-                             r[0] * F[1], r[0] * F[2], r[1] * F[2]};
-        if (virial.global)
-          for (int m = 0; m < 6; m++) virial.global[m] += w[m];
-        if (virial.peratom)
-          for (int m = 0; m < 6; m++) virial.peratom[i][m] += w[m];
-      }
+      if (virial.any()) tally_virial(virial, i, x + 3 * v[k], x + 3 * v[0], force[k]);
     }
   }
 }

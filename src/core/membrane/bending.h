@@ -82,6 +82,12 @@ struct BendingEnergy {
   double *per_particle = nullptr;
 };
 
+// One vertex's part (x_v - x_ref) (x) F_v of a bending element's virial, into the sinks (owned
+// row i for the per-atom one). Summed over the element's vertices it is the element's virial
+// whatever x_ref, when its forces F_v sum to zero (translation invariance).
+void tally_virial(const Virial &virial, int i, const double *xv, const double *xref,
+                  const double *F);
+
 // The bending pass over a hinge list: for each hinge and each of its sharing vertices i (in
 // list order, then vertex order), f_i += F_v / V_i with F_v = -dE/dx_v of the hinge
 // (membrane/hinge.h), block[i] += its Gauss-Newton block 2 c g_v g_v^T / V_i (when block is not

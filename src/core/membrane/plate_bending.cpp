@@ -180,17 +180,7 @@ void PlateBending::pass(const Particles &p, double **block, const BendingEnergy 
         if (energy.total) *energy.total += e;
         if (energy.per_particle) energy.per_particle[i] += e;
       }
-      if (virial.any()) {
-        // this vertex's part of sum_k (y_k - y_c0) (x) F_k (translation invariant: sum F_k = 0)
-        double r[3];
-        for (int d = 0; d < 3; d++) r[d] = x[3 * s.vertex[k] + d] - x0[d];
-        const double w[6] = {r[0] * F[0], r[1] * F[1], r[2] * F[2],
-                             r[0] * F[1], r[0] * F[2], r[1] * F[2]};
-        if (virial.global)
-          for (int q = 0; q < 6; q++) virial.global[q] += w[q];
-        if (virial.peratom)
-          for (int q = 0; q < 6; q++) virial.peratom[i][q] += w[q];
-      }
+      if (virial.any()) tally_virial(virial, i, x + 3 * s.vertex[k], x0, F);
     }
   }
 }

@@ -8,6 +8,8 @@
 #include "membrane/plate_bending.h"
 #include "peri/bond_stiffness.h"
 
+#include "flat_sheet.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,37 +24,6 @@ using PeriSISSM::StencilStatus;
 
 namespace {
 
-struct Sheet {
-  int nv = 0;
-  std::vector<double> X;
-  std::vector<std::array<int, 3>> tri;
-
-  Sheet(int NX, int NY, double h, double jitter)
-  {
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    const int nx = NX + 1, ny = NY + 1;
-    nv = nx * ny;
-    for (int j = 0; j < ny; j++)
-      for (int i = 0; i < nx; i++) {
-        const bool inner = i > 0 && j > 0 && i < nx - 1 && j < ny - 1;
-        X.insert(X.end(), {h * (i + (inner ? jitter * u(rng) : 0.0)),
-                           h * (j + (inner ? jitter * u(rng) : 0.0)), 0.0});
-      }
-    for (int j = 0; j < NY; j++)
-      for (int i = 0; i < NX; i++) {
-        const int p00 = j * nx + i, p10 = p00 + 1, p01 = p00 + nx, p11 = p01 + 1;
-        if ((i + j) % 2 == 0) {
-          tri.push_back({p00, p10, p11});
-          tri.push_back({p00, p11, p01});
-        } else {
-          tri.push_back({p00, p10, p01});
-          tri.push_back({p10, p11, p01});
-        }
-      }
-  }
-};
-
 // One rank's view: rows[r] the sheet vertex of row r (owned first), ID = vertex + 1, volume
 // 1 + vertex / 100, every vertex a plate vertex of modulus D and Poisson's ratio nu.
 class View : public PeriSISSM::HingeMesh {
@@ -62,7 +33,7 @@ class View : public PeriSISSM::HingeMesh {
   {
     rows = owned;
     rows.insert(rows.end(), ghosts.begin(), ghosts.end());
-    at_.resize(sheet.nv);
+    at_.resize(sheet.nv());
     for (const auto &t : sheet.tri)
       for (int k = 0; k < 3; k++) at_[t[k]].push_back({t[(k + 1) % 3] + 1, t[(k + 2) % 3] + 1});
     for (int r = 0; r < (int) rows.size(); r++) {
@@ -136,7 +107,7 @@ std::vector<double> bent_positions(const Sheet &sheet)
   std::vector<double> y = sheet.X;
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int i = 0; i < sheet.nv; i++) {
+  for (int i = 0; i < sheet.nv(); i++) {
     y[3 * i + 2] = 0.3 * std::sin(1.1 * y[3 * i]) * std::cos(0.8 * y[3 * i + 1]);
     for (int d = 0; d < 3; d++) y[3 * i + d] += 0.01 * u(rng);
   }
@@ -145,7 +116,7 @@ std::vector<double> bent_positions(const Sheet &sheet)
 
 }    // namespace
 
-// Two ranks split at x = 2.5 give the whole mesh's forces (to round-off: the stencils are made
+// Two ranks split at x = 0 give the whole mesh's forces (to round-off: the stencils are made
 // in each triangle's own frame) and their energy shares add up to the whole energy.
 TEST(PlateBending, TwoRanksAddUpToTheWholeMesh)
 {
@@ -153,7 +124,7 @@ TEST(PlateBending, TwoRanksAddUpToTheWholeMesh)
   const double D = 1.3, nu = 0.3;
   const std::vector<double> y = bent_positions(sheet);
   std::vector<PeriSISSM::CurvatureStencil> whole;
-  ASSERT_TRUE(PeriSISSM::build_curvature_stencils(sheet.nv, sheet.X.data(), sheet.tri, whole));
+  ASSERT_TRUE(PeriSISSM::build_curvature_stencils(sheet.nv(), sheet.X.data(), sheet.tri, whole));
   std::vector<double> f_whole(y.size(), 0.0), fk;
   double E_whole = 0.0;
   for (const auto &s : whole) {
@@ -164,7 +135,7 @@ TEST(PlateBending, TwoRanksAddUpToTheWholeMesh)
   }
 
   std::vector<int> left, right;
-  for (int i = 0; i < sheet.nv; i++) (sheet.X[3 * i] < 2.5 ? left : right).push_back(i);
+  for (int i = 0; i < sheet.nv(); i++) (sheet.X[3 * i] < 0.0 ? left : right).push_back(i);
   std::vector<double> f(y.size(), 0.0);
   // energy shares are densities: with every volume V_i, E = sum_T sum_corners E_T / 3 / V_c,
   // so compare against the same weighted sum of the whole mesh
@@ -188,7 +159,7 @@ TEST(PlateBending, ForcesDoNotDependOnTheRowOrder)
 {
   const Sheet sheet(6, 5, 1.0, 0.25);
   const std::vector<double> y = bent_positions(sheet);
-  std::vector<int> all(sheet.nv);
+  std::vector<int> all(sheet.nv());
   std::iota(all.begin(), all.end(), 0);
   std::vector<int> shuffled = all;
   std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(9));
@@ -206,10 +177,10 @@ TEST(PlateBending, ReportsMissingVerticesAndCurvedMeshes)
 {
   const Sheet sheet(8, 6, 1.0, 0.0);
   std::vector<int> left, near;
-  for (int i = 0; i < sheet.nv; i++) {
-    if (sheet.X[3 * i] < 3.5)
+  for (int i = 0; i < sheet.nv(); i++) {
+    if (sheet.X[3 * i] < -0.5)
       left.push_back(i);
-    else if (sheet.X[3 * i] < 5.5)
+    else if (sheet.X[3 * i] < 1.5)
       near.push_back(i);    // two columns of ghosts: too few
   }
   PeriSISSM::PlateBending plates;
@@ -221,7 +192,7 @@ TEST(PlateBending, ReportsMissingVerticesAndCurvedMeshes)
 
   Sheet curved(4, 4, 1.0, 0.0);
   curved.X[3 * 12 + 2] = 0.2;
-  std::vector<int> all(curved.nv);
+  std::vector<int> all(curved.nv());
   std::iota(all.begin(), all.end(), 0);
   const View curved_view(curved, all, {}, 1.0, 0.0);
   PeriSISSM::PlateBending plates2;
@@ -234,7 +205,7 @@ TEST(PlateBending, ReportsMissingVerticesAndCurvedMeshes)
 TEST(PlateBending, CouplingsFactorTheHessian)
 {
   const Sheet sheet(5, 4, 0.5, 0.2);
-  std::vector<int> all(sheet.nv);
+  std::vector<int> all(sheet.nv());
   std::iota(all.begin(), all.end(), 0);
   for (double nu : {0.0, 0.3, -0.5}) {
     const View view(sheet, all, {}, 1.7, nu);
@@ -261,5 +232,49 @@ TEST(PlateBending, CouplingsFactorTheHessian)
         }
       }
     }
+  }
+}
+
+// The pass's virial is sum_v y_v (x) F_v over the vertices (each element's forces sum to
+// zero, so its parts relative to its first corner add up to that), and the per-atom parts add
+// up to the global one.
+TEST(PlateBending, VirialIsTheSumOfPositionsTimesForces)
+{
+  const Sheet sheet(5, 4, 0.5, 0.2);
+  std::vector<int> all(sheet.nv());
+  std::iota(all.begin(), all.end(), 0);
+  const View view(sheet, all, {}, 1.1, 0.3);
+  PeriSISSM::PlateBending plates;
+  PeriSISSM::ReferenceBox box;
+  ASSERT_TRUE(plates.build(view, view.x0.data(), box).ok());
+  std::vector<double> y = bent_positions(sheet), f(y.size(), 0.0);
+  for (std::size_t j = 0; j < y.size(); j++) y[j] += 3.0;    // away from the origin
+  PeriSISSM::Particles p;
+  p.nlocal = p.nall = sheet.nv();
+  p.x = y.data();
+  p.volume = view.volume.data();
+  p.f = f.data();
+  double global[6] = {0, 0, 0, 0, 0, 0};
+  std::vector<double> rows(6 * sheet.nv(), 0.0);
+  std::vector<double *> peratom(sheet.nv());
+  for (int i = 0; i < sheet.nv(); i++) peratom[i] = &rows[6 * i];
+  PeriSISSM::Virial virial;
+  virial.global = global;
+  virial.peratom = peratom.data();
+  plates.pass(p, nullptr, PeriSISSM::BendingEnergy(), virial);
+  double expected[6] = {0, 0, 0, 0, 0, 0}, summed[6] = {0, 0, 0, 0, 0, 0};
+  const int a[6] = {0, 1, 2, 0, 0, 1}, b[6] = {0, 1, 2, 1, 2, 2};
+  double scale = 0.0;
+  for (int i = 0; i < sheet.nv(); i++)
+    for (int m = 0; m < 6; m++) {
+      const double F = f[3 * i + b[m]] * view.volume[i];
+      expected[m] += y[3 * i + a[m]] * F;
+      summed[m] += rows[6 * i + m];
+      scale = std::max(scale, std::abs(y[3 * i + a[m]] * F));
+    }
+  ASSERT_GT(scale, 1e-3);
+  for (int m = 0; m < 6; m++) {
+    EXPECT_NEAR(global[m], expected[m], 1e-10 * scale) << m;
+    EXPECT_NEAR(summed[m], global[m], 1e-12 * scale) << m;
   }
 }
