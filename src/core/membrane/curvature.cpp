@@ -16,6 +16,14 @@ namespace {
   using Id = std::int64_t;
   using Tri = std::array<Id, 3>;
 
+  // the plate energy's weights over (xx, xy, yy): E = A D/2 sum_cd W_cd Q_c . Q_d
+  void weights(double nu, double W[3][3])
+  {
+    const double w[3][3] = {{1.0, 0.0, nu}, {0.0, 2.0 * (1.0 - nu), 0.0}, {nu, 0.0, 1.0}};
+    for (int c = 0; c < 3; c++)
+      for (int d = 0; d < 3; d++) W[c][d] = w[c][d];
+  }
+
   // x x^T of a unit vector as (xx, xy, yy)
   Eigen::Vector3d outer2(const Eigen::Vector2d &t)
   {
@@ -266,7 +274,8 @@ double curvature_energy(const CurvatureStencil &s, const double *y, double D, do
     for (int c = 0; c < 3; c++)
       for (int d = 0; d < 3; d++) Q[c][d] += s.coef[3 * k + c] * r[d];
   }
-  const double W[3][3] = {{1.0, 0.0, nu}, {0.0, 2.0 * (1.0 - nu), 0.0}, {nu, 0.0, 1.0}};
+  double W[3][3];
+  weights(nu, W);
   // S_c = A D sum_d W_cd Q_d = dE / dQ_c
   double S[3][3], E = 0.0;
   for (int c = 0; c < 3; c++)
@@ -285,18 +294,32 @@ double curvature_energy(const CurvatureStencil &s, const double *y, double D, do
   return E;
 }
 
+double curvature_hessian_entry(const CurvatureStencil &s, int k, int l, double D, double nu)
+{
+  double W[3][3], sum = 0.0;
+  weights(nu, W);
+  for (int c = 0; c < 3; c++)
+    for (int d = 0; d < 3; d++) sum += W[c][d] * s.coef[3 * k + c] * s.coef[3 * l + d];
+  return s.area * D * sum;
+}
+
 void curvature_hessian(const CurvatureStencil &s, double D, double nu, std::vector<double> &h)
 {
   const int m = (int) s.vertex.size();
-  const double W[3][3] = {{1.0, 0.0, nu}, {0.0, 2.0 * (1.0 - nu), 0.0}, {nu, 0.0, 1.0}};
   h.assign((std::size_t) m * m, 0.0);
   for (int k = 0; k < m; k++)
-    for (int l = 0; l < m; l++) {
-      double sum = 0.0;
-      for (int c = 0; c < 3; c++)
-        for (int d = 0; d < 3; d++) sum += W[c][d] * s.coef[3 * k + c] * s.coef[3 * l + d];
-      h[(std::size_t) m * k + l] = s.area * D * sum;
-    }
+    for (int l = 0; l < m; l++) h[(std::size_t) m * k + l] = curvature_hessian_entry(s, k, l, D, nu);
+}
+
+void curvature_factor(const CurvatureStencil &s, int k, double D, double nu, double a[3])
+{
+  // W = L L^T with L = [[1, 0, 0], [0, sqrt(2 (1 - nu)), 0], [nu, 0, sqrt(1 - nu^2)]]
+  const double L[3][3] = {{1.0, 0.0, 0.0},
+                          {0.0, std::sqrt(2.0 * (1.0 - nu)), 0.0},
+                          {nu, 0.0, std::sqrt(std::max(0.0, 1.0 - nu * nu))}};
+  const double scale = std::sqrt(s.area * D);
+  const double *c = &s.coef[3 * k];
+  for (int r = 0; r < 3; r++) a[r] = scale * (c[0] * L[0][r] + c[1] * L[1][r] + c[2] * L[2][r]);
 }
 
 }    // namespace PeriSISSM

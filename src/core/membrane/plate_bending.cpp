@@ -158,8 +158,6 @@ void PlateBending::pass(const Particles &p, double **block, const BendingEnergy 
     const int m = (int) s.vertex.size();
     force.resize(3 * m);
     const double E = curvature_energy(s, x, t.D, t.nu, force.data());
-    // the Hessian's diagonal blocks h_kk I (membrane/curvature.h curvature_hessian)
-    const double W[3][3] = {{1.0, 0.0, t.nu}, {0.0, 2.0 * (1.0 - t.nu), 0.0}, {t.nu, 0.0, 1.0}};
     const double *x0 = x + 3 * s.vertex[0];
     for (int k = 0; k < m; k++) {
       const int i = t.own[k];
@@ -168,11 +166,8 @@ void PlateBending::pass(const Particles &p, double **block, const BendingEnergy 
       const double *F = &force[3 * k];
       for (int d = 0; d < 3; d++) f[3 * i + d] += F[d] / vi;
       if (block) {
-        const double *c = &s.coef[3 * k];
-        double hkk = 0.0;
-        for (int a = 0; a < 3; a++)
-          for (int b = 0; b < 3; b++) hkk += W[a][b] * c[a] * c[b];
-        hkk *= s.area * t.D / vi;
+        // the Hessian's diagonal block h_kk I
+        const double hkk = curvature_hessian_entry(s, k, k, t.D, t.nu) / vi;
         for (int d = 0; d < 3; d++) block[i][d] += hkk;
       }
       if (tally_energy && k < 3) {
@@ -211,18 +206,12 @@ void PlateBending::couplings(PlateCouplings &plates) const
   plates.a.clear();
   for (const PlateTriangle &t : list_) {
     const CurvatureStencil &s = t.stencil;
-    // W = [[1, 0, nu], [0, 2 (1 - nu), 0], [nu, 0, 1]] = L L^T over (xx, xy, yy)
-    const double nu = t.nu;
-    const double L[3][3] = {{1.0, 0.0, 0.0},
-                            {0.0, std::sqrt(2.0 * (1.0 - nu)), 0.0},
-                            {nu, 0.0, std::sqrt(std::max(0.0, 1.0 - nu * nu))}};
-    const double scale = std::sqrt(s.area * t.D);
     for (std::size_t k = 0; k < s.vertex.size(); k++) {
       plates.vertex.push_back(s.vertex[k]);
       plates.row.push_back(t.own[k]);
-      const double *c = &s.coef[3 * k];
-      for (int r = 0; r < 3; r++)
-        plates.a.push_back(scale * (c[0] * L[0][r] + c[1] * L[1][r] + c[2] * L[2][r]));
+      double a[3];
+      curvature_factor(s, (int) k, t.D, t.nu, a);
+      plates.a.insert(plates.a.end(), a, a + 3);
     }
     plates.first.push_back((int) plates.vertex.size());
   }
