@@ -294,13 +294,13 @@ double curvature_energy(const CurvatureStencil &s, const double *y, double D, do
   return E;
 }
 
-double curvature_hessian_entry(const CurvatureStencil &s, int k, int l, double D, double nu)
+double curvature_form(const CurvatureStencil &s, int k, int l, double nu)
 {
   double W[3][3], sum = 0.0;
   weights(nu, W);
   for (int c = 0; c < 3; c++)
     for (int d = 0; d < 3; d++) sum += W[c][d] * s.coef[3 * k + c] * s.coef[3 * l + d];
-  return s.area * D * sum;
+  return sum;
 }
 
 void curvature_hessian(const CurvatureStencil &s, double D, double nu, std::vector<double> &h)
@@ -308,7 +308,7 @@ void curvature_hessian(const CurvatureStencil &s, double D, double nu, std::vect
   const int m = (int) s.vertex.size();
   h.assign((std::size_t) m * m, 0.0);
   for (int k = 0; k < m; k++)
-    for (int l = 0; l < m; l++) h[(std::size_t) m * k + l] = curvature_hessian_entry(s, k, l, D, nu);
+    for (int l = 0; l < m; l++) h[(std::size_t) m * k + l] = s.area * D * curvature_form(s, k, l, nu);
 }
 
 void curvature_factor(const CurvatureStencil &s, int k, double D, double nu, double a[3])

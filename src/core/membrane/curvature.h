@@ -93,8 +93,9 @@ double curvature_energy(const CurvatureStencil &s, const double *y, double D, do
 // W = [[1, 0, nu], [0, 2 (1 - nu), 0], [nu, 0, 1]] over (xx, xy, yy). Output h (resized).
 void curvature_hessian(const CurvatureStencil &s, double D, double nu, std::vector<double> &h);
 
-// One entry h[m k + l] of that Hessian (the diagonal blocks of an implicit pass need only k = l).
-double curvature_hessian_entry(const CurvatureStencil &s, int k, int l, double D, double nu);
+// One entry of that Hessian over A_T D: sum_cd W_cd coef[3 k + c] coef[3 l + d] (the diagonal
+// blocks of an implicit pass need only k = l).
+double curvature_form(const CurvatureStencil &s, int k, int l, double nu);
 
 // The Hessian as a Gram matrix: Output a (3 doubles) = sqrt(A_T D) L^T coef_k, W = L L^T (its
 // Cholesky factor), so that a_k . a_l = h[m k + l] (the coarse level's factors,

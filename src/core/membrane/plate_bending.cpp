@@ -167,7 +167,7 @@ void PlateBending::pass(const Particles &p, double **block, const BendingEnergy 
       for (int d = 0; d < 3; d++) f[3 * i + d] += F[d] / vi;
       if (block) {
         // the Hessian's diagonal block h_kk I
-        const double hkk = curvature_hessian_entry(s, k, k, t.D, t.nu) / vi;
+        const double hkk = curvature_form(s, k, k, t.nu) * (s.area * t.D / vi);
         for (int d = 0; d < 3; d++) block[i][d] += hkk;
       }
       if (tally_energy && k < 3) {
