@@ -120,6 +120,7 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   std::unique_ptr<PeriSISSM::PlateBending> plates;
   // the plate edges' hinges: in the coarse level's matrix only (stand-ins for the plate energy)
   std::vector<PeriSISSM::Hinge> plate_hinges;
+  int plate_hinges_stale = 1;    // built again at the next hinge_couplings()
   // summary flags
   int any_break, any_contact;
   int passes_reported = 0;    // the bond passes' version was written to the log

@@ -98,9 +98,7 @@ void PairPeriNosb::build_hinges()
   if (any_plate) {
     if (!plates) plates = std::make_unique<PeriSISSM::PlateBending>();
     const PeriSISSM::PlateProblem p = plates->build(mesh, atom->x0[0], family->box);
-    // (the plate edges' hinges, for fix sissm's coarse level: their vertices are in the
-    // stencils, which are checked below)
-    PeriSISSM::build_hinges(mesh, atom->x0[0], family->box, plate_hinges, true);
+    plate_hinges_stale = 1;    // (built when fix sissm's coarse level asks for them)
     using PeriSISSM::StencilStatus;
     const auto &t = p.triangle;
     if (p.status == StencilStatus::missing)
@@ -205,7 +203,13 @@ void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gr
   PeriSISSM::hinge_couplings(hinges, particles(), gradients, couplings);
   if (any_plate) {
     // the plate edges' hinges stand in for the plate energy's couplings where those are left
-    // out of the matrix (core solvers/block_matrix.h significant_plates)
+    // out of the matrix (core solvers/block_matrix.h significant_plates); their vertices are
+    // in the plate stencils, which build_hinges() checked
+    if (plate_hinges_stale) {
+      NosbHingeMesh mesh(this);
+      PeriSISSM::build_hinges(mesh, atom->x0[0], family->box, plate_hinges, true);
+      plate_hinges_stale = 0;
+    }
     PeriSISSM::HingeCouplings more;
     PeriSISSM::hinge_couplings(plate_hinges, particles(), gradients, more);
     couplings.vertex.insert(couplings.vertex.end(), more.vertex.begin(), more.vertex.end());
