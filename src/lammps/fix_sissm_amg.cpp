@@ -59,7 +59,6 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   PeriSISSM::HingeCouplings hinges_;
   PeriSISSM::CouplingIndex hinge_index_;
   PeriSISSM::PlateCouplings plates_;
-  PeriSISSM::PlateCouplings all_plates_;    // before significant_plates()
   PeriSISSM::CouplingIndex plate_index_;
   PeriSISSM::BlockPattern pattern_;     // the blocks of the owned unknowns (solvers/block_matrix.h)
   std::vector<int> first_, partner_;    // the springs the pattern was built for
@@ -214,8 +213,9 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
   // (the hinges' gradients only when the matrix is assembled: most Newton steps keep it)
   fix_->forces->hinge_couplings(hinges_, false);
   PeriSISSM::index_couplings(hinges_.row, rows.n, hinge_index_);
-  fix_->forces->plate_couplings(all_plates_);    // (constant Hessian: all of it at once)
-  PeriSISSM::significant_plates(all_plates_, rows, c, PeriSISSM::kPlateSignificance, plates_);
+  // (constant Hessians, made with the pair's list)
+  PeriSISSM::significant_plates(fix_->forces->plate_couplings(), rows, c,
+                                PeriSISSM::kPlateSignificance, plates_);
   PeriSISSM::index_couplings(plates_.row, rows.n, plate_index_);
   const bool same_pattern = pattern_current() || !build_pattern(rows);
   if (!schedule_.setup_wanted(same_pattern, c)) return;

@@ -41,8 +41,9 @@ class ImplicitForces {
   // the current positions (grad left empty otherwise)
   virtual void hinge_couplings(PeriSISSM::HingeCouplings &hinges, bool gradients) = 0;
   // the plate bending stencils with an owned vertex, each once per rank (core
-  // peri/bond_stiffness.h; empty without them): their vertices, rows and constant factors
-  virtual void plate_couplings(PeriSISSM::PlateCouplings &plates) = 0;
+  // peri/bond_stiffness.h; empty without them): their vertices, rows and constant factors,
+  // valid until the next force evaluation
+  virtual const PeriSISSM::PlateCouplings &plate_couplings() = 0;
 
   // contact candidates while an implicit step moves the atoms: track_contact_motion(1) at
   // init; contact_follow_motion() after every move (ghost positions current) re-selects the

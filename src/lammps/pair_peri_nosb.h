@@ -80,7 +80,7 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   bool ghost_forces() const override;
   void bond_springs(PeriSISSM::BondSprings &springs) override;
   void hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gradients) override;
-  void plate_couplings(PeriSISSM::PlateCouplings &plates) override;
+  const PeriSISSM::PlateCouplings &plate_couplings() override;
   void track_contact_motion(int flag) override;
   int contact_follow_motion() override;
   bool contact_end_of_step(const std::string &cause) override;

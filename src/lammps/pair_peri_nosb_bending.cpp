@@ -222,13 +222,10 @@ void PairPeriNosb::hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gr
    ImplicitForces: the plate bending stencils for the coarse level's matrix
 ------------------------------------------------------------------------- */
 
-void PairPeriNosb::plate_couplings(PeriSISSM::PlateCouplings &couplings)
+const PeriSISSM::PlateCouplings &PairPeriNosb::plate_couplings()
 {
-  if (!any_plate || !meshfix) {
-    couplings = PeriSISSM::PlateCouplings();
-    couplings.first.assign(1, 0);
-    return;
-  }
+  static const PeriSISSM::PlateCouplings none{{0}, {}, {}, {}};
+  if (!any_plate || !meshfix) return none;
   if (hinges_stale) build_hinges();
-  plates->couplings(couplings);
+  return plates->couplings();
 }

@@ -2,8 +2,6 @@
 
 #include "membrane/plate_bending.h"
 
-#include "peri/bond_stiffness.h"
-
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -67,6 +65,8 @@ namespace {
 PlateProblem PlateBending::build(const HingeMesh &mesh, const double *x0, const ReferenceBox &box)
 {
   list_.clear();
+  couplings_ = PlateCouplings();
+  couplings_.first.assign(1, 0);
   PlateProblem problem;
   LocalMesh local(mesh, x0, box);
   const int nlocal = mesh.nlocal();
@@ -143,6 +143,7 @@ PlateProblem PlateBending::build(const HingeMesh &mesh, const double *x0, const 
     tri.stencil.area = s.area;
     list_.push_back(std::move(tri));
   }
+  make_couplings();
   return problem;
 }
 
@@ -198,8 +199,9 @@ void PlateBending::stable_steps(const Particles &p, const double *rho, double *d
   combine_stable_steps(G, rho, dt, stiffness);
 }
 
-void PlateBending::couplings(PlateCouplings &plates) const
+void PlateBending::make_couplings()
 {
+  PlateCouplings &plates = couplings_;
   plates.first.assign(1, 0);
   plates.vertex.clear();
   plates.row.clear();

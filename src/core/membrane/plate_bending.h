@@ -18,6 +18,7 @@
 
 #include "membrane/bending.h"
 #include "membrane/curvature.h"
+#include "peri/bond_stiffness.h"
 
 #include <array>
 #include <cstdint>
@@ -25,8 +26,6 @@
 #include <vector>
 
 namespace PeriSISSM {
-
-struct PlateCouplings;
 
 // One triangle of this rank's list.
 struct PlateTriangle {
@@ -74,10 +73,10 @@ class PlateBending {
   void stable_steps(const Particles &p, const double *rho, double *dt,
                     double *stiffness = nullptr) const;
 
-  // The listed triangles for the assembled stiffness (peri/bond_stiffness.h): per triangle its
-  // stencil's rows, owners and the factor a_k = sqrt(A D) L^T coef_k, W = L L^T the Cholesky
-  // factor of the energy's weights (membrane/curvature.h), so that a_k . a_l = h_kl.
-  void couplings(PlateCouplings &plates) const;
+  // The listed triangles for the assembled stiffness (peri/bond_stiffness.h), made with the
+  // list: per triangle its stencil's rows, owners and factors a_k (membrane/curvature.h
+  // curvature_factor), so that a_k . a_l = h_kl.
+  const PlateCouplings &couplings() const { return couplings_; }
 
   const std::vector<PlateTriangle> &triangles() const { return list_; }
 
@@ -85,6 +84,8 @@ class PlateBending {
   // stencils by triangle: corners in their orientation, the smallest ID first
   std::map<std::array<std::int64_t, 3>, TriangleStencil> cache_;
   std::vector<PlateTriangle> list_;
+  PlateCouplings couplings_;
+  void make_couplings();
 };
 
 }    // namespace PeriSISSM

@@ -212,8 +212,7 @@ TEST(PlateBending, CouplingsFactorTheHessian)
     PeriSISSM::PlateBending plates;
     PeriSISSM::ReferenceBox box;
     ASSERT_TRUE(plates.build(view, view.x0.data(), box).ok());
-    PeriSISSM::PlateCouplings c;
-    plates.couplings(c);
+    const PeriSISSM::PlateCouplings &c = plates.couplings();
     ASSERT_EQ(c.count(), (int) plates.triangles().size());
     ASSERT_EQ(c.count(), (int) sheet.tri.size());
     std::vector<double> h;
