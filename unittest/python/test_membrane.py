@@ -500,41 +500,32 @@ def test_clamped_plate_heavy_elastica(tmp_path):
     assert last["f_integrate[4]"] == 0
 
 
+CURVED_PATCH = Path(__file__).parent / "decks" / "membrane_curved_patch.lmp"
+
+
+def curved_patch():
+    """The text of an OBJ mesh curved at rest: a 30 cm square of 2 cm equilateral triangles
+    rolled into a cylindrical patch of radius 0.2 m (for membrane_curved_patch.lmp)."""
+    import math
+    import tempfile
+    vertices, faces = make_sheet.rectangle(0.3, 0.3, 0.02, "equilateral", 0.0, 1)
+    R = 0.2
+    curved = [(x, R * math.sin(y / R), R * (1 - math.cos(y / R))) for x, y, _ in vertices]
+    with tempfile.TemporaryDirectory() as tmp:
+        mesh = Path(tmp) / "patch.obj"
+        make_sheet.write_obj(mesh, curved, faces, ["cylindrical patch"])
+        return mesh.read_text()
+
+
 def test_curved_rest_shape_keeps_its_angles(tmp_path):
     """A mesh curved at rest (a cylindrical patch of radius 0.2 m) keeps its dihedral angles as
     rest angles: at rest the bending term adds nothing (energy and forces equal to those without
     bending, to round-off), and bending it further costs energy."""
-    import math
-    vertices, faces = make_sheet.rectangle(0.3, 0.3, 0.02, "equilateral", 0.0, 1)
-    R = 0.2
-    curved = [(x, R * math.sin(y / R), R * (1 - math.cos(y / R))) for x, y, _ in vertices]
-    mesh = Path(tmp_path) / "patch.obj"
-    make_sheet.write_obj(mesh, curved, faces, ["cylindrical patch"])
-    deck = """
-units si
-boundary f f f
-atom_style peri
-atom_modify map array
-region box block -0.3 0.3 -0.3 0.3 -0.3 0.3
-create_box 1 box
-read_mesh patch.obj type 1 thickness 0.02 density 1000
-pair_style peri/nosb
-pair_coeff * * linear $(1e8/3) $(1e8/2) 0.060012 0 0 break no membrane yes ${bend}
-compute pea all pe/atom
-compute vf all property/atom vfrac
-variable ea atom c_pea*c_vf
-compute energy all reduce sum v_ea
-variable fnorm equal sqrt(fx[40]^2+fy[40]^2+fz[40]^2)
-thermo_style custom step c_energy v_fnorm
-thermo_modify format float %.17g
-run 0 post no
-displace_atoms all ramp z 0.0 0.01 y -0.15 0.15
-run 0 post no
-"""
+    patch = curved_patch()
     out = {}
     for bend in ("bend no", "bend auto"):
-        run = run_deck(deck, tmp_path / bend.split()[1], variables={"bend": bend},
-                       files={"patch.obj": mesh.read_text()})
+        run = run_deck(CURVED_PATCH, tmp_path / bend.split()[1], variables={"bend": bend},
+                       files={"patch.obj": patch})
         out[bend] = [{k: v[-1] for k, v in t.items()} for t in run.thermo]
     rest0, rest1 = out["bend no"][0], out["bend auto"][0]
     assert abs(rest1["c_energy"] - rest0["c_energy"]) <= 1e-12 * max(1.0, rest0["c_energy"])

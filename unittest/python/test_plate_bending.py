@@ -160,25 +160,10 @@ def test_split_run_continues_exactly(tmp_path):
 
 
 def test_curved_rest_shape_is_refused(tmp_path):
-    vertices, faces = make_sheet.rectangle(0.3, 0.3, 0.02, "equilateral", 0.0, 1)
-    R = 0.2
-    curved = [(x, R * math.sin(y / R), R * (1 - math.cos(y / R))) for x, y, _ in vertices]
-    mesh = Path(tmp_path) / "patch.obj"
-    make_sheet.write_obj(mesh, curved, faces, ["cylindrical patch"])
-    deck = """
-units si
-boundary f f f
-atom_style peri
-atom_modify map array
-region box block -0.3 0.3 -0.3 0.3 -0.3 0.3
-create_box 1 box
-read_mesh patch.obj type 1 thickness 0.02 density 1000
-pair_style peri/nosb
-pair_coeff * * linear $(1e8/3) $(1e8/2) 0.060012 0 0 break no membrane yes bend auto &
-  bending plate
-run 0 post no
-"""
-    run = run_deck(deck, tmp_path, check=False)
+    from test_membrane import curved_patch
+    run = run_deck(DECKS / "membrane_curved_patch.lmp", tmp_path, check=False,
+                   variables={"bend": "bend auto bending plate"},
+                   files={"patch.obj": curved_patch()})
     assert not run.ok
     assert any("the mesh is not flat at rest" in e and "'bending hinge'" in e
                for e in run.errors), run.errors
