@@ -24,7 +24,8 @@ length of the mesh as the OBJ file has it; at least D when --dmin is given):
   - the closest edge-edge pair: two edges that are not adjacent;
   - the triangle pairs that intersect: two triangles sharing no vertex whose interiors cross,
     i.e. an edge of one passes through the other (strictly: an edge that only touches the other
-    triangle, or lies in its plane, is not counted; such a contact shows as a distance 0).
+    triangle, or lies in its plane to a millionth of the triangles' size, is not counted; such
+    a contact shows as a distance 0).
 Adjacent means near on the mesh graph, not in space: a pair is left out when some vertex of one
 and some vertex of the other are fewer than K edges apart (--exclude-ring K). K = 1, the
 default, is the mesh-only rule: pairs that share a vertex (a vertex and a triangle it is a
@@ -81,6 +82,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from make_sheet import read_obj  # noqa: E402
 
 CROSSINGS_KEPT = 20         # intersecting triangle pairs listed per frame (all are counted)
+COPLANAR = 1e-6             # signed volumes below this times the size cubed count as zero
 
 
 # ---------------------------------------------------------------- exact distances
@@ -190,11 +192,19 @@ def segment_crosses_triangle(p, q, a, b, c):
     Inputs:  p, q, a, b, c arrays (..., 3).
     Outputs: bool (...): p and q on strictly opposite sides of the triangle's plane, and the
     line pq passing strictly inside the three edges (the signed volumes pqab, pqbc, pqca all
-    of one sign). Touching, grazing and coplanar cases give False.
+    of one sign). Touching, grazing and coplanar cases give False: a signed volume within
+    COPLANAR times the cube of the pair's size counts as zero, i.e. crossings shallower than
+    about a millionth of the triangles' size are not counted (a dump prints 8 digits or more;
+    the triangles of a flat sheet are coplanar to that precision, and the signs of their volumes
+    would be those of the last digits).
     """
-    sides = _volume(a, b, c, p) * _volume(a, b, c, q) < 0
+    size = (np.linalg.norm(b - a, axis=-1) + np.linalg.norm(c - a, axis=-1) +
+            np.linalg.norm(q - p, axis=-1)) / 3.0
+    tol = COPLANAR * size ** 3
+    vp, vq = _volume(a, b, c, p), _volume(a, b, c, q)
+    sides = ((vp > tol) & (vq < -tol)) | ((vp < -tol) & (vq > tol))
     u, v, w = _volume(p, q, a, b), _volume(p, q, b, c), _volume(p, q, c, a)
-    return sides & (((u > 0) & (v > 0) & (w > 0)) | ((u < 0) & (v < 0) & (w < 0)))
+    return sides & (((u > tol) & (v > tol) & (w > tol)) | ((u < -tol) & (v < -tol) & (w < -tol)))
 
 
 # ---------------------------------------------------------------- broad phase

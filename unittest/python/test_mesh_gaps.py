@@ -157,6 +157,8 @@ def test_segment_segment_random_rows_against_brute_force():
 def test_segment_crosses_triangle():
     a, b, c = (np.array(v, float) for v in TRIANGLE)
     cases = [((0.5, 0.5, -1), (0.5, 0.5, 1), True),      # through the face
+             ((0.2, 0.2, -1e-4), (0.3, 0.3, 1e-4), True),  # steep and shallow, still through
+             ((-1, 0.5, -1e-9), (3, 0.5, 1e-9), False),   # in the plane to 1e-9 (a dump's digits)
              ((0.5, 0.5, 0.1), (0.5, 0.5, 1), False),     # above it
              ((3, 3, -1), (3, 3, 1), False),              # past edge bc
              ((0.5, 0.5, 0), (0.5, 0.5, 1), False),       # touching: not crossing
@@ -164,6 +166,18 @@ def test_segment_crosses_triangle():
     for p, q, crosses in cases:
         assert bool(mg.segment_crosses_triangle(np.array(p, float), np.array(q, float),
                                                 a, b, c)) is crosses
+
+    # two coplanar triangles of a falling flat cloth (examples/tablecloth, cloth_ci.obj, step 58
+    # of the CI run with contact yes, as its 8-digit dump has them): 1e-10 apart out of the
+    # plane, far apart in it; the signs of their volumes are round-off, not a crossing
+    one = [(0.52, -0.39428571, 0.008866506), (0.56, -0.39428571, 0.0088665068),
+           (0.54, -0.36, 0.0088665064)]
+    other = [(0.58, -0.36, 0.0088665071), (0.6, -0.32571429, 0.0088665075),
+             (0.56, -0.32571429, 0.0088665068)]
+    one, other = np.array(one), np.array(other)
+    for s, t in ((0, 1), (1, 2), (2, 0)):
+        assert not mg.segment_crosses_triangle(one[s], one[t], *other)
+        assert not mg.segment_crosses_triangle(other[s], other[t], *one)
 
 
 # ---------------------------------------------------------------- brute force over a mesh
