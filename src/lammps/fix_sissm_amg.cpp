@@ -181,11 +181,13 @@ bool SissmAmg::build_pattern(const PeriSISSM::Rows &rows)
   }
   number_unknowns(rows);
   if (!amg_) {
-    // membranes: plain aggregates (doc/fix_sissm.rst, "PETSc options"), before the user's
-    const std::string options = (fix_->forces->only_membranes(fix_->groupbit)
-                                     ? std::string(kMembraneOptions) + " "
-                                     : std::string()) +
-        fix_->opt.petsc;
+    // membranes: plain aggregates, unless the plate energy's own couplings are in the matrix
+    // (a static step of a bending plate); decided at the first set-up (doc/fix_sissm.rst,
+    // "PETSc options"), before the user's options
+    const bool plain =
+        fix_->forces->only_membranes(fix_->groupbit) && all_ranks(plates_.count() == 0);
+    const std::string options =
+        (plain ? std::string(kMembraneOptions) + " " : std::string()) + fix_->opt.petsc;
     guarded([&] {
       amg_ = std::make_unique<PetscAmg>(fix_->world, fmt::format("sissm_{}_", fix_->id), options);
     });
