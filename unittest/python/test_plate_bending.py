@@ -1,7 +1,8 @@
 """The plate bending energy of membranes (pair_coeff ... bend D|auto bending plate) through
 LAMMPS: a sheet bent without stretching into a cylinder stores D kappa^2 / 2 per area whatever
 the triangulation and the direction of the axis (where the hinges give 1.5 times that about the
-diagonals of right triangles); forces are the energy's gradient; 1 and 2 ranks agree; the list
+diagonals of right triangles); a simply supported plate and a narrow strip bring in Poisson's
+ratio as plate theory does; forces are the energy's gradient; 1 and 2 ranks agree; the list
 follows the atoms through periodic boundaries and rank changes; a split run continues exactly;
 meshes it cannot serve are refused with a message that names the way out."""
 import math
@@ -205,3 +206,47 @@ def test_clamped_plate_sags_alike_on_every_triangulation(tmp_path):
         assert "0 preconditioner switches" in summary, summary
         assert 1.0 < sags[pattern] < 1.07, sags
     assert max(sags.values()) / min(sags.values()) < 1.015, sags
+
+
+def validate_bending(*args):
+    """Rows of examples/membranes/validate_bending.py (build/lmp runs) as {label: [values]}."""
+    import subprocess
+    script = REPO / "examples" / "membranes" / "validate_bending.py"
+    out = subprocess.run([sys.executable, str(script), "--lmp", str(REPO / "build" / "lmp"),
+                          *args], capture_output=True, text=True, timeout=900, check=True)
+    rows = {}
+    for line in out.stdout.splitlines():
+        words = line.split()
+        numbers = []
+        for w in reversed(words):
+            try:
+                numbers.insert(0, float(w))
+            except ValueError:
+                break
+        if numbers:
+            rows[" ".join(words[:len(words) - len(numbers)])] = numbers
+    return rows
+
+
+# Poisson's ratio in bending, wide: a square plate (30 cm, 1 cm cells, nu = 0.3) with its rim held
+# under its weight deflects by Timoshenko's 0.00406 q a^4 / D with the plate modulus
+# D = E t^3 / (12 (1 - nu^2)) (measured 2026-11-30: 1.0020 on right, 1.0028 on alternating right
+# triangles; 1.0009-1.0012 at 5 mm on the five kinds). Asked: 1% (the issue's target is 5%).
+def test_simply_supported_plate_against_timoshenko():
+    rows = validate_bending("--only", "simply", "--cells", "0.01", "--kinds", "right",
+                            "alternate")
+    ratios = rows["10 mm cells"]
+    assert all(abs(r - 1.0) < 0.01 for r in ratios), rows
+
+
+# Poisson's ratio in bending, narrow: a 6 cm x 30 cm strip (1 cm cells) clamped at one end, at
+# nu = 0.3, curls across its width (anticlastic curvature -nu times the curvature along it at
+# mid-length; measured -0.3154 and -0.3140) and so bends with the beam's E t^3 / 12, not the
+# plate modulus (9% stiffer): sag 0.9925 and 0.9979 of q L^4 / (8 E t^3 / 12) (L from the inner
+# held row). At nu = 0 it does not curl (|ratio| < 1e-3). Asked: curvature ratio within 0.03 of
+# -nu, sag within 2.5% of the beam's.
+def test_narrow_strip_curls_anticlastically():
+    rows = validate_bending("--only", "strip", "--kinds", "equilateral", "alternate")
+    assert all(abs(r + 0.3) < 0.03 for r in rows["nu = 0.3, curvatures"]), rows
+    assert all(abs(r - 1.0) < 0.025 for r in rows["nu = 0.3, sag, L inner"]), rows
+    assert all(abs(r) < 1e-3 for r in rows["nu = 0.0, curvatures"]), rows
