@@ -4,7 +4,7 @@
 # the layers every 50 steps to frames/layersL.STEP.vtp, renders the start and 0.04 s (step
 # 2000) as shaded surfaces (tools/render_mesh.py: the ball grey, the layers red, orange, yellow,
 # green, blue, purple from the bottom up) to layersL.0.png and layersL.2000.png, and the 61
-# frames of the single layer to the animation layers1.gif. About 2 minutes (the 6 layers take
+# frames of the single layer to the animation layers1.gif. About 3 minutes (the 6 layers take
 # most of it).
 #   ./pictures.sh            1, 3 and 6 layers
 #   ./pictures.sh 1          one of them

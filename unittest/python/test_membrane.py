@@ -12,6 +12,7 @@ from lammps_run import run_deck
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools"))
 import make_sheet  # noqa: E402
+from elastica import heavy_elastica_drop  # noqa: E402
 
 STRIP = Path(__file__).parent / "decks" / "membrane_strip.lmp"
 RHO, GRAV, E = 1000.0, 9.81, 1.0e7
@@ -168,7 +169,8 @@ def cylinder(tmp_path, **variables):
     return vertices, faces, {k: v[-1] for k, v in run.thermo[-1].items()}
 
 
-# The bending energy LAMMPS reports for a plate bent into a cylinder (the energy with bend auto
+# The hinge energy (bending hinge; the plate energy's cylinder is in test_plate_bending.py):
+# the bending energy LAMMPS reports for a plate bent into a cylinder (the energy with bend auto
 # minus the same run's without bending) is the sum of the hinge energies computed here
 # independently (D = E t^3 / 12 with bend auto and nu = 0), to round-off (1e-9 relative); the
 # same after a rigid rotation (the term is rotation invariant). It is about 3% below D kappa^2 / 2
@@ -182,7 +184,7 @@ def test_bending_energy_of_a_cylinder(tmp_path, direction):
     kappa, E_, t = 2.0, 1.0e8, 0.02
     D = E_ * t ** 3 / 12.0
     vertices, faces, out = cylinder(tmp_path / "a", dir=direction, kappa=kappa,
-                                    extra="bend auto stabilize 0")
+                                    extra="bend auto bending hinge stabilize 0")
     _, _, flat = cylinder(tmp_path / "n", dir=direction, kappa=kappa, extra="stabilize 0")
     k = "xy".index(direction)
     positions = []
@@ -197,7 +199,7 @@ def test_bending_energy_of_a_cylinder(tmp_path, direction):
     assert 0.95 < expected / (D * kappa ** 2 / 2 * 0.09) < 0.99
     assert 0 < flat["c_energy"] < 1e-3 * bending
     _, _, turned = cylinder(tmp_path / "b", dir=direction, kappa=kappa, turn=70.0,
-                            extra="bend auto stabilize 0")
+                            extra="bend auto bending hinge stabilize 0")
     assert abs(turned["c_energy"] / out["c_energy"] - 1.0) < 1e-10
 
 
@@ -229,7 +231,9 @@ def test_bend_needs_a_membrane(tmp_path):
 PLATE = Path(__file__).parent / "decks" / "membrane_plate.lmp"
 
 
-# A plate clamped along one edge (its two top rows of vertices held) and bent by its weight
+# The hinge energy (bending hinge; the plate energy's clamped plate on five triangulations is in
+# test_plate_bending.py). A plate clamped along one edge (its two top rows of vertices held) and
+# bent by its weight
 # q = rho g t: the free edge deflects by q L^4 / (8D) (cylindrical bending; nu = 0, so the width
 # does not matter), D = E t^3 / 12 = 66.7 N m here, deflection ~1% of L (small). L is measured
 # from the middle of the two held rows: the hinge at the inner held row carries the root moment
@@ -244,7 +248,7 @@ def test_clamped_plate_small_deflection(tmp_path):
     mesh = Path(tmp_path) / "plate.obj"
     mesh.parent.mkdir(parents=True, exist_ok=True)
     make_sheet.write_obj(mesh, vertices, faces, ["plate"])
-    run = run_deck(PLATE, tmp_path, variables={"mesh": mesh, "a": 0.02})
+    run = run_deck(PLATE, tmp_path, variables={"mesh": mesh, "a": 0.02, "extra": "bending hinge"})
     last = {k: v[-1] for k, v in run.thermo[-1].items()}
     rows = sorted({round(v[1], 12) for v in vertices})
     L = 0.5 * (rows[-1] + rows[-2]) - rows[0]
@@ -257,7 +261,7 @@ def test_clamped_plate_small_deflection(tmp_path):
 
 @pytest.mark.mpi
 def test_plate_two_ranks_agree(tmp_path):
-    """Bending across a rank boundary: the hinges whose vertices are split between the ranks are
+    """Bending across a rank boundary (bending hinge): the hinges whose vertices are split between the ranks are
     evaluated by each owner from ghost copies (positions and triangle lists). The deflection on
     2 ranks agrees with 1 rank to the solver's summation order (1e-8 relative: the Krylov sums
     run in another order; measured ~1e-12)."""
@@ -267,7 +271,8 @@ def test_plate_two_ranks_agree(tmp_path):
     make_sheet.write_obj(mesh, vertices, faces, ["plate"])
     out = []
     for n in (1, 2):
-        run = run_deck(PLATE, tmp_path / str(n), nprocs=n, variables={"mesh": mesh, "a": 0.02})
+        run = run_deck(PLATE, tmp_path / str(n), nprocs=n,
+                       variables={"mesh": mesh, "a": 0.02, "extra": "bending hinge"})
         out.append({k: v[-1] for k, v in run.thermo[-1].items()})
     assert abs(out[1]["c_tipz"] / out[0]["c_tipz"] - 1.0) < 1e-8, out
     assert abs(out[1]["PotEng"] / out[0]["PotEng"] - 1.0) < 1e-8, out
@@ -296,7 +301,7 @@ def test_plate_restart_continues(tmp_path):
 
 @pytest.mark.mpi
 def test_hinges_follow_the_atoms(tmp_path):
-    """The hinge list is kept between neighbor list builds: it must be built again whenever the
+    """The hinge list (bending hinge) is kept between neighbor list builds: it must be built again whenever the
     atoms change ranks or memory slots. The cylinder of the energy test travels rigidly (fix move)
     1.5 box widths through periodic x on 2 ranks, with a neighbor list build every step and the
     atoms sorted every 5: its energy (nearly all bending: the membrane's is 5e-4 of it) stays
@@ -320,7 +325,7 @@ thermo          10
 run             100
 """ + tail
     run = run_deck(deck, tmp_path, nprocs=2, variables={"mesh": path, "kappa": 2.0,
-                                                        "extra": "bend auto stabilize 0"})
+                                                        "extra": "bend auto bending hinge stabilize 0"})
     assert "with 2 MPI tasks" in run.log
     t = run.thermo[-1]
     assert len(t["Step"]) == 11 and t["Step"][-1] == 100
@@ -350,7 +355,7 @@ def plate_mesh(tmp_path, spacing=0.02):
     return mesh
 
 
-# The coarse level with bending: the hinges' Gauss-Newton Hessian joins the bond springs in the
+# The coarse level with bending hinge: the hinges' Gauss-Newton Hessian joins the bond springs in the
 # AMG matrix, so a plate's out-of-plane stiffness is in it. On the clamped plate's static steps
 # (4 steps of 0.2 s, 2 cm triangles) amg took 226 iterations against block's 2423 (measured;
 # examples/membranes/in.plate at 1 cm: 72 against 2330 per step); asked: at most a fifth. Both
@@ -362,7 +367,8 @@ def test_plate_amg_with_hinges_beats_block(tmp_path):
     out = {}
     for precond in ("amg", "block"):
         run = run_deck(PLATE, tmp_path / precond,
-                       variables={"mesh": mesh, "a": 0.02, "precond": precond})
+                       variables={"mesh": mesh, "a": 0.02, "precond": precond,
+                                  "extra": "bending hinge"})
         assert "did not converge" not in run.log
         last = {k: v[-1] for k, v in run.thermo[-1].items()}
         assert last["f_integrate[4]"] == 0
@@ -371,13 +377,14 @@ def test_plate_amg_with_hinges_beats_block(tmp_path):
     assert abs(out["amg"][0] / out["block"][0] - 1.0) < 1e-5, out
     assert out["amg"][1] * 5 < out["block"][1], out
     deck = PLATE.read_text().replace("precond ${precond} ", "")
-    run = run_deck(deck, tmp_path / "default", variables={"mesh": mesh, "a": 0.02, "steps": 1})
+    run = run_deck(deck, tmp_path / "default", variables={"mesh": mesh, "a": 0.02, "steps": 1,
+                                                          "extra": "bending hinge"})
     assert "precond amg: PETSc" in run.log and "precond block" not in run.log
 
 
 @pytest.mark.mpi
 def test_plate_amg_two_ranks_agree(tmp_path):
-    """The hinges of the AMG matrix across a rank boundary: each rank assembles the rows of its
+    """The hinges (bending hinge) of the AMG matrix across a rank boundary: each rank assembles the rows of its
     owned vertices from the hinges it evaluates (those straddling the boundary on both ranks),
     with the columns of ghost vertices numbered by their owners. 2 ranks converge to the 1-rank
     deflection within the tolerance (1e-5 of the residual: 1e-6 relative asked, measured
@@ -386,7 +393,8 @@ def test_plate_amg_two_ranks_agree(tmp_path):
     out = []
     for n in (1, 2):
         run = run_deck(PLATE, tmp_path / str(n), nprocs=n,
-                       variables={"mesh": mesh, "a": 0.02, "precond": "amg"})
+                       variables={"mesh": mesh, "a": 0.02, "precond": "amg",
+                                  "extra": "bending hinge"})
         last = {k: v[-1] for k, v in run.thermo[-1].items()}
         assert last["f_integrate[4]"] == 0
         out.append((last["c_tipz"], sum(run.thermo[-1]["f_integrate[1]"][1:])))
@@ -432,53 +440,22 @@ def test_strip_tears(tmp_path):
     assert last["c_tipdy"] < -0.1
 
 
-def heavy_elastica_drop(alpha, n=2000):
-    """Tip drop / L of an inextensible cantilever under its own weight (the heavy elastica):
-    theta'' = -alpha (1 - s) cos(theta) on s in [0, 1] (theta the slope angle, downwards),
-    theta(0) = 0 (clamped), theta'(1) = 0 (free tip), alpha = q L^3 / D; shooting on theta'(0)
-    by bisection with RK4, the drop by Simpson's rule. Small alpha gives alpha / 8."""
-    import math
-
-    def shoot(k0):
-        h, th, w, z = 1.0 / n, 0.0, k0, 0.0
-
-        def f(s, th, w):
-            return w, -alpha * (1 - s) * math.cos(th)
-        for i in range(n):
-            s = i * h
-            k1 = f(s, th, w)
-            k2 = f(s + h / 2, th + h / 2 * k1[0], w + h / 2 * k1[1])
-            k3 = f(s + h / 2, th + h / 2 * k2[0], w + h / 2 * k2[1])
-            k4 = f(s + h, th + h * k3[0], w + h * k3[1])
-            thn = th + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
-            wn = w + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
-            thm = th + h / 2 * k2[0]
-            z += h / 6 * (math.sin(th) + 4 * math.sin(thm) + math.sin(thn))
-            th, w = thn, wn
-        return w, z
-
-    lo, hi = 0.0, 2.0 * alpha
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if shoot(mid)[0] > 0:
-            hi = mid
-        else:
-            lo = mid
-    return shoot(mid)[1]
-
-
 def test_heavy_elastica_reference():
     # the reference itself: the small-load limit alpha / 8, and the nonlinear drop below it
     assert abs(heavy_elastica_drop(0.01) / (0.01 / 8) - 1.0) < 1e-3
     assert 0.49 < heavy_elastica_drop(5.0) < 0.50 < 5.0 / 8
 
 
-# Large deflection: the same clamped plate with E lowered so that alpha = q L^3 / D = 5 drops its
-# free edge by half its length (small-deflection theory: 0.625 L). The heavy elastica above gives
-# 0.4959 L; measured on 1 cm equilateral triangles: +0.4%. On 2 cm triangles it is 6% short: the
-# bonds' chords across the curved sheet (curvature ~8 / m near the clamp, horizon 6 cm) read as a
-# spurious membrane strain ~(kappa delta)^2 / 24 whose energy stiffens the plate; it falls like
-# delta^4. Asked: 5%. (About 15 s with precond amg; 2 minutes with block.)
+# Large deflection: the same clamped plate with E lowered so that alpha = q L^3 / D = 5 (L from
+# the middle of the held rows) drops its free edge by half its length (small-deflection theory:
+# 0.625 L). The heavy elastica (tools/elastica.py) of the plate energy's clamp, the inner held
+# row (alpha 4.79 there), gives 0.4819 L_inner; measured (2026-11-30, validate_bending.py --only
+# elastica) on 1 cm equilateral triangles: +0.22% (alternating right triangles +0.65%; from the
+# middle of the held rows -4.0%). With the hinges (bending hinge, L from the middle) it was
+# +0.4%, and on 2 cm triangles 6% short: the bonds' chords across the curved sheet (curvature
+# ~8 / m near the clamp, horizon 6 cm) read as a spurious membrane strain ~(kappa delta)^2 / 24
+# whose energy stiffens the plate; it falls like delta^4. Asked: 2%. (About 15 s with precond
+# amg.)
 @pytest.mark.slow
 def test_clamped_plate_heavy_elastica(tmp_path):
     vertices, faces = make_sheet.rectangle(0.3, 0.3, 0.01, "equilateral", 0.0, 1)
@@ -495,8 +472,9 @@ def test_clamped_plate_heavy_elastica(tmp_path):
         "mesh": mesh, "a": 0.01, "E": E_, "dt": 1.0, "steps": 6, "iters": 20000,
         "extra": "contact no", "precond": "amg"})
     last = {k: v[-1] for k, v in run.thermo[-1].items()}
-    expected = heavy_elastica_drop(5.0) * L
-    assert abs(-last["c_tipz"] / expected - 1.0) < 0.05, (last["c_tipz"], expected)
+    inner = rows[-2] - rows[0]
+    expected = heavy_elastica_drop(q * inner ** 3 / D) * inner
+    assert abs(-last["c_tipz"] / expected - 1.0) < 0.02, (last["c_tipz"], expected)
     assert last["f_integrate[4]"] == 0
 
 
@@ -518,17 +496,17 @@ def curved_patch():
 
 
 def test_curved_rest_shape_keeps_its_angles(tmp_path):
-    """A mesh curved at rest (a cylindrical patch of radius 0.2 m) keeps its dihedral angles as
+    """With bending hinge, a mesh curved at rest (a cylindrical patch of radius 0.2 m) keeps its dihedral angles as
     rest angles: at rest the bending term adds nothing (energy and forces equal to those without
     bending, to round-off), and bending it further costs energy."""
     patch = curved_patch()
     out = {}
-    for bend in ("bend no", "bend auto"):
+    for bend in ("bend no", "bend auto bending hinge"):
         run = run_deck(CURVED_PATCH, tmp_path / bend.split()[1], variables={"bend": bend},
                        files={"patch.obj": patch})
         out[bend] = [{k: v[-1] for k, v in t.items()} for t in run.thermo]
-    rest0, rest1 = out["bend no"][0], out["bend auto"][0]
+    rest0, rest1 = out["bend no"][0], out["bend auto bending hinge"][0]
     assert abs(rest1["c_energy"] - rest0["c_energy"]) <= 1e-12 * max(1.0, rest0["c_energy"])
     assert abs(rest1["v_fnorm"] - rest0["v_fnorm"]) <= 1e-9 * max(1.0, rest0["v_fnorm"])
-    bent0, bent1 = out["bend no"][1], out["bend auto"][1]
+    bent0, bent1 = out["bend no"][1], out["bend auto bending hinge"][1]
     assert bent1["c_energy"] - bent0["c_energy"] > 1e-6

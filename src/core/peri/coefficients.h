@@ -43,7 +43,7 @@ struct PairCoefficients {
   bool breaks = true;
   bool contact = true;
   bool membrane = false;    // a type property (the line I I)
-  bool plate = false;       // bending keyword: plate (true) or hinge; a type property
+  bool plate = true;        // bending keyword: plate (true) or hinge; a type property
 };
 
 // The coefficients of a type pair I J not given, from the lines I I and J J: the model of

@@ -220,7 +220,7 @@ TEST(Coefficients, RestartSectionKeepsTheGivenLines)
   PairCoefficients b = line("xu", 6.0, 0.0, 0.5, 0.01, 0.0);
   b.contact = false;
   b.length = !kDefaultLengthDeviation;
-  b.plate = true;
+  b.plate = !PairCoefficients{}.plate;    // the non-default bending
   table.set(1, 1, a);
   table.set(2, 3, b);
   const std::vector<double> bend = {0.0, 2.5, 0.0, -1.0};
