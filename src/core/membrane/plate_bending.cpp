@@ -74,37 +74,39 @@ PlateProblem PlateBending::build(const HingeMesh &mesh, const double *x0, const 
   // the candidates, each with the owned sharer that found it first
   std::map<Key, int> candidates;
   std::vector<std::array<Id, 2>> at, at2;
-  auto add_plate = [&](Id a, Id b, Id c, int i) {
-    const int ra = local.row(a), rb = local.row(b), rc = local.row(c);
-    if (ra < 0 || rb < 0 || rc < 0) return false;
-    if (mesh.plate(ra) && mesh.plate(rb) && mesh.plate(rc)) candidates.emplace(key_of(a, b, c), i);
-    return true;
-  };
   for (int i = 0; i < nlocal; i++) {
     const Id id = mesh.id(i);
     if (mesh.sharer(id) != i || !mesh.plate(i)) continue;
     local.anchor(i);
-    std::set<Id> ring = {id};
-    local.triangles_at(id, at);
-    for (const auto &o : at) ring.insert(o.begin(), o.end());
-    for (Id v : ring) {
-      if (!local.triangles_at(v, at)) {
-        problem = {StencilStatus::missing, id, {id, v, v}};
-        return problem;
-      }
-      for (const auto &o : at) {
-        const Id t[3] = {v, o[0], o[1]};
-        if (!add_plate(t[0], t[1], t[2], i)) return {StencilStatus::missing, id, {t[0], t[1], t[2]}};
-        // the triangles across its edges
-        for (int k = 0; k < 3; k++) {
-          const Id a = t[k], b = t[(k + 1) % 3];
-          if (!local.triangles_at(a, at2)) return {StencilStatus::missing, id, {t[0], t[1], t[2]}};
-          for (const auto &o2 : at2)
-            if (o2[0] == b || o2[1] == b)
-              if (!add_plate(a, o2[0], o2[1], i))
-                return {StencilStatus::missing, id, {t[0], t[1], t[2]}};
+    auto found = around_.find(id);
+    if (found == around_.end()) {
+      // the triangles of its ring's vertices and those across their edges (once per vertex)
+      std::vector<Key> keys;
+      std::set<Id> ring = {id};
+      local.triangles_at(id, at);
+      for (const auto &o : at) ring.insert(o.begin(), o.end());
+      for (Id v : ring) {
+        if (!local.triangles_at(v, at)) return {StencilStatus::missing, id, {id, v, v}};
+        for (const auto &o : at) {
+          const Id t[3] = {v, o[0], o[1]};
+          keys.push_back(key_of(t[0], t[1], t[2]));
+          for (int k = 0; k < 3; k++) {
+            const Id a = t[k], b = t[(k + 1) % 3];
+            if (!local.triangles_at(a, at2))
+              return {StencilStatus::missing, id, {t[0], t[1], t[2]}};
+            for (const auto &o2 : at2)
+              if (o2[0] == b || o2[1] == b) keys.push_back(key_of(a, o2[0], o2[1]));
+          }
         }
       }
+      std::sort(keys.begin(), keys.end());
+      keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+      found = around_.emplace(id, std::move(keys)).first;
+    }
+    for (const Key &t : found->second) {
+      const int ra = local.row(t[0]), rb = local.row(t[1]), rc = local.row(t[2]);
+      if (ra < 0 || rb < 0 || rc < 0) return {StencilStatus::missing, id, t};
+      if (mesh.plate(ra) && mesh.plate(rb) && mesh.plate(rc)) candidates.emplace(t, i);
     }
   }
 

@@ -83,6 +83,9 @@ class PlateBending {
  private:
   // stencils by triangle: corners in their orientation, the smallest ID first
   std::map<std::array<std::int64_t, 3>, TriangleStencil> cache_;
+  // by vertex ID, the triangles whose stencils may hold it (its ring's triangles and those
+  // across their edges; the mesh's topology, found once)
+  std::map<std::int64_t, std::vector<std::array<std::int64_t, 3>>> around_;
   std::vector<PlateTriangle> list_;
   PlateCouplings couplings_;
   void make_couplings();

@@ -75,10 +75,13 @@ class View : public PeriSISSM::HingeMesh {
   std::map<std::int64_t, int> row_of_;
 };
 
-// The pass of one view at sheet positions y: forces (3 per sheet vertex, owned ones) and energy.
-double view_pass(const View &view, const std::vector<double> &y, std::vector<double> &f_sheet)
+// The pass of one view at sheet positions y: forces (3 per sheet vertex, owned ones) and energy,
+// with the list built by `plates` (a new one by default).
+double view_pass(const View &view, const std::vector<double> &y, std::vector<double> &f_sheet,
+                 PeriSISSM::PlateBending &&fresh = PeriSISSM::PlateBending(),
+                 PeriSISSM::PlateBending *kept = nullptr)
 {
-  PeriSISSM::PlateBending plates;
+  PeriSISSM::PlateBending &plates = kept ? *kept : fresh;
   PeriSISSM::ReferenceBox box;
   const PeriSISSM::PlateProblem problem = plates.build(view, view.x0.data(), box);
   EXPECT_TRUE(problem.ok());
@@ -169,6 +172,32 @@ TEST(PlateBending, ForcesDoNotDependOnTheRowOrder)
   EXPECT_GT(E1, 0.0);
   for (std::size_t j = 0; j < f1.size(); j++) EXPECT_EQ(f1[j], f2[j]) << j;
   EXPECT_NEAR(E1, E2, 1e-13 * E1);    // (energies are summed in list order: corners differ)
+}
+
+// A list built again (as after every neighbor list build) with other rows and other owned
+// vertices, from the candidates found by the first build, equals a list built afresh, bit for
+// bit: the candidates are kept by vertex ID, the rows looked up anew.
+TEST(PlateBending, BuiltAgainWithOtherRowsEqualsBuiltAfresh)
+{
+  const Sheet sheet(7, 6, 0.8, 0.2);
+  const std::vector<double> y = bent_positions(sheet);
+  std::vector<int> all(sheet.nv()), left, right;
+  std::iota(all.begin(), all.end(), 0);
+  for (int i = 0; i < sheet.nv(); i++) (sheet.X[3 * i] < 0.0 ? left : right).push_back(i);
+  std::vector<int> shuffled = all;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(5));
+  PeriSISSM::PlateBending kept;
+  std::vector<double> f0(y.size(), 0.0);
+  view_pass(View(sheet, left, right, 1.1, 0.3), y, f0, PeriSISSM::PlateBending(), &kept);
+  for (const View &view : {View(sheet, shuffled, {}, 1.1, 0.3), View(sheet, right, left, 1.1, 0.3),
+                           View(sheet, all, {}, 1.1, 0.3)}) {
+    std::vector<double> fa(y.size(), 0.0), fb(y.size(), 0.0);
+    const double Ea = view_pass(view, y, fa, PeriSISSM::PlateBending(), &kept);
+    const double Eb = view_pass(view, y, fb);
+    EXPECT_GT(Eb, 0.0);
+    EXPECT_EQ(Ea, Eb);
+    for (std::size_t j = 0; j < fa.size(); j++) EXPECT_EQ(fa[j], fb[j]) << j;
+  }
 }
 
 // What cannot be built is named: a rank whose ghosts stop one ring short of a stencil, and a
