@@ -93,7 +93,8 @@ void PairPeriNosb::build_hinges()
     error->one(FLERR,
                "Pair peri/nosb bend: a vertex of a hinge of atom {} is neither owned nor a ghost "
                "atom here: the ghost cutoff is shorter than two edges of its mesh (comm_modify "
-               "cutoff)",
+               "cutoff), or the run has torn the mesh apart (an unstable time step: compare it "
+               "with compute nosb/atom's column 11)",
                missing);
   if (any_plate) {
     if (!plates) plates = std::make_unique<PeriSISSM::PlateBending>();
@@ -105,7 +106,9 @@ void PairPeriNosb::build_hinges()
       error->one(FLERR,
                  "Pair peri/nosb bending plate: the curvature stencil of triangle ({} {} {}) near "
                  "atom {} reaches a vertex that is neither owned nor a ghost atom here: the ghost "
-                 "cutoff ({}) is shorter than the stencil (comm_modify cutoff)",
+                 "cutoff ({}) is shorter than the stencil (comm_modify cutoff), or the run has "
+                 "torn the mesh apart (an unstable time step: compare it with compute nosb/atom's "
+                 "column 11)",
                  t[0], t[1], t[2], p.vertex, comm->get_comm_cutoff());
     if (p.status == StencilStatus::not_flat)
       error->one(FLERR,
