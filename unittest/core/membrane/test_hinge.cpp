@@ -5,6 +5,8 @@
 
 #include "membrane/hinge.h"
 
+#include "flat_sheet.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -197,20 +199,7 @@ void alternate(int n, std::vector<Vec> &X, std::vector<std::array<int, 3>> &tri)
 {
   for (int j = 0; j <= n; j++)
     for (int i = 0; i <= n; i++) X.emplace_back(i, j, 0.0);
-  auto id = [n](int i, int j) {
-    return j * (n + 1) + i;
-  };
-  for (int j = 0; j < n; j++)
-    for (int i = 0; i < n; i++) {
-      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if ((i + j) % 2 == 0) {
-        tri.push_back({a, b, c});
-        tri.push_back({a, c, d});
-      } else {
-        tri.push_back({a, b, d});
-        tri.push_back({b, c, d});
-      }
-    }
+  alternate_triangles(n, n, tri);
 }
 
 TEST(Hinge, CylinderCalibration)
