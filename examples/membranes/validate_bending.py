@@ -42,6 +42,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1] / "tools"))
 import make_sheet as ms  # noqa: E402
+from dump_to_vtu import read_dump  # noqa: E402
 from elastica import heavy_elastica_drop  # noqa: E402
 
 KINDS = {"equilateral": dict(pattern="equilateral"),
@@ -157,23 +158,30 @@ write_dump all custom final.txt id x y z modify format float %.15g
     return [-tipz / (q * L ** 4 / (8.0 * D)) for L in (L_mid, L_inner)] + [tipz / before - 1.0]
 
 
+def quadratic_fit(dump, x0, y0, near):
+    """Coefficients of 1, x, y, x^2, x y, y^2 (x, y from (x0, y0)) of the quadratic fitted to the
+    z of the vertices of a write_dump custom file (x y z columns) for which near(x, y) holds."""
+    import numpy as np
+    _, columns, rows = read_dump(dump)[-1]
+    pts = np.array([[float(r[columns.index(c)]) for c in ("x", "y", "z")] for r in rows])
+    x, y = pts[:, 0] - x0, pts[:, 1] - y0
+    keep = near(x, y)
+    x, y = x[keep], y[keep]
+    A = np.column_stack([np.ones_like(x), x, y, x * x, x * y, y * y])
+    return np.linalg.lstsq(A, pts[keep, 2], rcond=None)[0]
+
+
 def curvature_ratio(dump, y_mid, reach):
     """kappa_xx / kappa_yy of a quadratic w(x, y) fitted to the vertices within reach of y_mid in
     y (all across the strip)."""
-    import numpy as np
-    rows = [ln.split() for ln in Path(dump).read_text().splitlines()]
-    pts = np.array([[float(w) for w in r[1:4]] for r in rows if len(r) == 4 and r[0].isdigit()])
-    pts = pts[abs(pts[:, 1] - y_mid) < reach]
-    x, y = pts[:, 0] - pts[:, 0].mean(), pts[:, 1] - y_mid
-    A = np.column_stack([np.ones_like(x), x, y, x * x, x * y, y * y])
-    c = np.linalg.lstsq(A, pts[:, 2], rcond=None)[0]
+    c = quadratic_fit(dump, 0.0, y_mid, lambda x, y: abs(y) < reach)
     return c[3] / c[5]
 
 
 def simply_supported(lmp, kind, a, workdir, nu=0.3):
     """Centre deflection of the simply supported square plate under a uniform load over
     Timoshenko's 0.00406 q a^4 / D (nu = 0.3; Timoshenko and Woinowsky-Krieger, Theory of Plates
-    and Shells, table 8). The rim's vertices are held (w = 0 and no in-plane motion: at a
+    and Shells, 1959). The rim's vertices are held (w = 0 and no in-plane motion: at a
     deflection of 0.4% of the thickness the membrane force this brings is of second order), the
     bending moment at the rim is free (the energy's natural boundary condition). The deflection
     at the centre: a quadratic in x and y fitted to the vertices within two cells of it."""
@@ -187,30 +195,24 @@ def simply_supported(lmp, kind, a, workdir, nu=0.3):
     rim = [i for i, v in enumerate(vertices)
            if min(v[0] - x0, x1 - v[0], v[1] - y0, y1 - v[1]) < eps]
     cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
-    near = [i for i, v in enumerate(vertices) if math.hypot(v[0] - cx, v[1] - cy) < 2.0 * a]
     side = 0.5 * ((x1 - x0) + (y1 - y0))
     q, D = RHO * G * T, E * T ** 3 / (12.0 * (1.0 - nu * nu))
     deck = sheet_head(a, E, nu, zlo=-0.1) + f"""group held id {ids(rim)}
 group free subtract all held
-group centre id {ids(near)}
 fix grav all gravity {G} vector 0 0 -1
 timestep 0.2
 fix integrate free sissm solver krylov precond {PRECOND} iterations 10000 tolerance {tolerance(a)}
 thermo_style custom step pe f_integrate[1]
 run 3
-write_dump centre custom before.txt id x y z modify format float %.15g
+write_dump all custom before.txt id x y z modify format float %.15g
 run 1
-write_dump centre custom after.txt id x y z modify format float %.15g
+write_dump all custom after.txt id x y z modify format float %.15g
 """
     run_lmp(lmp, deck, workdir)
 
     def centre(name):
-        rows = [ln.split() for ln in (Path(workdir) / name).read_text().splitlines()]
-        pts = np.array([[float(w) for w in r[1:4]] for r in rows if len(r) == 4 and
-                        r[0].isdigit()])
-        x, y = pts[:, 0] - cx, pts[:, 1] - cy
-        A = np.column_stack([np.ones_like(x), x, y, x * x, x * y, y * y])
-        return np.linalg.lstsq(A, pts[:, 2], rcond=None)[0][0]
+        return quadratic_fit(Path(workdir) / name, cx, cy,
+                             lambda x, y: np.hypot(x, y) < 2.0 * a)[0]
     w, before = centre("after.txt"), centre("before.txt")
     return [-w / (0.00406 * q * side ** 4 / D), w / before - 1.0]
 
