@@ -68,10 +68,11 @@ class ImplicitForces {
   // converged), 0 (it did not), -1 (explicit)
   virtual void check_motion(int converged) = 0;
 
-  // true when some particles are membranes of a type without bending: the coarse level's
-  // matrix has no stiffness out of their plane but the mass (fix sissm's default
-  // preconditioner is then block)
-  virtual bool has_unbent_membranes() const = 0;
+  // true (all ranks) when some owned atom of groupbit is a particle of a membrane type without
+  // bending: the coarse level's matrix has no stiffness out of its plane but the mass (fix
+  // sissm's default preconditioner is then block). Membranes outside the group (held, moved
+  // by other fixes) are not unknowns of the fix and do not count.
+  virtual bool has_unbent_membranes(int groupbit) = 0;
   // true (all ranks) when every owned atom of groupbit is a particle of a membrane type
   // (precond amg then aggregates without smoothing the interpolation: fix_sissm_amg.cpp)
   virtual bool only_membranes(int groupbit) = 0;

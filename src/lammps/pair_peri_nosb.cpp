@@ -234,9 +234,14 @@ void PairPeriNosb::check_membranes()
 
 /* ---------------------------------------------------------------------- */
 
-bool PairPeriNosb::has_unbent_membranes() const
+bool PairPeriNosb::has_unbent_membranes(int groupbit)
 {
-  return model_ && model_->any_membrane() && coeffs->any_unbent_membrane(bend);
+  int mine = 0, any = 0;
+  if (model_ && model_->any_membrane())
+    for (int i = 0; i < atom->nlocal && !mine; i++)
+      if ((atom->mask[i] & groupbit) && coeffs->unbent_membrane(atom->type[i], bend)) mine = 1;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, world);
+  return any == 1;
 }
 
 bool PairPeriNosb::only_membranes(int groupbit)

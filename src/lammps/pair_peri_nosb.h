@@ -87,7 +87,7 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   int contact_build_wanted() override;
   bool group_coupled(int groupbit) override;
   void check_motion(int converged) override;
-  bool has_unbent_membranes() const override;
+  bool has_unbent_membranes(int groupbit) override;
   bool only_membranes(int groupbit) override;
 
   // ---- BondPartners (fix nosb/contact; pair_peri_nosb_partners.cpp) ----

@@ -347,6 +347,43 @@ def test_default_preconditioner_with_unbent_membranes_is_block(tmp_path):
     assert run.thermo[-1]["f_integrate[4]"][-1] == 0
 
 
+TWO_SHEETS = """
+units           si
+boundary        f f f
+atom_style      peri
+atom_modify     map array
+region          box block -0.2 0.2 -0.2 0.2 -0.2 0.2
+create_box      2 box
+read_mesh       ${mesh} type 1 thickness 0.0005 density 400 group held
+read_mesh       ${mesh} type 2 thickness 0.0005 density 400 offset 0 0 0.05 group sheet
+pair_style      peri/nosb
+pair_coeff      * * xu 5.0e6 0 0.020002 0 0 break no membrane yes stabilize 0.1 contact no
+pair_coeff      2 2 xu 5.0e6 0 0.020002 0 0 break no membrane yes bend auto stabilize 0.1 contact no
+fix             grav all gravity 9.81 vector 0 0 -1
+timestep        0.002
+fix             integrate ${group} sissm scheme genalpha
+thermo          1
+run             2
+"""
+
+
+@pytest.mark.parametrize("group", ["sheet", "all"])
+def test_default_preconditioner_counts_only_the_fixs_membranes(tmp_path, group):
+    """Membranes without bending outside fix sissm's group (a held sheet, as cloth-on-ball's
+    sphere) leave the default amg to the bent sheet the fix integrates; in the group they take
+    block."""
+    vertices, faces = make_sheet.rectangle(0.2, 0.2, 0.01, "equilateral", 0.0, 1)
+    mesh = Path(tmp_path) / "sheet.obj"
+    make_sheet.write_obj(mesh, vertices, faces, ["sheet"])
+    run = run_deck(TWO_SHEETS, tmp_path, variables={"mesh": mesh, "group": group})
+    block = "membranes without bending (pair_coeff ... membrane yes, no bend): precond block"
+    amg = "set-ups of the AMG hierarchy"    # the run summary of precond amg
+    if group == "sheet":
+        assert block not in run.log and amg in run.log
+    else:
+        assert block in run.log and amg not in run.log
+
+
 def plate_mesh(tmp_path, spacing=0.02):
     vertices, faces = make_sheet.rectangle(0.3, 0.3, spacing, "equilateral", 0.0, 1)
     mesh = Path(tmp_path) / "plate.obj"

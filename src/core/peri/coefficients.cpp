@@ -136,12 +136,11 @@ std::vector<double> CoefficientTable::bending_factors(const std::vector<double> 
   return factor;
 }
 
-bool CoefficientTable::any_unbent_membrane(const std::vector<double> &bend) const
+bool CoefficientTable::unbent_membrane(int t, const std::vector<double> &bend) const
 {
-  for (int t = 1; t < n_; t++)
-    if (at(t, t).membrane && (t >= (int) bend.size() || bend[t] == 0.0)) return true;
-  return false;
+  return at(t, t).membrane && (t >= (int) bend.size() || bend[t] == 0.0);
 }
+
 
 bool CoefficientTable::set_s00_from_g0(const std::vector<double> &sums, std::string &log,
                                        int &bad_i, int &bad_j)

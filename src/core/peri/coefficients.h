@@ -94,8 +94,8 @@ class CoefficientTable {
   // per type t (bend[t], 1 <= t <= ntypes: its bending modulus, 0 none, -1 auto): the factor
   // bending_factor() of its line t t where bend[t] != 0, else 0 (index 0 unused)
   std::vector<double> bending_factors(const std::vector<double> &bend) const;
-  // a membrane type (line t t) without bending (bend[t] == 0, or t beyond bend)
-  bool any_unbent_membrane(const std::vector<double> &bend) const;
+  // type t is a membrane type (line t t) without bending (bend[t] == 0, or t beyond bend)
+  bool unbent_membrane(int t, const std::vector<double> &bend) const;
 
   // The G0 keyword: in the order i <= j, each given pair with g0 > 0 gets s00 =
   // s00_from_fracture_energy() of its K, G, Cs, horizon and pair_spacing(sums, i, j); log gets a

@@ -326,9 +326,10 @@ TEST(Coefficients, BendingFactorsAndUnbentMembranes)
   EXPECT_GT(f[1], 0.0);
   EXPECT_EQ(f[2], 0.0);
   EXPECT_EQ(f[3], bending_factor(t.at(3, 3).moduli));
-  EXPECT_FALSE(t.any_unbent_membrane(bend));
-  EXPECT_TRUE(t.any_unbent_membrane({0.0, -1.0, 0.0, 0.0}));
-  EXPECT_TRUE(t.any_unbent_membrane({0.0, -1.0}));    // type 3 beyond the list: no bending
+  for (int type = 1; type <= 3; type++) EXPECT_FALSE(t.unbent_membrane(type, bend)) << type;
+  EXPECT_TRUE(t.unbent_membrane(3, {0.0, -1.0, 0.0, 0.0}));
+  EXPECT_FALSE(t.unbent_membrane(2, {0.0, -1.0, 0.0, 0.0}));    // not a membrane
+  EXPECT_TRUE(t.unbent_membrane(3, {0.0, -1.0}));    // type 3 beyond the list: no bending
 }
 
 TEST(Coefficients, CriticalStretchFromFractureEnergy)
