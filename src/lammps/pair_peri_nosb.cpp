@@ -234,23 +234,26 @@ void PairPeriNosb::check_membranes()
 
 /* ---------------------------------------------------------------------- */
 
-bool PairPeriNosb::has_unbent_membranes(int groupbit)
+template <class Test> bool PairPeriNosb::any_type_in_group(int groupbit, Test of_type)
 {
   int mine = 0, any = 0;
-  if (model_ && model_->any_membrane())
-    for (int i = 0; i < atom->nlocal && !mine; i++)
-      if ((atom->mask[i] & groupbit) && coeffs->unbent_membrane(atom->type[i], bend)) mine = 1;
+  for (int i = 0; i < atom->nlocal && !mine; i++)
+    if ((atom->mask[i] & groupbit) && of_type(atom->type[i])) mine = 1;
   MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, world);
   return any == 1;
 }
 
+bool PairPeriNosb::has_unbent_membranes(int groupbit)
+{
+  // (collective: every rank takes part in the reduction)
+  const bool membranes = model_ && model_->any_membrane();
+  return any_type_in_group(groupbit,
+                           [&](int t) { return membranes && coeffs->unbent_membrane(t, bend); });
+}
+
 bool PairPeriNosb::only_membranes(int groupbit)
 {
-  int mine = 1, all = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if ((atom->mask[i] & groupbit) && !coeffs->at(atom->type[i], atom->type[i]).membrane) mine = 0;
-  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, world);
-  return all == 1;
+  return !any_type_in_group(groupbit, [&](int t) { return !coeffs->at(t, t).membrane; });
 }
 
 /* ---------------------------------------------------------------------- */

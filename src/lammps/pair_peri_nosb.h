@@ -134,6 +134,8 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   std::vector<double> contact_blocks;    // SISSM blocks of the contact pairs, 6 per owned and
                                          //   ghost atom (compute_contact with blocks)
   void add_contact_blocks();
+  // true on all ranks when some owned atom of groupbit has a type t with of_type(t)
+  template <class Test> bool any_type_in_group(int groupbit, Test of_type);
   int state_nlocal;    // nlocal when compute() last filled the per-atom state
 
   // per-atom results of the last compute() (owned atoms; ghosts as communicated), rows of

@@ -372,9 +372,7 @@ def test_default_preconditioner_counts_only_the_fixs_membranes(tmp_path, group):
     """Membranes without bending outside fix sissm's group (a held sheet, as cloth-on-ball's
     sphere) leave the default amg to the bent sheet the fix integrates; in the group they take
     block."""
-    vertices, faces = make_sheet.rectangle(0.2, 0.2, 0.01, "equilateral", 0.0, 1)
-    mesh = Path(tmp_path) / "sheet.obj"
-    make_sheet.write_obj(mesh, vertices, faces, ["sheet"])
+    mesh = plate_mesh(tmp_path, spacing=0.01)
     run = run_deck(TWO_SHEETS, tmp_path, variables={"mesh": mesh, "group": group})
     block = "membranes without bending (pair_coeff ... membrane yes, no bend): precond block"
     amg = "set-ups of the AMG hierarchy"    # the run summary of precond amg

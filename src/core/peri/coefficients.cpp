@@ -141,7 +141,6 @@ bool CoefficientTable::unbent_membrane(int t, const std::vector<double> &bend) c
   return at(t, t).membrane && (t >= (int) bend.size() || bend[t] == 0.0);
 }
 
-
 bool CoefficientTable::set_s00_from_g0(const std::vector<double> &sums, std::string &log,
                                        int &bad_i, int &bad_j)
 {
