@@ -38,6 +38,11 @@ namespace LAMMPS_NS {
 // for about 16% less CPU time; on the solid cantilever's static step smoothing is needed)
 constexpr const char *kMembraneOptions = "-pc_gamg_agg_nsmooths 0";
 
+// the share of the unknowns that may sit on other ranks than their PETSc rows before a set-up
+// numbers them again (their values and vector entries then travel at every set-up and
+// application)
+constexpr double kMovedRows = 0.1;
+
 class SissmAmg : public PeriSISSM::Preconditioner {
  public:
   SissmAmg(FixSissm *fix) : fix_(fix) {}
@@ -68,10 +73,13 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   bigint built_at_ = -1;                // neighbor->lastcall of that build
   int nlocal_ = -1;
   bigint total_ = 0;                    // unknowns of all ranks when they were numbered
+  int numbered_from_ = 0, numbered_ = 0;    // this rank's numbers then: [from, from + count)
   std::uint64_t signature_ = 0;         // the pattern's (all ranks)
   std::uint64_t matrix_signature_ = 0;    // the pattern PETSc's matrix was made with
   std::vector<std::uint64_t> matrix_blocks_;    // and this rank's blocks of it (sorted keys)
   bool logged_ = false;
+  bool cost_pending_ = false;    // a set-up whose cost the next application tells
+  bool values_only_ = false;     // it kept the interpolation
   std::vector<double> values_, coords_, b_, z_;
   std::vector<int> unknown_nodes_;
   bool all_ranks(bool mine);
@@ -88,6 +96,9 @@ class SissmAmg : public PeriSISSM::Preconditioner {
   bool numbers_carried(const PeriSISSM::Rows &rows) const;
   // a new PETSc matrix and hierarchy (aggregates and interpolation) for the current pattern
   void make_hierarchy();
+  // whether more than kMovedRows of the unknowns (all ranks) are on another rank than the one
+  // that numbered them (whose PETSc rows they are): numbered again with the next set-up
+  bool rows_moved();
   // a call of PETSc whose failure ends the run with its message
   template <class Call> void guarded(Call call)
   {
@@ -156,6 +167,8 @@ void SissmAmg::number_unknowns(const PeriSISSM::Rows &rows)
   MPI_Exscan(&count, &offset, 1, MPI_INT, MPI_SUM, fix_->world);
   if (fix_->comm->me == 0) offset = 0;
   PeriSISSM::number_unknowns(rows, offset, atom->nlocal + atom->nghost, fix_->gnode);
+  numbered_from_ = offset;
+  numbered_ = count;
   bigint mine = count;
   MPI_Allreduce(&mine, &total_, 1, MPI_LMP_BIGINT, MPI_SUM, fix_->world);
   pattern_from_numbers(rows);
@@ -196,6 +209,15 @@ bool SissmAmg::build_pattern(const PeriSISSM::Rows &rows)
   return true;
 }
 
+bool SissmAmg::rows_moved()
+{
+  bigint away = 0, all = 0;
+  for (int node : unknown_nodes_)
+    if (node < numbered_from_ || node >= numbered_from_ + numbered_) away++;
+  MPI_Allreduce(&away, &all, 1, MPI_LMP_BIGINT, MPI_SUM, fix_->world);
+  return all > kMovedRows * total_;
+}
+
 void SissmAmg::make_hierarchy()
 {
   guarded([&] {
@@ -204,7 +226,7 @@ void SissmAmg::make_hierarchy()
   });
   matrix_signature_ = signature_;
   matrix_blocks_ = PeriSISSM::pattern_blocks(pattern_);
-  schedule_.made_hierarchy(built_at_);
+  schedule_.made_hierarchy();
 }
 
 void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
@@ -222,11 +244,14 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
   const bool same_pattern = pattern_current() || !build_pattern(rows);
   if (!schedule_.setup_wanted(same_pattern, c)) return;
   fix_->forces->hinge_couplings(hinges_, true);
-  if (schedule_.begin_setup(same_pattern, built_at_, c)) {
+  values_only_ = same_pattern;
+  if (schedule_.begin_setup(same_pattern, rows_moved(), c)) {
     // (numbered again: the matrix's rows go back to the processes of their atoms)
     number_unknowns(rows);
     make_hierarchy();
+    values_only_ = false;
   }
+  cost_pending_ = true;
   PeriSISSM::assemble_blocks(rows, fix_->gnode, c, springs_, hinges_, hinge_index_, plates_,
                              plate_index_, pattern_, fix_->atom->x, values_, coords_);
   guarded([&] {
@@ -248,6 +273,8 @@ void SissmAmg::apply(PeriSISSM::NonlinearSystem &sys, double **r, double **z)
   guarded([&] {
     amg_->apply(b_.data(), z_.data());
   });
+  if (cost_pending_) schedule_.measured_setup(amg_->setup_in_applications(), values_only_);
+  cost_pending_ = false;
   PeriSISSM::scatter_unknowns(sys.rows(), z_, z);
 }
 

@@ -58,6 +58,7 @@ struct PetscAmg::Impl {
   MPI_Comm comm = MPI_COMM_NULL;
   std::string prefix, options;
   Mat A = nullptr;
+  double setup_flops = 0.0, apply_flops = 0.0;    // of the last set-up and its first application
   Vec b = nullptr, z = nullptr, coords = nullptr;
   PC pc = nullptr;
   MatNullSpace nullsp = nullptr;
@@ -100,6 +101,18 @@ struct PetscAmg::Impl {
     check(VecGetArrayRead(mine, &q), "VecGetArrayRead");
     for (int k = 0; k < 3 * unknowns; k++) out[k] = q[k];
     check(VecRestoreArrayRead(mine, &q), "VecRestoreArrayRead");
+  }
+  // the floating-point operations PETSc counts in call(), summed over the processes (at least
+  // 1; collective)
+  template <class Call> double flops(Call call)
+  {
+    PetscLogDouble before = 0.0, after = 0.0;
+    PetscGetFlops(&before);
+    call();
+    PetscGetFlops(&after);
+    double mine = after - before, all = 0.0;
+    MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, comm);
+    return all > 1.0 ? all : 1.0;
   }
   // the blocks (rows[m], cols[m]) := values (zeros when values is null), summed over repeats
   // and processes; a run of blocks of one row goes in as one block row (3 x 3n, row-major)
@@ -210,15 +223,25 @@ void PetscAmg::set_values(const std::vector<int> &rows, const std::vector<int> &
   check(MatNullSpaceCreateRigidBody(d.coords, &d.nullsp), "MatNullSpaceCreateRigidBody");
   check(MatSetNearNullSpace(d.A, d.nullsp), "MatSetNearNullSpace");
   check(PCSetOperators(d.pc, d.A, d.A), "PCSetOperators");
-  check(PCSetUp(d.pc), "PCSetUp");
+  d.setup_flops = d.flops([&] { check(PCSetUp(d.pc), "PCSetUp"); });
+  d.apply_flops = 0.0;
 }
 
 void PetscAmg::apply(const double *bin, double *zout)
 {
   Impl &d = *d_;
   d.to_matrix(bin, d.b);
-  check(PCApply(d.pc, d.b, d.z), "PCApply");
+  if (d.apply_flops > 0.0)
+    check(PCApply(d.pc, d.b, d.z), "PCApply");
+  else
+    d.apply_flops = d.flops([&] { check(PCApply(d.pc, d.b, d.z), "PCApply"); });
   d.from_matrix(d.z, zout);
+}
+
+double PetscAmg::setup_in_applications() const
+{
+  const Impl &d = *d_;
+  return d.apply_flops > 0.0 ? d.setup_flops / d.apply_flops : 0.0;
 }
 
 std::string PetscAmg::describe() const

@@ -50,6 +50,10 @@ class PetscAmg {
                   const std::vector<double> &values, const double *coords);
   // z = M^-1 b, 3 values per unknown each. Collective.
   void apply(const double *b, double *z);
+  // the work of the last set_values() over that of the first application after it (PETSc's
+  // count of floating-point operations, all processes), 0 before both: what a set-up costs in
+  // applications
+  double setup_in_applications() const;
 
   // what PETSc built, one line (after set_values): preconditioner type, levels, the matrix's
   // size and nonzeros. Collective: every process must call it.

@@ -2,12 +2,13 @@
 
 #include "solvers/amg_schedule.h"
 
+#include <algorithm>
+
 namespace PeriSISSM {
 
-void AmgSchedule::made_hierarchy(long long built)
+void AmgSchedule::made_hierarchy()
 {
   patterns_++;
-  interp_at_ = built;
   reinterp_ = false;
   fresh_interp_ = true;
 }
@@ -18,14 +19,20 @@ bool AmgSchedule::setup_wanted(bool same_pattern, double c)
   return !(same_pattern && !stale_ && set_factor_ == c);
 }
 
-bool AmgSchedule::begin_setup(bool same_pattern, long long built, double c)
+bool AmgSchedule::begin_setup(bool same_pattern, bool moved, double c)
 {
   fresh_ = true;
   stale_ = false;
   solves_ = 0;
   setups_++;
   set_factor_ = c;
-  return same_pattern && (reinterp_ || interp_at_ != built);
+  return same_pattern && (reinterp_ || moved);
+}
+
+void AmgSchedule::measured_setup(double applications, bool values_only)
+{
+  if (values_only || !value_cost_measured_) value_cost_ = applications;
+  value_cost_measured_ = value_cost_measured_ || values_only;
 }
 
 void AmgSchedule::finished(int newton, int krylov, bool converged)
@@ -33,12 +40,18 @@ void AmgSchedule::finished(int newton, int krylov, bool converged)
   lagged_ = used_ && !(fresh_ && fresh_interp_);
   if (used_) {
     const double rate = (double) krylov / (newton > 0 ? newton : 1);
-    // (a hierarchy that has grown this much worse was made for another configuration: its
-    // interpolation too)
-    if (solves_++ == 0)
+    if (solves_++ == 0) {
       baseline_ = rate;
-    else if (rate > 1.5 * baseline_ + 2.0)
+      excess_ = 0.0;
+      if (fresh_interp_) interp_baseline_ = rate;
+    } else if (rate > 1.5 * interp_baseline_ + 2.0) {
+      // (an interpolation that has grown this much worse was made for another configuration)
       stale_ = reinterp_ = true;
+    } else {
+      // the iterations the lagging values have cost so far, against what new ones cost
+      excess_ += std::max(0.0, krylov - baseline_ * newton);
+      if (excess_ > value_cost_) stale_ = true;
+    }
     if (!converged) stale_ = true;
   }
   used_ = fresh_ = fresh_interp_ = false;
