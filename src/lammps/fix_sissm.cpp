@@ -163,7 +163,8 @@ void FixSissm::init()
     for (CollisionLimit *contact : adapting) contact->set_force_factor(scheme->force_factor());
   }
   forces->track_contact_motion(1);
-  const std::string note = PeriSISSM::settle_for_membranes(opt, forces->has_unbent_membranes(groupbit), id);
+  const std::string note =
+      PeriSISSM::settle_for_membranes(opt, forces->has_unbent_membranes(groupbit), id);
   if (!note.empty() && comm->me == 0) utils::logmesg(lmp, note);
   block_precond = std::make_unique<PeriSISSM::BlockPreconditioner>();
   amg_precond.reset();

@@ -8,9 +8,8 @@
 //   set-up with new values costs (the break-even rule of renting against buying), counted in
 //   applications of the hierarchy (measured_setup(); an iteration costs an application and a
 //   force evaluation, so this waits longer than break-even). The values lag behind a moving
-//   body:
-//   measured on a falling cloth of 33418 vertices, the iterations per Newton step grew from 6
-//   to 18 within 8 steps of one set-up;
+//   body: measured on a falling cloth of 33418 vertices, the iterations per Newton step grew
+//   from 6 to 18 within 8 steps of one set-up;
 // - a new interpolation (aggregates and prolongators) as well: after a step that did not
 //   converge in a solve that used a hierarchy of an earlier one (refresh()), after a step whose
 //   iterations per Newton step exceeded 1.5 times (+2) those of the first step after the
@@ -25,7 +24,6 @@
 #include <string>
 
 namespace PeriSISSM {
-
 
 class AmgSchedule {
  public:
