@@ -260,37 +260,48 @@ bool build_curvature_stencils(int nv, const double *X, const std::vector<std::ar
   return true;
 }
 
+void curvature_weights(double area, double D, double nu, double adw[9])
+{
+  double W[3][3];
+  weights(nu, W);
+  for (int c = 0; c < 3; c++)
+    for (int e = 0; e < 3; e++) adw[3 * c + e] = area * D * W[c][e];
+}
+
+double curvature_stress(const int *vertex, const double *coef, int m, const double adw[9],
+                        const double *y, double S[9])
+{
+  // Q_c = sum_k coef_kc (y_k - y_0): the coefficients sum to zero, and differences of nearby
+  // positions keep the round-off of a body far from the origin out of the curvature
+  double Q[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};    // Q[c][d]: component d of Q_c
+  const double *y0 = y + 3 * vertex[0];
+  for (int k = 1; k < m; k++) {
+    const double *yk = y + 3 * vertex[k];
+    const double r[3] = {yk[0] - y0[0], yk[1] - y0[1], yk[2] - y0[2]};
+    for (int c = 0; c < 3; c++)
+      for (int d = 0; d < 3; d++) Q[c][d] += coef[3 * k + c] * r[d];
+  }
+  // S_c = A D sum_e W_ce Q_e = dE / dQ_c
+  double E = 0.0;
+  for (int c = 0; c < 3; c++)
+    for (int d = 0; d < 3; d++) {
+      double v = 0.0;
+      for (int e = 0; e < 3; e++) v += adw[3 * c + e] * Q[e][d];
+      S[3 * c + d] = v;
+      E += 0.5 * v * Q[c][d];
+    }
+  return E;
+}
+
 double curvature_energy(const CurvatureStencil &s, const double *y, double D, double nu,
                         double *force)
 {
   const int m = (int) s.vertex.size();
-  // Q_c = sum_k coef_kc (y_k - y_0): the coefficients sum to zero, and differences of nearby
-  // positions keep the round-off of a body far from the origin out of the curvature
-  double Q[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};    // Q[c][d]: component d of Q_c
-  const double *y0 = y + 3 * s.vertex[0];
-  for (int k = 1; k < m; k++) {
-    const double *yk = y + 3 * s.vertex[k];
-    const double r[3] = {yk[0] - y0[0], yk[1] - y0[1], yk[2] - y0[2]};
-    for (int c = 0; c < 3; c++)
-      for (int d = 0; d < 3; d++) Q[c][d] += s.coef[3 * k + c] * r[d];
-  }
-  double W[3][3];
-  weights(nu, W);
-  // S_c = A D sum_d W_cd Q_d = dE / dQ_c
-  double S[3][3], E = 0.0;
-  for (int c = 0; c < 3; c++)
-    for (int d = 0; d < 3; d++) {
-      S[c][d] = 0.0;
-      for (int e = 0; e < 3; e++) S[c][d] += s.area * D * W[c][e] * Q[e][d];
-      E += 0.5 * S[c][d] * Q[c][d];
-    }
+  double adw[9], S[9];
+  curvature_weights(s.area, D, nu, adw);
+  const double E = curvature_stress(s.vertex.data(), s.coef.data(), m, adw, y, S);
   if (force)
-    for (int k = 0; k < m; k++)
-      for (int d = 0; d < 3; d++) {
-        double g = 0.0;
-        for (int c = 0; c < 3; c++) g += s.coef[3 * k + c] * S[c][d];
-        force[3 * k + d] = -g;
-      }
+    for (int k = 0; k < m; k++) curvature_force(&s.coef[3 * k], S, force + 3 * k);
   return E;
 }
 

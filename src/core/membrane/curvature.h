@@ -88,6 +88,22 @@ bool build_curvature_stencils(int nv, const double *X, const std::vector<std::ar
 double curvature_energy(const CurvatureStencil &s, const double *y, double D, double nu,
                         double *force = nullptr);
 
+// The parts of curvature_energy, for a pass that keeps each triangle's weights: adw (row-major
+// 3x3) = A_T D W (W as in curvature_hessian); then, for m vertices (rows vertex, coefficients
+// coef as CurvatureStencil's) at positions y, S (row-major 3x3, row c = dE/dQ_c) and the return
+// value E_T; and the force on stencil vertex k, F = -sum_c coef[3 k + c] S_c.
+void curvature_weights(double area, double D, double nu, double adw[9]);
+double curvature_stress(const int *vertex, const double *coef, int m, const double adw[9],
+                        const double *y, double S[9]);
+inline void curvature_force(const double *coef_k, const double S[9], double F[3])
+{
+  for (int d = 0; d < 3; d++) {
+    double g = 0.0;
+    for (int c = 0; c < 3; c++) g += coef_k[c] * S[3 * c + d];
+    F[d] = -g;
+  }
+}
+
 // The constant Hessian of E_T: block (k, l) = h[m k + l] I (3x3), m = vertex.size(),
 //   h[m k + l] = A_T D sum_cd W_cd coef[3 k + c] coef[3 l + d],
 // W = [[1, 0, nu], [0, 2 (1 - nu), 0], [nu, 0, 1]] over (xx, xy, yy). Output h (resized).

@@ -67,6 +67,7 @@ PlateProblem PlateBending::build(const HingeMesh &mesh, const double *x0, const 
   list_.clear();
   couplings_ = PlateCouplings();
   couplings_.first.assign(1, 0);
+  make_pass_data();    // (empty until the list is complete)
   PlateProblem problem;
   LocalMesh local(mesh, x0, box);
   const int nlocal = mesh.nlocal();
@@ -146,6 +147,7 @@ PlateProblem PlateBending::build(const HingeMesh &mesh, const double *x0, const 
     list_.push_back(std::move(tri));
   }
   make_couplings();
+  make_pass_data();
   return problem;
 }
 
@@ -155,30 +157,33 @@ void PlateBending::pass(const Particles &p, double **block, const BendingEnergy 
   const double *x = p.x;
   double *f = p.f;
   const bool tally_energy = energy.total || energy.per_particle;
-  std::vector<double> force;
-  for (const PlateTriangle &t : list_) {
-    const CurvatureStencil &s = t.stencil;
-    const int m = (int) s.vertex.size();
-    force.resize(3 * m);
-    const double E = curvature_energy(s, x, t.D, t.nu, force.data());
-    const double *x0 = x + 3 * s.vertex[0];
+  const PassData &d = flat_;
+  const int ntri = (int) d.scale.size();
+  for (int t = 0; t < ntri; t++) {
+    const int first = d.first[t], m = d.first[t + 1] - first;
+    const int *row = &d.row[first];
+    const double *coef = &d.coef[3 * first];
+    double S[9];
+    const double E = curvature_stress(row, coef, m, &d.adw[9 * t], x, S);
+    const double *x0 = x + 3 * row[0];
     for (int k = 0; k < m; k++) {
-      const int i = t.own[k];
+      const int i = d.own[first + k];
       if (i < 0) continue;
       const double vi = p.volume[i];
-      const double *F = &force[3 * k];
-      for (int d = 0; d < 3; d++) f[3 * i + d] += F[d] / vi;
+      double F[3];
+      curvature_force(coef + 3 * k, S, F);
+      for (int c = 0; c < 3; c++) f[3 * i + c] += F[c] / vi;
       if (block) {
         // the Hessian's diagonal block h_kk I
-        const double hkk = curvature_form(s, k, k, t.nu) * (s.area * t.D / vi);
-        for (int d = 0; d < 3; d++) block[i][d] += hkk;
+        const double hkk = d.form[first + k] * (d.scale[t] / vi);
+        for (int c = 0; c < 3; c++) block[i][c] += hkk;
       }
       if (tally_energy && k < 3) {
         const double e = E / (3.0 * vi);
         if (energy.total) *energy.total += e;
         if (energy.per_particle) energy.per_particle[i] += e;
       }
-      if (virial.any()) tally_virial(virial, i, x + 3 * s.vertex[k], x0, F);
+      if (virial.any()) tally_virial(virial, i, x + 3 * row[k], x0, F);
     }
   }
 }
@@ -218,6 +223,28 @@ void PlateBending::make_couplings()
       plates.a.insert(plates.a.end(), a, a + 3);
     }
     plates.first.push_back((int) plates.vertex.size());
+  }
+}
+
+void PlateBending::make_pass_data()
+{
+  PassData &d = flat_;
+  d = PassData();
+  d.first.assign(1, 0);
+  for (const PlateTriangle &t : list_) {
+    const CurvatureStencil &s = t.stencil;
+    const int m = (int) s.vertex.size();
+    for (int k = 0; k < m; k++) {
+      d.row.push_back(s.vertex[k]);
+      d.own.push_back(t.own[k]);
+      d.form.push_back(curvature_form(s, k, k, t.nu));
+    }
+    d.coef.insert(d.coef.end(), s.coef.begin(), s.coef.end());
+    double adw[9];
+    curvature_weights(s.area, t.D, t.nu, adw);
+    d.adw.insert(d.adw.end(), adw, adw + 9);
+    d.scale.push_back(s.area * t.D);
+    d.first.push_back((int) d.row.size());
   }
 }
 

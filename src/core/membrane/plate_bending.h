@@ -88,7 +88,15 @@ class PlateBending {
   std::map<std::int64_t, std::vector<std::array<std::int64_t, 3>>> around_;
   std::vector<PlateTriangle> list_;
   PlateCouplings couplings_;
+  // the list as the pass reads it, in contiguous arrays: per triangle t, its stencil's entries
+  // first[t] .. first[t+1]-1 (row, owner, 3 coefficients, h_kk / (A_T D)), A_T D W (9 per
+  // triangle) and A_T D (membrane/curvature.h)
+  struct PassData {
+    std::vector<int> first, row, own;
+    std::vector<double> coef, form, adw, scale;
+  } flat_;
   void make_couplings();
+  void make_pass_data();
 };
 
 }    // namespace PeriSISSM
