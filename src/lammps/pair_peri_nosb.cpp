@@ -373,6 +373,7 @@ void PairPeriNosb::bond_springs(PeriSISSM::BondSprings &springs)
 {
   PeriSISSM::ParticleFields fields;
   fields.k = kstate;
+  fields.normal = cnormal;    // (null without membranes)
   PeriSISSM::bond_springs(family->view(), particles(), fields, springs);
 }
 

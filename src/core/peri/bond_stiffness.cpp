@@ -6,6 +6,33 @@
 
 namespace PeriSISSM {
 
+namespace {
+
+  bool has_normal(const double *n) { return n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0; }
+
+  // S_ij of bond (i, j) of weight omega (bond_stiffness.h), appended to s as xx yy zz xy xz yz
+  void stabilization_block(const ParticleFields &fields, const Particles &p, int i, int j,
+                           double omega, std::vector<double> &s)
+  {
+    constexpr int NK = ParticleFields::NK;
+    const double *ni = fields.normal + 3 * i, *nj = fields.normal + 3 * j;
+    const bool hi = has_normal(ni), hj = has_normal(nj);
+    double v[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    if (hi || hj) {
+      const double *na = hi ? ni : nj, *nb = hj ? nj : ni;
+      const double cs = p.volume[i] * omega * 0.5 *
+          (fields.k[NK * i + ParticleFields::K_C] + fields.k[NK * j + ParticleFields::K_C]);
+      const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
+      for (int q = 0; q < 6; q++) {
+        const int a = ra[q], b = rb[q];
+        v[q] = cs * ((a == b ? 1.0 : 0.0) - 0.5 * (na[a] * na[b] + nb[a] * nb[b]));
+      }
+    }
+    s.insert(s.end(), v, v + 6);
+  }
+
+}    // namespace
+
 void bond_springs(const Families &fam, const Particles &p, const ParticleFields &fields,
                   BondSprings &springs)
 {
@@ -15,6 +42,7 @@ void bond_springs(const Families &fam, const Particles &p, const ParticleFields 
   springs.partner.clear();
   springs.k.clear();
   springs.e.clear();
+  springs.s.clear();
   for (int i = 0; i < nlocal; i++) {
     const double *xi = p.x + 3 * i;
     const double *ki = fields.k + NK * i;
@@ -37,6 +65,7 @@ void bond_springs(const Families &fam, const Particles &p, const ParticleFields 
       springs.partner.push_back(j);
       springs.k.push_back(kBondProjectionFactor * p.volume[i] * om[b] * ehe);
       springs.e.insert(springs.e.end(), e, e + 3);
+      if (fields.normal) stabilization_block(fields, p, i, j, om[b], springs.s);
     }
     springs.first[i + 1] = (int) springs.partner.size();
   }

@@ -12,6 +12,19 @@
 //   W = (c_bb 2 kappa c) pi delta^5 / 75 (tr(eps)^2 + 2 eps:eps),
 // an isotropic material with lambda = mu (nu = 1/4) whose P-wave modulus 2 mu + lambda equals
 // c: the springs match the material's stiffness along a bond.
+//
+// Membranes: a bond with a membrane end also carries the tangent of the stabilization's force
+// with the ends' F held fixed (peri/stabilization.h: the force density C omega (I - (n_a n_a^T
+// + n_b n_b^T) / 2) z on the part z = eta - Fbar xi of the bond that F does not explain, n_a and
+// n_b the current normals of its ends, an end without one taking the other's):
+//   S_ij = V_i omega_ij (C_i + C_j) / 2 (I - (n_a n_a^T + n_b n_b^T) / 2),
+// added as V_i P_ij -= S_ij, V_i P_ii += S_ij (S_ij = S_ji). It is positive semi-definite and
+// keeps the translations as zero modes, not the rotations (F held fixed); it is the stiffness
+// across the bond that the springs lack where the correspondence energy has none (measured
+// 2026-11-30, fix sissm genalpha at 2 ms, evaluations per step: hanging cloth 3038 vertices
+// 10.21 against 10.66, 33418 vertices on 2 ranks 18.87 against 21.05 at 0.93 of the loop time,
+// twisting cloth 42.3 against 45.5; the static plate of examples/membranes, alternate
+// triangles, Cs = 2, 74.8 against 92.3). Solids keep the springs alone.
 
 #ifndef PERISISSM_PERI_BOND_STIFFNESS_H
 #define PERISISSM_PERI_BOND_STIFFNESS_H
@@ -32,10 +45,14 @@ struct BondSprings {
   std::vector<int> partner;    // local index of the partner (owned or ghost)
   std::vector<double> k;       // k_ij (energy / length^2)
   std::vector<double> e;       // unit direction, 3 per spring
+  std::vector<double> s;       // membranes (fields.normal given): S_ij, 6 per spring (xx yy zz
+                               //   xy xz yz; zeros for a bond with no membrane end); else empty
 };
 
 // Inputs: families; p (x current for owned and ghost rows, volume); fields.k (H+ and C of
-// owned and ghost rows, as after an evaluation with blocks).
+// owned and ghost rows, as after an evaluation with blocks); fields.normal (the current normals
+// of membrane particles, owned and ghost rows, zeros for others, as after that evaluation; null
+// without membranes).
 // Outputs: springs (resized; one entry per unbroken bond of the owned particles). A bond of
 // zero current length gets e = 0 (it adds nothing).
 void bond_springs(const Families &fam, const Particles &p, const ParticleFields &fields,

@@ -171,14 +171,18 @@ void assemble_blocks(const Rows &rows, const double *node, double c, const BondS
     int m = pattern.first[r];
     double *diag = &values[9 * m++];
     for (int k = 0; k < 9; k += 4) diag[k] = vol[i] * rho[i];
+    // (membranes: the stabilization's block S as well, its 6 values at (a, b) by kSym)
+    static constexpr int kSym[9] = {0, 3, 4, 3, 1, 5, 4, 5, 2};
     for (int s = springs.first[i]; s < springs.first[i + 1]; s++) {
       const double *e = &springs.e[3 * s];
+      const double *st = springs.s.empty() ? nullptr : &springs.s[6 * s];
       const double ck = c * springs.k[s];
       const bool unknown = node[springs.partner[s]] >= 0.0;
       double *off = unknown ? &values[9 * m++] : nullptr;
       for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
-          const double kab = ck * e[a] * e[b];
+          double kab = ck * e[a] * e[b];
+          if (st) kab += c * st[kSym[3 * a + b]];
           diag[3 * a + b] += kab;
           if (off) off[3 * a + b] -= kab;
         }

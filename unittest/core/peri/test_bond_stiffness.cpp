@@ -1,7 +1,9 @@
 // Tests of the bond-projected stiffness (peri/bond_stiffness): its springs are symmetric
 // (k_ij = k_ji), the assembled matrix has the six rigid-body modes of the current positions as
 // exact zero modes, and its calibration gives an interior particle of a regular lattice the
-// material's P-wave modulus along any direction of uniaxial strain.
+// material's P-wave modulus along any direction of uniaxial strain; membranes' bonds also carry
+// the stabilization's block S_ij, symmetric positive semi-definite, with no stiffness along the
+// normal of a flat sheet.
 
 #include "cluster.h"
 
@@ -142,6 +144,72 @@ TEST(BondStiffness, CalibratedToThePWaveModulus)
     w /= 4.0 * cl.volume[centre];
     EXPECT_NEAR(w, 0.5 * c, 0.05 * 0.5 * c) << "direction " << n.transpose();
   }
+}
+
+// Three particles by hand: 0 and 1 membrane particles (normals n0, n1), 2 without a normal;
+// bonds 0-1, 0-2, 1-0, 2-0. S_ij = V_i omega_ij (C_i + C_j) / 2 (I - (n_a n_a^T + n_b n_b^T) / 2)
+// (n_b = n_a at the end without a normal); none without normals at all.
+TEST(BondStiffness, MembraneBondsCarryTheStabilizationBlock)
+{
+  constexpr int NK = PeriSISSM::ParticleFields::NK;
+  double x[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, volume[3] = {2.0, 3.0, 5.0};
+  int npartner[3] = {2, 1, 1};
+  int j0[2] = {1, 2}, j1[1] = {0}, j2[1] = {0};
+  int *jlocal[3] = {j0, j1, j2};
+  double w0[2] = {0.5, 0.25}, w1[1] = {1.0 / 3.0}, w2[1] = {0.1};
+  double *omega[3] = {w0, w1, w2};
+  PeriSISSM::Families fam;
+  fam.npartner = npartner;
+  fam.jlocal = jlocal;
+  fam.omega = omega;
+  PeriSISSM::Particles p;
+  p.nlocal = p.nall = 3;
+  p.x = x;
+  p.volume = volume;
+  std::vector<double> k(3 * NK, 0.0);
+  const double C[3] = {4.0, 6.0, 10.0};
+  for (int i = 0; i < 3; i++) k[NK * i + PeriSISSM::ParticleFields::K_C] = C[i];
+  const Eigen::Vector3d n0(0, 0, 1), n1 = Eigen::Vector3d(0.3, 0, 1).normalized();
+  double normal[9] = {n0(0), n0(1), n0(2), n1(0), n1(1), n1(2), 0, 0, 0};
+  PeriSISSM::ParticleFields fields;
+  fields.k = k.data();
+  fields.normal = normal;
+  PeriSISSM::BondSprings s;
+  PeriSISSM::bond_springs(fam, p, fields, s);
+  ASSERT_EQ(s.k.size(), 4u);
+  ASSERT_EQ(s.s.size(), 24u);
+
+  auto block = [&](int t) {
+    const double *v = &s.s[6 * t];
+    Eigen::Matrix3d S;
+    S << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
+    return S;
+  };
+  auto want = [&](int i, int j, double om, const Eigen::Vector3d &na, const Eigen::Vector3d &nb) {
+    const Eigen::Matrix3d P =
+        Eigen::Matrix3d::Identity() - 0.5 * (na * na.transpose() + nb * nb.transpose());
+    return Eigen::Matrix3d(volume[i] * om * 0.5 * (C[i] + C[j]) * P);
+  };
+  const Eigen::Matrix3d S01 = block(0), S02 = block(1), S10 = block(2), S20 = block(3);
+  EXPECT_LT((S01 - want(0, 1, 0.5, n0, n1)).norm(), 1e-14 * S01.norm());
+  EXPECT_LT((S02 - want(0, 2, 0.25, n0, n0)).norm(), 1e-14 * S02.norm());
+  EXPECT_LT((S10 - want(1, 0, 1.0 / 3.0, n1, n0)).norm(), 1e-14 * S10.norm());
+  EXPECT_LT((S20 - want(2, 0, 0.1, n0, n0)).norm(), 1e-14 * S20.norm());
+  // V_i omega_ij = V_j omega_ji for bond 0-1 (2 * 0.5 = 3 / 3): the same block from both ends
+  EXPECT_LT((S01 - S10).norm(), 1e-14 * S01.norm());
+  // positive semi-definite, at most its factor; a flat pair has no stiffness along its normal
+  for (const Eigen::Matrix3d &S : {S01, S02, S10, S20}) {
+    const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S).eigenvalues();
+    EXPECT_GE(ev(0), -1e-14 * S.norm());
+  }
+  EXPECT_NEAR((S02 * n0).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(S02(0, 0), volume[0] * 0.25 * 0.5 * (C[0] + C[2]), 1e-14);
+
+  // without normals (a deck without membranes): no blocks
+  fields.normal = nullptr;
+  PeriSISSM::bond_springs(fam, p, fields, s);
+  EXPECT_EQ(s.k.size(), 4u);
+  EXPECT_TRUE(s.s.empty());
 }
 
 }    // namespace

@@ -3,8 +3,9 @@
 // the bonds, one bending hinge and (added by some tests) two overlapping plate elements. The
 // pattern is checked column by column, and the assembled matrix against the same matrix written
 // out densely from its definition
-//   M = V rho I + c (sum over springs of k e e^T, -k e e^T off the diagonal) + c g g^T
-//       + c sum over plate elements of (a_k . a_l) I.
+//   M = V rho I + c (sum over springs of k e e^T + S, -(k e e^T + S) off the diagonal)
+//       + c g g^T + c sum over plate elements of (a_k . a_l) I,
+// S the membranes' stabilization blocks (added by one test; none otherwise).
 
 #include "solvers/block_matrix.h"
 
@@ -79,6 +80,17 @@ struct Scene {
     for (int k = 0; k < 33; k++)
       plates.a.push_back(0.05 * (k % 7 + 1) * (k % 3 ? 1.0 : -1.0) + 0.01 * k);
     index_couplings(plates.row, rows.n, plate_index);
+  }
+  // a symmetric stabilization block per spring (xx yy zz xy xz yz), the same for both ends
+  void add_stabilization()
+  {
+    const double pair_value[7] = {0.3, 0.7, 0.3, 0.2, 0.7, 0.2, 0.9};
+    springs.s.clear();
+    for (int t = 0; t < 7; t++) {
+      const double v = pair_value[t];
+      const double block[6] = {v, 2.0 * v, 0.5 * v, -0.1 * v, 0.3 * v, 0.05 * v};
+      springs.s.insert(springs.s.end(), block, block + 6);
+    }
   }
 };
 
@@ -257,10 +269,12 @@ void expect_dense_definition(Scene &s)
   for (int t = 0; t < 7; t++) {
     const int i = owner[t], j = s.springs.partner[t];
     const double *e = &s.springs.e[3 * t];
+    const int sym[3][3] = {{0, 3, 4}, {3, 1, 5}, {4, 5, 2}};
     for (int a = 0; a < 3; a++)
       for (int b = 0; b < 3; b++) {
-        at(i, i, a, b) += c * s.springs.k[t] * e[a] * e[b];
-        at(i, j, a, b) -= c * s.springs.k[t] * e[a] * e[b];
+        const double st = s.springs.s.empty() ? 0.0 : s.springs.s[6 * t + sym[a][b]];
+        at(i, i, a, b) += c * (s.springs.k[t] * e[a] * e[b] + st);
+        at(i, j, a, b) -= c * (s.springs.k[t] * e[a] * e[b] + st);
       }
   }
   for (int v = 0; v < 2; v++)    // the hinge's rows of owned unknowns 0 and 1
@@ -307,6 +321,14 @@ TEST(BlockMatrix, AssembledBlocksWithPlatesMatchTheDenseDefinition)
 {
   Scene s;
   s.add_plates();
+  expect_dense_definition(s);
+}
+
+TEST(BlockMatrix, AssembledBlocksWithStabilizationMatchTheDenseDefinition)
+{
+  Scene s;
+  s.add_plates();
+  s.add_stabilization();
   expect_dense_definition(s);
 }
 
