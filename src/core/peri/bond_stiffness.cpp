@@ -2,13 +2,13 @@
 
 #include "peri/bond_stiffness.h"
 
+#include "peri/stabilization.h"
+
 #include <cmath>
 
 namespace PeriSISSM {
 
 namespace {
-
-  bool has_normal(const double *n) { return n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0; }
 
   // S_ij of bond (i, j) of weight omega (bond_stiffness.h), appended to s as xx yy zz xy xz yz
   void stabilization_block(const ParticleFields &fields, const Particles &p, int i, int j,

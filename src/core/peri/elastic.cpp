@@ -10,6 +10,7 @@
 #include "peri/instances.h"
 #include "peri/model.h"
 #include "peri/particle.h"
+#include "peri/stabilization.h"
 
 #include <algorithm>
 #include <vector>
@@ -311,7 +312,7 @@ namespace {
     // the block is cdiag (I - n n^T) with the particle's current normal
     if (fields.normal) {
       const double *n = fields.normal + 3 * i;
-      if (n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0) {
+      if (has_normal(n)) {
         out[0] -= cdiag * n[0] * n[0];
         out[1] -= cdiag * n[1] * n[1];
         out[2] -= cdiag * n[2] * n[2];

@@ -150,7 +150,7 @@ namespace {
       double ws = 0.0;
       BondVirial vir;
       const double *ni = MEMBRANE ? fields.normal + 3 * i : nullptr;
-      const bool hasni = MEMBRANE && (ni[0] != 0.0 || ni[1] != 0.0 || ni[2] != 0.0);
+      const bool hasni = MEMBRANE && has_normal(ni);
       const Double4 niv = MEMBRANE ? load3(fields.normal + 3 * i) : splat(0.0);
       Double4 gn = splat(0.0);    // membranes: dE/dn_i per unit volume
 
@@ -201,7 +201,7 @@ namespace {
           // the part of z in the tangent planes of the two ends (an end without a normal takes
           // the other's), as pass<> below does it
           const double *nj = fields.normal + 3 * j;
-          const bool hasnj = nj[0] != 0.0 || nj[1] != 0.0 || nj[2] != 0.0;
+          const bool hasnj = has_normal(nj);
           if (hasni || hasnj) {
             const Double4 njv = load3(nj);
             const Double4 na = hasni ? niv : njv, nb = hasnj ? njv : niv;
@@ -289,7 +289,7 @@ namespace {
       BondVirial vir;
       rows.clear();
       const double *ni = MEMBRANE ? fields.normal + 3 * i : nullptr;
-      const bool hasni = MEMBRANE && (ni[0] != 0.0 || ni[1] != 0.0 || ni[2] != 0.0);
+      const bool hasni = MEMBRANE && has_normal(ni);
       double gn[3] = {0.0, 0.0, 0.0};    // membranes: dE/dn_i per unit volume
 
       for (int b = 0; b < n; b++) {
@@ -333,7 +333,7 @@ namespace {
           // the part of z in the tangent planes of the two ends (an end without a normal takes
           // the other's)
           const double *nj = fields.normal + 3 * j;
-          const bool hasnj = nj[0] != 0.0 || nj[1] != 0.0 || nj[2] != 0.0;
+          const bool hasnj = has_normal(nj);
           if (hasni || hasnj) {
             const double *na = hasni ? ni : nj, *nb = hasnj ? nj : ni;
             const double da = na[0] * z0 + na[1] * z1 + na[2] * z2;

@@ -76,6 +76,10 @@ double stabilization_modulus(double Cs, double K, const double Kinv[9]);
 // (fam.normal, owned and ghost rows) and p.nall. Adds the direct force density to p.f,
 // Q_i K_i^-1 to fields.h, the virial of the direct force (half of each bond to each end), and,
 // when energy is true, the energy density to fields.w (left alone otherwise).
+// Whether a row of ParticleFields::normal holds a current normal (a membrane particle with an F;
+// the rows of the others are zeros).
+inline bool has_normal(const double *n) { return n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0; }
+
 void stabilization_pass(const Model &model, const Particles &p, const Families &fam,
                         const ReferenceBox &box, ParticleFields &fields, const Virial &virial,
                         bool energy);
