@@ -233,8 +233,9 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
 {
   const PeriSISSM::Rows &rows = sys.rows();
   const double c = fix_->scheme->force_factor();
-  fix_->forces->bond_springs(springs_);
-  // (the hinges' gradients only when the matrix is assembled: most Newton steps keep it)
+  // (the springs' values and the hinges' gradients only when the matrix is assembled: most
+  // Newton steps keep it)
+  fix_->forces->bond_springs(springs_, false);
   fix_->forces->hinge_couplings(hinges_, false);
   PeriSISSM::index_couplings(hinges_.row, rows.n, hinge_index_);
   // (constant Hessians, made with the pair's list)
@@ -243,6 +244,7 @@ void SissmAmg::prepare(PeriSISSM::NonlinearSystem &sys)
   PeriSISSM::index_couplings(plates_.row, rows.n, plate_index_);
   const bool same_pattern = pattern_current() || !build_pattern(rows);
   if (!schedule_.setup_wanted(same_pattern, c)) return;
+  fix_->forces->bond_springs(springs_, true);
   fix_->forces->hinge_couplings(hinges_, true);
   values_only_ = same_pattern;
   if (schedule_.begin_setup(same_pattern, rows_moved(), c)) {

@@ -34,8 +34,9 @@ class ImplicitForces {
   // true when the last evaluation wrote forces on ghost atoms (short-range contact)
   virtual bool ghost_forces() const = 0;
   // the bond-projected stiffness of the owned atoms' unbroken bonds in the current positions
-  // (core peri/bond_stiffness.h), from the last evaluation with blocks
-  virtual void bond_springs(PeriSISSM::BondSprings &springs) = 0;
+  // (core peri/bond_stiffness.h), from the last evaluation with blocks: their partners, and
+  // with values true also the springs' stiffnesses, directions and stabilization blocks
+  virtual void bond_springs(PeriSISSM::BondSprings &springs, bool values) = 0;
   // the bending hinges with an owned vertex, each once (core peri/bond_stiffness.h; empty
   // without bending): their vertices and rows, and with gradients true also their gradients in
   // the current positions (grad left empty otherwise)

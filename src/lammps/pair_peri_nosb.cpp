@@ -369,12 +369,12 @@ bool PairPeriNosb::state_current() const
    ImplicitForces: the bond-projected stiffness (the evaluation with blocks sent H+ to the ghosts)
 ------------------------------------------------------------------------- */
 
-void PairPeriNosb::bond_springs(PeriSISSM::BondSprings &springs)
+void PairPeriNosb::bond_springs(PeriSISSM::BondSprings &springs, bool values)
 {
   PeriSISSM::ParticleFields fields;
   fields.k = kstate;
   fields.normal = cnormal;    // (null without membranes)
-  PeriSISSM::bond_springs(family->view(), particles(), fields, springs);
+  PeriSISSM::bond_springs(family->view(), particles(), fields, values, springs);
 }
 
 /* ----------------------------------------------------------------------

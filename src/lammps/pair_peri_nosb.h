@@ -78,7 +78,7 @@ class PairPeriNosb : public Pair, public ImplicitForces, public BondPartners {
   void end_implicit_step() override;
   void evaluate(double **block) override;
   bool ghost_forces() const override;
-  void bond_springs(PeriSISSM::BondSprings &springs) override;
+  void bond_springs(PeriSISSM::BondSprings &springs, bool values) override;
   void hinge_couplings(PeriSISSM::HingeCouplings &couplings, bool gradients) override;
   const PeriSISSM::PlateCouplings &plate_couplings() override;
   void track_contact_motion(int flag) override;

@@ -34,7 +34,7 @@ namespace {
 }    // namespace
 
 void bond_springs(const Families &fam, const Particles &p, const ParticleFields &fields,
-                  BondSprings &springs)
+                  bool values, BondSprings &springs)
 {
   constexpr int NK = ParticleFields::NK;
   const int nlocal = p.nlocal;
@@ -45,12 +45,14 @@ void bond_springs(const Families &fam, const Particles &p, const ParticleFields 
   springs.s.clear();
   for (int i = 0; i < nlocal; i++) {
     const double *xi = p.x + 3 * i;
-    const double *ki = fields.k + NK * i;
+    const double *ki = values ? fields.k + NK * i : nullptr;
     const int *jl = fam.jlocal[i];
     const double *om = fam.omega[i];
     for (int b = 0; b < fam.npartner[i]; b++) {
       const int j = jl[b];
       if (j < 0) continue;
+      springs.partner.push_back(j);
+      if (!values) continue;
       const double *xj = p.x + 3 * j;
       const double *kj = fields.k + NK * j;
       double e[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
@@ -62,7 +64,6 @@ void bond_springs(const Families &fam, const Particles &p, const ParticleFields 
       for (int c = 0; c < 6; c++) h[c] = ki[c] + kj[c];
       const double ehe = h[0] * e[0] * e[0] + h[1] * e[1] * e[1] + h[2] * e[2] * e[2] +
           2.0 * (h[3] * e[0] * e[1] + h[4] * e[0] * e[2] + h[5] * e[1] * e[2]);
-      springs.partner.push_back(j);
       springs.k.push_back(kBondProjectionFactor * p.volume[i] * om[b] * ehe);
       springs.e.insert(springs.e.end(), e, e + 3);
       if (fields.normal) stabilization_block(fields, p, i, j, om[b], springs.s);

@@ -53,11 +53,12 @@ struct BondSprings {
 // Inputs: families; p (x current for owned and ghost rows, volume); fields.k (H+ and C of
 // owned and ghost rows, as after an evaluation with blocks); fields.normal (the current normals
 // of membrane particles, owned and ghost rows, zeros for others, as after that evaluation; null
-// without membranes).
+// without membranes); values: false for the springs' partners alone (the matrix's pattern;
+// k, e and s left empty).
 // Outputs: springs (resized; one entry per unbroken bond of the owned particles). A bond of
 // zero current length gets e = 0 (it adds nothing).
 void bond_springs(const Families &fam, const Particles &p, const ParticleFields &fields,
-                  BondSprings &springs);
+                  bool values, BondSprings &springs);
 
 // The bending hinges of membranes in the same matrix (doc/theory.rst, "The coarse level"):
 // a hinge of stiffness c and dihedral angle theta (membrane/hinge.h) adds its Gauss-Newton

@@ -40,7 +40,7 @@ PeriSISSM::BondSprings springs_of(Cluster &cl, const Cluster::Result &r)
   std::vector<double> k = r.k;
   fields.k = k.data();
   PeriSISSM::BondSprings s;
-  PeriSISSM::bond_springs(cl.families(), p, fields, s);
+  PeriSISSM::bond_springs(cl.families(), p, fields, true, s);
   return s;
 }
 
@@ -175,7 +175,7 @@ TEST(BondStiffness, MembraneBondsCarryTheStabilizationBlock)
   fields.k = k.data();
   fields.normal = normal;
   PeriSISSM::BondSprings s;
-  PeriSISSM::bond_springs(fam, p, fields, s);
+  PeriSISSM::bond_springs(fam, p, fields, true, s);
   ASSERT_EQ(s.k.size(), 4u);
   ASSERT_EQ(s.s.size(), 24u);
 
@@ -205,9 +205,16 @@ TEST(BondStiffness, MembraneBondsCarryTheStabilizationBlock)
   EXPECT_NEAR((S02 * n0).norm(), 0.0, 1e-15);
   EXPECT_NEAR(S02(0, 0), volume[0] * 0.25 * 0.5 * (C[0] + C[2]), 1e-14);
 
+  // the partners alone (the pattern): the same partners, no values
+  PeriSISSM::BondSprings partners;
+  PeriSISSM::bond_springs(fam, p, fields, false, partners);
+  EXPECT_EQ(partners.first, s.first);
+  EXPECT_EQ(partners.partner, s.partner);
+  EXPECT_TRUE(partners.k.empty() && partners.e.empty() && partners.s.empty());
+
   // without normals (a deck without membranes): no blocks
   fields.normal = nullptr;
-  PeriSISSM::bond_springs(fam, p, fields, s);
+  PeriSISSM::bond_springs(fam, p, fields, true, s);
   EXPECT_EQ(s.k.size(), 4u);
   EXPECT_TRUE(s.s.empty());
 }
