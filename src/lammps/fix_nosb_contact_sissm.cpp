@@ -116,8 +116,12 @@ double FixNosbContact::limit_move(int groupbit)
   double **x = atom->x;
   const int nlocal = atom->nlocal;
 
-  // pairs: the largest fraction that no candidate pair contradicts
-  const double t_pairs = PeriSISSM::path_limit(candidates, xref, x, opt.dmin, &distances);
+  // pairs: the largest fraction that no candidate pair contradicts (all of it, without a look
+  // at the pairs, for a move shorter than the gaps allow: a Jacobian product's probe)
+  const int nall = nlocal + atom->nghost;
+  const double t_pairs = PeriSISSM::move_within_gaps(xref, x, nall, opt.dmin, distances)
+      ? 1.0
+      : PeriSISSM::path_limit(candidates, xref, x, opt.dmin, &distances);
 
   // reach: no atom of the group farther than skin/2 from the list build
   const double R = MotionTracker::error_distance(neighbor->skin) * (1.0 - 1.0e-9);

@@ -45,6 +45,18 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
   return t_pairs;
 }
 
+bool move_within_gaps(const double *const *xref, const double *const *x, int n, double dmin,
+                      const CandidateDistances &known)
+{
+  if (!known.valid()) return false;
+  double most2 = 0.0;
+  for (int i = 0; i < n; i++) {
+    const double dx = x[i][0] - xref[i][0], dy = x[i][1] - xref[i][1], dz = x[i][2] - xref[i][2];
+    most2 = std::max(most2, dx * dx + dy * dy + dz * dz);
+  }
+  return 2.0 * std::sqrt(most2) <= (1.0 - CcdOptions().s) * known.smallest_gap(dmin);
+}
+
 void scale_move(const double *const *xref, double **x, int n, const int *mask, int groupbit,
                 double t)
 {

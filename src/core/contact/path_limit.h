@@ -19,6 +19,15 @@ namespace PeriSISSM {
 double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
                   const double *const *x, double dmin, CandidateDistances *known);
 
+// Whether path_limit() would return 1 for this move without looking at a pair: every point of
+// the n atoms (owned and ghost: all the candidates' points) moves from xref to x by at most a
+// length l with 2 l (the most any stencil's closing() can be) within (1 - s) of the smallest gap
+// in known (valid, at xref). Then every moved pair passes path_limit()'s first test, so t = 1
+// and known is left as it is. A Jacobian product's probe (a move of about 1e-7 particle sizes)
+// is such a move. Costs a pass over the atoms and one over the distances.
+bool move_within_gaps(const double *const *xref, const double *const *x, int n, double dmin,
+                      const CandidateDistances &known);
+
 // The move cut to the fraction t: x = xref + t (x - xref) for the atoms i < n with
 // (mask[i] & groupbit).
 void scale_move(const double *const *xref, double **x, int n, const int *mask, int groupbit,

@@ -1,7 +1,8 @@
 // Tests of the path limit (contact/path_limit.h): with one pair it is that pair's CCD fraction;
 // over many pairs the smallest; the skip by known gaps gives the same fraction as the CCD of
-// every pair; no move, no limit; the scaled move keeps every pair apart (sampled); scale_move()
-// moves the group's atoms only.
+// every pair; no move, no limit; the scaled move keeps every pair apart (sampled); a move
+// shorter than the gaps allow gives 1 without looking at a pair; scale_move() moves the group's
+// atoms only.
 
 #include "contact/path_limit.h"
 
@@ -83,6 +84,50 @@ TEST(PathLimit, SheetsPressedTogether)
       Vector3d y[4];
       c.gather(rm.data(), y);
       EXPECT_GT(std::sqrt(c.stencil().distance2(y)), dmin);
+    }
+  }
+}
+
+// A move shorter than the gaps allow: move_within_gaps() says so exactly when twice the longest
+// move is within 0.9 of the smallest gap, and path_limit() then returns 1 and leaves the known
+// distances as they were (those not exact stay bounds)
+TEST(PathLimit, MoveWithinGapsSkipsThePairs)
+{
+  Scene s = PeriSISSMContactTest::facing_sheets(0.3, 0.15, 0.5, 1.0 + 1.5 * std::sqrt(2.0), 9);
+  std::vector<Candidate> cands;
+  find_candidates(s.atoms(), s.list(), 1.0, cands);
+  ASSERT_GT(cands.size(), 10u);
+  const double dmin = 0.02;
+  CandidateDistances known;
+  EXPECT_FALSE(move_within_gaps(s.rows.data(), s.rows.data(), s.n(), dmin, known));    // unknown
+  known.evaluate(cands, s.rows.data(), s.n(), 1, 0.2, 1.0);
+  const double gap = known.smallest_gap(dmin);
+  ASSERT_GT(gap, 0.0);
+  EXPECT_TRUE(move_within_gaps(s.rows.data(), s.rows.data(), s.n(), dmin, known));    // no move
+  // the second sheet straight towards the first (the closing move), the rest at random
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double f : {0.449, 0.451}) {
+    const double l = f * gap;
+    std::vector<std::array<double, 3>> end = s.pos;
+    for (int i = 0; i < s.n(); i++) {
+      if (i >= 16 && i < 32) {
+        end[i][2] -= l;
+        continue;
+      }
+      Vector3d d(u(rng), u(rng), u(rng));
+      d *= l / d.norm();
+      for (int k = 0; k < 3; k++) end[i][k] += d[k];
+    }
+    auto xe = rows_of(end);
+    const bool within = move_within_gaps(s.rows.data(), xe.data(), s.n(), dmin, known);
+    EXPECT_EQ(within, 2.0 * f <= 0.9) << f;
+    if (!within) continue;
+    CandidateDistances after = known;
+    EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), dmin, &after), 1.0);
+    for (std::size_t ic = 0; ic < cands.size(); ic++) {
+      EXPECT_EQ(after[ic], known[ic]);
+      EXPECT_EQ(after.exact(ic), known.exact(ic));
     }
   }
 }
