@@ -191,11 +191,55 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
     const double D = c.stencil().distance2(y);
     return D < reach * reach;
   };
+  // A pair is found from every neighbor pair of its points that the list holds: each pair from
+  // one of them only. The list holds every pair of points within its cutoff with an owned one
+  // (of two owned points, from the one with the smaller ID; both calls below are made there),
+  // and a pair closer than reach has its points within the cutoff as the top of candidates.h
+  // says. So a point-triangle pair is taken from (p, the vertex of the triangle with the
+  // smallest ID among those that are owned or whose p is), every vertex of the triangle being
+  // within the cutoff of p; an edge-edge pair from its closest two ends of which one is owned
+  // (ties: the smaller IDs), no farther apart than an owned end and the end of the other edge
+  // nearer to its closest point (within the cutoff). The pairs that are not closer than reach
+  // are dropped either way.
+  auto owned_pair = [nlocal](int a, int b) {
+    return a < nlocal || b < nlocal;
+  };
+  auto from_pt = [&](int p, const Tri &t) {
+    int best = -1;
+    for (int k = 0; k < 3; k++)
+      if (owned_pair(p, t.v[k]) && (best < 0 || tag[t.v[k]] < tag[t.v[best]])) best = k;
+    return best == 0;    // (t.v[0]: the vertex it was found at)
+  };
+  auto from_ee = [&](const Edge &a, const Edge &b) {
+    int ba = -1, bb = -1;
+    double best = 0.0;
+    for (int k = 0; k < 2; k++)
+      for (int l = 0; l < 2; l++) {
+        const int u = a.v[k], w = b.v[l];
+        if (!owned_pair(u, w)) continue;
+        const double d2 = (point(u) - point(w)).squaredNorm();
+        bool better = ba < 0 || d2 < best;
+        if (!better && d2 == best) {
+          const std::int64_t lo = std::min(tag[u], tag[w]), hi = std::max(tag[u], tag[w]);
+          const std::int64_t blo = std::min(tag[a.v[ba]], tag[b.v[bb]]),
+                             bhi = std::max(tag[a.v[ba]], tag[b.v[bb]]);
+          better = lo < blo || (lo == blo && hi < bhi);
+        }
+        if (better) {
+          ba = k;
+          bb = l;
+          best = d2;
+        }
+      }
+    return ba == 0 && bb == 0;    // (a.v[0], b.v[0]: the atoms it was found at)
+  };
+
   // a point-triangle pair in canonical order (the triangle's vertices by ID); none if p is one.
   // First the bounds (apart): most pairs the list finds are far
   auto add_pt = [&](int p, const Tri &t) {
     for (int k = 0; k < 3; k++)
       if (tag[t.v[k]] == tag[p]) return;
+    if (!from_pt(p, t)) return;
     const Vector3d y = point(p);
     if (apart(Bounds{y, y, y, 0.0}, t.b, reach)) return;
     int s[3] = {t.v[0], t.v[1], t.v[2]};
@@ -213,6 +257,7 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
     for (int k = 0; k < 2; k++)
       for (int l = 0; l < 2; l++)
         if (tag[a.v[k]] == tag[b.v[l]]) return;
+    if (!from_ee(a, b)) return;
     if (apart(a.b, b.b, reach)) return;
     std::array<int, 2> u{a.v[0], a.v[1]}, w{b.v[0], b.v[1]};
     if (tag[u[1]] < tag[u[0]]) std::swap(u[0], u[1]);

@@ -1,7 +1,8 @@
 // Tests of the broad phase (contact/candidates.h) on a scene of two facing triangulated sheets
 // and particles between them (contact_scene.h): the candidates are exactly the pairs a brute
 // force over all primitives finds closer than the reach (no pair sharing a vertex, particles
-// that were partners excluded), each once, in canonical vertex order, sorted by kind and IDs;
+// that were partners excluded), each once, in canonical vertex order, sorted by kind and IDs
+// (with ghost atoms: those with an owned point);
 // local indices point at the atoms with those IDs; eps, own and counts from the caller's rest
 // shape and owners; a triangle vertex missing from the atoms is reported; the ranges of a run
 // (the list's cutoff finds every candidate).
@@ -131,6 +132,42 @@ TEST(Candidates, AreThePairsWithinReachEachOnceInOrder)
         EXPECT_GT(kinds[0], 10);
         EXPECT_GT(kinds[1], 10);
         EXPECT_GT(kinds[2], 0);
+      }
+    }
+  }
+}
+
+// A process that owns only the first nlocal atoms (the others ghosts, its list the owned atoms'
+// full lists): the pairs within reach that have an owned point, each once
+TEST(Candidates, OwnedAndGhostAtomsGiveThePairsWithAnOwnedPointEachOnce)
+{
+  for (unsigned seed : {1u, 2u}) {
+    const Scene s = two_sheets(seed);
+    std::vector<int> local_of(s.n() + 1);
+    for (int i = 0; i < s.n(); i++) local_of[s.tag[i]] = i;
+    for (int nlocal : {7, 25, 38, 52}) {
+      ContactAtoms atoms = s.atoms();
+      atoms.nlocal = nlocal;
+      NeighborView list = s.list();
+      list.inum = nlocal;
+      for (double reach : {0.35, 0.5}) {
+        std::vector<Candidate> found;
+        EXPECT_EQ(find_candidates(atoms, list, reach, found), 0);
+        std::set<Key> expected;
+        for (const Key &k : brute_force(s, reach, nullptr)) {
+          const std::int64_t t[4] = {std::get<1>(k), std::get<2>(k), std::get<3>(k),
+                                     std::get<4>(k)};
+          bool owned = false;
+          for (std::int64_t id : t) owned = owned || (id > 0 && local_of[id] < nlocal);
+          if (owned) expected.insert(k);
+        }
+        std::vector<Key> keys;
+        for (const Candidate &c : found) keys.push_back(key_of(c));
+        EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
+        EXPECT_EQ(std::set<Key>(keys.begin(), keys.end()).size(), keys.size());
+        EXPECT_EQ(std::set<Key>(keys.begin(), keys.end()), expected)
+            << seed << " " << nlocal << " " << reach;
+        EXPECT_GT(expected.size(), 5u);
       }
     }
   }
