@@ -23,15 +23,17 @@ void CandidateDistances::evaluate(const std::vector<Candidate> &candidates, cons
   }
   distance.resize(candidates.size());
   exact_.assign(candidates.size(), 1);
+  smallest_ = HUGE_VAL;
   for (std::size_t ic = 0; ic < candidates.size(); ic++) {
     const Candidate &c = candidates[ic];
     if (bounded) {
       double len[4];
       for (int k = 0; k < c.nv(); k++) len[k] = moved[c.v[k]];
-      const double bound = distance[ic] - c.stencil().closing(len);
+      const double bound = distance[ic] - closing(c.type, len);
       if (bound >= range && bound >= nearest) {
         distance[ic] = bound;
         exact_[ic] = 0;
+        smallest_ = std::min(smallest_, bound);
         continue;
       }
     }
@@ -39,6 +41,7 @@ void CandidateDistances::evaluate(const std::vector<Candidate> &candidates, cons
     c.gather(x, y);
     distance[ic] = std::sqrt(c.stencil().distance2(y));
     nearest = std::min(nearest, distance[ic]);
+    smallest_ = std::min(smallest_, distance[ic]);
   }
   valid_ = true;
   xlast.resize(3 * (std::size_t) nall);

@@ -40,11 +40,15 @@ class CandidateDistances {
   }
   // the smallest of distance - dmin (+inf for no pair)
   double smallest_gap(double dmin) const;
+  // a lower bound of it, kept by evaluate() (the smallest distance then; set_exact() only
+  // raises distances)
+  double gap_bound(double dmin) const { return smallest_ - dmin; }
 
  private:
   std::vector<double> distance;
   std::vector<char> exact_;
   bool valid_ = false;
+  double smallest_ = 0.0;    // no larger than any distance
   std::vector<double> xlast;    // the positions of the last evaluation (3 per atom)
   std::int64_t xlast_generation = -1;
 };

@@ -31,7 +31,7 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
       // skipped as with the distances, and the move is the same)
       double len[4];
       for (int k = 0; k < c.nv(); k++) len[k] = dy[k].norm();
-      const double most = stencil.closing(len) * t_pairs;
+      const double most = closing(c.type, len) * t_pairs;
       if (most <= (1.0 - opt.s) * ((*known)[ic] - dmin)) continue;
       if (!known->exact(ic)) {
         known->set_exact(ic, std::sqrt(stencil.distance2(y)));
@@ -54,7 +54,7 @@ bool move_within_gaps(const double *const *xref, const double *const *x, int n, 
     const double dx = x[i][0] - xref[i][0], dy = x[i][1] - xref[i][1], dz = x[i][2] - xref[i][2];
     most2 = std::max(most2, dx * dx + dy * dy + dz * dz);
   }
-  return 2.0 * std::sqrt(most2) <= (1.0 - CcdOptions().s) * known.smallest_gap(dmin);
+  return 2.0 * std::sqrt(most2) <= (1.0 - CcdOptions().s) * known.gap_bound(dmin);
 }
 
 void scale_move(const double *const *xref, double **x, int n, const int *mask, int groupbit,

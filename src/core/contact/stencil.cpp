@@ -134,13 +134,7 @@ const CollisionStencil &CollisionStencil::of(StencilType type)
 
 double CollisionStencil::closing(const double *len) const
 {
-  const int na = first_vertices();
-  double la = 0.0, lb = 0.0;
-  for (int k = 0; k < num_vertices(); k++) {
-    double &l = k < na ? la : lb;
-    l = std::max(l, len[k]);
-  }
-  return la + lb;
+  return PeriSISSM::closing(type(), len);
 }
 
 }    // namespace PeriSISSM

@@ -16,6 +16,8 @@
 #include "contact/ccd.h"
 #include "contact/friction.h"
 
+#include <algorithm>
+
 #include <Eigen/Core>
 
 namespace PeriSISSM {
@@ -57,6 +59,20 @@ class CollisionStencil {
   // sets moves by at most the largest displacement within each).
   double closing(const double *len) const;
 };
+
+// CollisionStencil::closing() of the stencil of a kind, without its virtual calls (the form for
+// loops over all candidates): the largest move of a point of each primitive, summed
+inline double closing(StencilType type, const double *len)
+{
+  switch (type) {
+    case StencilType::kPointTriangle:
+      return len[0] + std::max(std::max(len[1], len[2]), len[3]);
+    case StencilType::kEdgeEdge:
+      return std::max(len[0], len[1]) + std::max(len[2], len[3]);
+    default:
+      return len[0] + len[1];
+  }
+}
 
 }    // namespace PeriSISSM
 

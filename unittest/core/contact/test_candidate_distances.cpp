@@ -50,6 +50,7 @@ TEST(CandidateDistances, ExactThenBoundedThenExactAgain)
     smallest = std::min(smallest, dist[ic] - 0.05);
   }
   EXPECT_EQ(dist.smallest_gap(0.05), smallest);
+  EXPECT_EQ(dist.gap_bound(0.05), smallest);
 
   // a small random move: bounds where they suffice
   std::mt19937_64 rng(3);
@@ -79,13 +80,16 @@ TEST(CandidateDistances, ExactThenBoundedThenExactAgain)
     if (dist.exact(ic)) nearest_found = std::min(nearest_found, dist[ic]);
   EXPECT_EQ(nearest_found, nearest_exact);
 
-  // set_exact replaces a bound
+  // the gap bound is the smallest distance, bounds included
+  EXPECT_EQ(dist.gap_bound(0.05), dist.smallest_gap(0.05));
+  // set_exact replaces a bound (raises it: the gap bound stays below)
   for (std::size_t ic = 0; ic < cands.size(); ic++)
     if (!dist.exact(ic)) {
       dist.set_exact(ic, exact_distance(cands[ic], s));
       EXPECT_TRUE(dist.exact(ic));
       break;
     }
+  EXPECT_LE(dist.gap_bound(0.05), dist.smallest_gap(0.05));
 
   // another generation: exact again
   dist.evaluate(cands, s.rows.data(), s.n(), 2, range, nearest);
