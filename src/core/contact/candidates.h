@@ -15,8 +15,12 @@
 // within L of qa and the nearer end b_c of the other within L/2 of qb. So every pair with an
 // owned vertex o is found from o and a neighbor j of o within r + 1.5 L: as (point o, the
 // triangles at j), (point j, the triangles at o) and (the edges at o, the edges at j), or
-// (particle o, particle j). The broad phase keeps the pairs closer than reach (the caller's
-// r + skin), testing bounding spheres and boxes of the primitives first.
+// (particle o, particle j). Each pair is taken from one such neighbor pair only: a point and a
+// triangle from the point and the triangle's vertex with the smallest ID among those that share
+// a list entry with it (one of the two owned: every vertex is within r + L), two edges from
+// their two closest ends with an owned one (no farther apart than o and b_c). The broad phase
+// keeps the pairs closer than reach (the caller's r + skin), testing bounding spheres and boxes
+// of the primitives first.
 //
 // Order. Each pair once, in canonical vertex order (a triangle's vertices by ID, each edge from
 // its smaller ID, the edges by their first IDs, two points by ID), the pairs sorted by kind and
