@@ -59,6 +59,11 @@ class SissmSystem : public PeriSISSM::NonlinearSystem {
   PeriSISSM::Rows rows_;
   int evaluations_ = 0;           // force evaluations of the current (sub-)step
   int contact_incomplete_ = 0;    // the last evaluation's contact candidates were incomplete
+  // the contacts' diagonal blocks of the last evaluation with blocks are still to be added (at
+  // the first block() before the next evaluation: most iterates never ask for them), or were
+  // skipped by a later evaluation without blocks
+  mutable bool contact_blocks_due_ = false;
+  bool contact_blocks_skipped_ = false;
 };
 
 }    // namespace LAMMPS_NS
