@@ -125,41 +125,40 @@ def test_families_are_built_under_fix_nosb_contact(tmp_path):
 # every frame outside dmin, on 1 and 2 ranks (measured smallest 2.13 mm, 37-188 force evaluations
 # per step); the layers reach the
 # ball and the lowest one rests in the barrier's range over its top. The skin (8 mm) lets a step
-# move atoms 3 mm; the ghost cutoff follows (doc/fix_nosb_contact.rst).
-@pytest.mark.parametrize("nprocs", [1, pytest.param(2, marks=pytest.mark.mpi)])
-def test_layers_on_a_ball_under_fix_sissm(tmp_path, nprocs):
+def sissm_layers(tmp_path, steps, nprocs=1, opts=""):
+    """The layers under fix sissm at 1 ms (skin 8 mm, so that a step may move atoms 3 mm; the
+    ghost cutoff follows, doc/fix_nosb_contact.rst), checked: every step converged, every frame
+    collision-free with its smallest distance within the barrier's range, as fix nosb/contact's
+    own smallest candidate distance. Returns (the run's last table, the last frame's positions,
+    ball vertices, cloth vertices, faces)."""
     run, vertices, faces, nball, ncloth = ball_scene(
-        tmp_path, nprocs=nprocs, steps=20,
-        more={"solver": "sissm", "dt": 1e-3, "skin": 0.008, "comm": 0.1})
+        tmp_path, nprocs=nprocs, steps=steps,
+        more={"solver": "sissm", "dt": 1e-3, "skin": 0.008, "comm": 0.1, "opts": opts})
     t = run.thermo[-1]
     assert t["f_integrate[2]"].max() <= 1e-6                      # every step converged
     frames, smallest, x = check_every_frame(tmp_path / "dump.ci", vertices, faces)
-    assert frames == 21
+    assert frames == steps + 1
     assert DMIN < smallest < DMIN + DHAT, smallest
     assert t["f_contact[3]"].min() > DMIN
+    assert not [w for w in run.warnings if "collision-free" in w], run.warnings
+    return t, x, nball, ncloth, faces
+
+
+@pytest.mark.parametrize("nprocs", [1, pytest.param(2, marks=pytest.mark.mpi)])
+def test_layers_on_a_ball_under_fix_sissm(tmp_path, nprocs):
+    t, x, nball, ncloth, faces = sissm_layers(tmp_path, 20, nprocs)
     ball = np.array(faces[:2 * (nball - 2)])
     centre = nball + ncloth // 2
     d, _ = mesh_gaps.point_triangle_distance(np.tile(x[centre], (len(ball), 1)),
                                              x[ball[:, 0]], x[ball[:, 1]], x[ball[:, 2]])
     assert DMIN < d.min() < DMIN + DHAT, d.min()
-    assert not [w for w in run.warnings if "collision-free" in w], run.warnings
 
 
 # The same layers under the block preconditioner, whose blocks take the barrier's diagonal
 # blocks of each iterate when it first asks for them (fix sissm stops with an internal error if
-# they are asked for after a later evaluation): the run completes, every step converges,
-# collision-free
+# they are asked for after a later evaluation): the run completes with the checks above
 def test_layers_on_a_ball_under_fix_sissm_precond_block(tmp_path):
-    run, vertices, faces, nball, ncloth = ball_scene(
-        tmp_path, steps=10,
-        more={"solver": "sissm", "dt": 1e-3, "skin": 0.008, "comm": 0.1,
-              "opts": "precond block"})
-    t = run.thermo[-1]
-    assert t["f_integrate[2]"].max() <= 1e-6                      # every step converged
-    frames, smallest, _ = check_every_frame(tmp_path / "dump.ci", vertices, faces)
-    assert frames == 11
-    assert DMIN < smallest < DMIN + DHAT, smallest
-    assert t["f_contact[3]"].min() > DMIN
+    sissm_layers(tmp_path, 10, opts="precond block")
 
 
 # The twisting cloth (examples/twisting-cloth): the example's 20 x 5 cm strip (150 vertices,
