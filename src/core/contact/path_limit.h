@@ -22,9 +22,9 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
 // Whether path_limit() would return 1 for this move without looking at a pair: every point of
 // the n atoms (owned and ghost: all the candidates' points) moves from xref to x by at most a
 // length l with 2 l (the most any stencil's closing() can be) within (1 - s) of the smallest gap
-// in known (valid, at xref; its gap_bound()). Then every moved pair passes path_limit()'s first test, so t = 1
-// and known is left as it is. A Jacobian product's probe (a move of about 1e-7 particle sizes)
-// is such a move. Costs a pass over the atoms and one over the distances.
+// in known (valid, at xref: its gap_bound()). Then every moved pair passes path_limit()'s first
+// test, so t = 1 and known is left as it is. A Jacobian product's probe (a move of about 1e-7
+// particle sizes) is such a move. Costs a pass over the atoms.
 bool move_within_gaps(const double *const *xref, const double *const *x, int n, double dmin,
                       const CandidateDistances &known);
 
