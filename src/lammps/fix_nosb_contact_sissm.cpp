@@ -121,7 +121,7 @@ double FixNosbContact::limit_move(int groupbit)
   const int nall = nlocal + atom->nghost;
   const double t_pairs = PeriSISSM::move_within_gaps(xref, x, nall, opt.dmin, distances)
       ? 1.0
-      : PeriSISSM::path_limit(candidates, xref, x, opt.dmin, &distances);
+      : PeriSISSM::path_limit(candidates, xref, x, nall, opt.dmin, &distances);
 
   // reach: no atom of the group farther than skin/2 from the list build
   const double R = MotionTracker::error_distance(neighbor->skin) * (1.0 - 1.0e-9);

@@ -73,7 +73,7 @@ BalanceSums balance_sums(const std::vector<Candidate> &candidates,
   const double range = dmin + dhat;
   std::vector<double> grad(3 * (std::size_t) nlocal, 0.0);
   BalanceSums s;
-  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+  for (int ic : distances.near()) {
     const Candidate &c = candidates[ic];
     if (!(distances.valid() && distances[ic] < range)) continue;
     Vector3d y[4];

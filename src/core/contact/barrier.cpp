@@ -124,6 +124,19 @@ Vector12d point_triangle_barrier_gradient(const Vector3d &p, const Vector3d &t0,
       point_triangle_distance2_gradient(p, t0, t1, t2);
 }
 
+double point_triangle_barrier(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
+                              const Vector3d &t2, const BarrierParameters &prm, Vector12d &g)
+{
+  const double D = point_triangle_distance2(p, t0, t1, t2);
+  if (!acts(D, prm)) {
+    g.setZero();
+    return 0.0;
+  }
+  g = prm.kappa * distance_barrier_first_derivative(D, prm.dmin, prm.dhat) *
+      point_triangle_distance2_gradient(p, t0, t1, t2);
+  return prm.kappa * distance_barrier(D, prm.dmin, prm.dhat);
+}
+
 Matrix12d point_triangle_barrier_hessian(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
                                          const Vector3d &t2, const BarrierParameters &prm,
                                          bool project_psd)
@@ -158,6 +171,24 @@ Vector12d edge_edge_barrier_gradient(const Vector3d &a0, const Vector3d &a1, con
   Vector12d g = e * B1 * edge_edge_distance2_gradient(a0, a1, b0, b1);
   if (e < 1.0) g += B * edge_edge_mollifier_gradient(a0, a1, b0, b1, eps);
   return prm.kappa * g;
+}
+
+double edge_edge_barrier(const Vector3d &a0, const Vector3d &a1, const Vector3d &b0,
+                         const Vector3d &b1, double eps, const BarrierParameters &prm,
+                         Vector12d &g)
+{
+  const double D = edge_edge_distance2(a0, a1, b0, b1);
+  if (!acts(D, prm)) {
+    g.setZero();
+    return 0.0;
+  }
+  const double B = distance_barrier(D, prm.dmin, prm.dhat);
+  const double B1 = distance_barrier_first_derivative(D, prm.dmin, prm.dhat);
+  const double e = edge_edge_mollifier(a0, a1, b0, b1, eps);
+  g = e * B1 * edge_edge_distance2_gradient(a0, a1, b0, b1);
+  if (e < 1.0) g += B * edge_edge_mollifier_gradient(a0, a1, b0, b1, eps);
+  g = prm.kappa * g;
+  return prm.kappa * e * B;
 }
 
 Matrix12d edge_edge_barrier_hessian(const Vector3d &a0, const Vector3d &a1, const Vector3d &b0,
@@ -196,6 +227,19 @@ Vector6d point_point_barrier_gradient(const Vector3d &p, const Vector3d &q,
   if (!acts(D, prm)) return Vector6d::Zero();
   return prm.kappa * distance_barrier_first_derivative(D, prm.dmin, prm.dhat) *
       point_point_distance2_gradient(p, q);
+}
+
+double point_point_barrier(const Vector3d &p, const Vector3d &q, const BarrierParameters &prm,
+                           Vector6d &g)
+{
+  const double D = point_point_distance2(p, q);
+  if (!acts(D, prm)) {
+    g.setZero();
+    return 0.0;
+  }
+  g = prm.kappa * distance_barrier_first_derivative(D, prm.dmin, prm.dhat) *
+      point_point_distance2_gradient(p, q);
+  return prm.kappa * distance_barrier(D, prm.dmin, prm.dhat);
 }
 
 Matrix6d point_point_barrier_hessian(const Vector3d &p, const Vector3d &q,

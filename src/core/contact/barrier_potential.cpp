@@ -26,11 +26,10 @@ BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
   const double range = prm.dmin + prm.dhat;
   BarrierTally t;
   t.mindist = mindist;
-  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+  t.ncandidates = distances.counted();
+  // (the far pairs are beyond the range and the smallest distance: candidate_distances.h)
+  for (int ic : distances.near()) {
     const Candidate &c = candidates[ic];
-    const CollisionStencil &stencil = c.stencil();
-    const int nv = c.nv();
-    if (c.counts) t.ncandidates++;
     const double d = distances[ic];
     t.mindist = std::min(t.mindist, d);
     if (!(d < range)) continue;
@@ -38,10 +37,11 @@ BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
       t.too_close = (long) ic;
       return t;
     }
+    const int nv = c.nv();
     Vector3d y[4];
     c.gather(x, y);
-    const double E = stencil.barrier_energy(y, c.eps, prm);
-    const Vector12d g = stencil.barrier_gradient(y, c.eps, prm);
+    Vector12d g;
+    const double E = c.stencil().barrier_energy_gradient(y, c.eps, prm, g);
     if (c.counts) {
       t.nactive[(int) c.type]++;
       t.energy_pairs += E;
@@ -64,9 +64,10 @@ void barrier_blocks(const std::vector<Candidate> &candidates, const CandidateDis
                     double **block)
 {
   const double range = prm.dmin + prm.dhat;
-  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+  if (!distances.valid()) return;
+  for (int ic : distances.near()) {
     const Candidate &c = candidates[ic];
-    if (!(distances.valid() && distances[ic] < range)) continue;
+    if (!(distances[ic] < range)) continue;
     Vector3d y[4];
     c.gather(x, y);
     add_diagonal_blocks(c.stencil().barrier_hessian(y, c.eps, prm, true), c.nv(), c.own, volume,

@@ -30,8 +30,10 @@ struct BarrierTally {
 };
 
 // The forces of the pairs within dmin + dhat (distances current at x) added to f of their
-// owned vertices. Inputs: the candidates, their distances at x, x, the volumes, the barrier's
-// parameters, the smallest distance to start from. Outputs: f; returns the tally.
+// owned vertices; only the near pairs of distances are looked at (candidate_distances.h: the
+// far ones are beyond the range and the smallest distance). Inputs: the candidates, their
+// distances at x, x, the volumes, the barrier's parameters, the smallest distance to start
+// from. Outputs: f; returns the tally.
 BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
                             const CandidateDistances &distances, const double *const *x,
                             const double *volume, const BarrierParameters &prm, double mindist,

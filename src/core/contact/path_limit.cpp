@@ -8,13 +8,13 @@ using Eigen::Vector3d;
 namespace PeriSISSM {
 
 double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
-                  const double *const *x, double dmin, CandidateDistances *known)
+                  const double *const *x, int n, double dmin, CandidateDistances *known)
 {
   const bool gaps = known && known->valid();
   double t_pairs = 1.0;
   CcdOptions opt;
   opt.dmin = dmin;
-  for (std::size_t ic = 0; ic < candidates.size(); ic++) {
+  const auto limit = [&](std::size_t ic) {
     const Candidate &c = candidates[ic];
     const CollisionStencil &stencil = c.stencil();
     Vector3d y[4], dy[4];
@@ -25,23 +25,40 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
       dy[k] = Vector3d(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
       moved = moved || dy[k].squaredNorm() > 0.0;
     }
-    if (!moved) continue;
+    if (!moved) return;
     if (gaps) {
       // (a lower bound that does not suffice is replaced by the distance: the same pairs are
       // skipped as with the distances, and the move is the same)
       double len[4];
       for (int k = 0; k < c.nv(); k++) len[k] = dy[k].norm();
       const double most = closing(c.type, len) * t_pairs;
-      if (most <= (1.0 - opt.s) * ((*known)[ic] - dmin)) continue;
+      if (most <= (1.0 - opt.s) * ((*known)[ic] - dmin)) return;
       if (!known->exact(ic)) {
-        known->set_exact(ic, std::sqrt(stencil.distance2(y)));
-        if (most <= (1.0 - opt.s) * ((*known)[ic] - dmin)) continue;
+        const double d = std::sqrt(stencil.distance2(y));
+        known->set_exact(ic, d);
+        if (most <= (1.0 - opt.s) * (d - dmin)) return;
       }
     }
     // (a query that reaches ACCD's sub-step cap returns the last safe time: still conservative)
     opt.t_max = t_pairs;
     t_pairs = std::min(t_pairs, stencil.ccd(y, dy, opt));
+  };
+  if (!gaps) {
+    for (std::size_t ic = 0; ic < candidates.size(); ic++) limit(ic);
+    return t_pairs;
   }
+  // the near pairs one by one; the far ones all at once when no point moves far enough to
+  // close the gap they all keep (as each of them would be skipped), else one by one
+  for (int ic : known->near()) limit((std::size_t) ic);
+  double most2 = 0.0;
+  for (int i = 0; i < n; i++) {
+    const double dx = x[i][0] - xref[i][0], dy = x[i][1] - xref[i][1], dz = x[i][2] - xref[i][2];
+    most2 = std::max(most2, dx * dx + dy * dy + dz * dz);
+  }
+  if (2.0 * std::sqrt(most2) * t_pairs <= (1.0 - opt.s) * (known->far_bound() - dmin))
+    return t_pairs;
+  for (std::size_t ic = 0; ic < candidates.size(); ic++)
+    if (known->far(ic)) limit(ic);
   return t_pairs;
 }
 

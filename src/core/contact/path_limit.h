@@ -11,13 +11,15 @@
 
 namespace PeriSISSM {
 
-// Inputs: the candidates; the positions xref (admissible) and x (the move's end), indexed as
-// the candidates' v; dmin; known: the candidates' distances at xref when valid (nullptr or
-// not valid: unknown). A pair whose points move less than 0.9 of its gap at xref over
-// [0, t] keeps 0.1 of it, as CCD would certify: it is skipped (a lower bound that does not
-// suffice is replaced by the distance in known). Output: returns t.
+// Inputs: the candidates; the positions xref (admissible) and x (the move's end) of n atoms
+// (owned and ghost: all the candidates' points), indexed as the candidates' v; dmin; known:
+// the candidates' distances at xref when valid (nullptr or not valid: unknown). A pair whose
+// points move less than 0.9 of its gap at xref over [0, t] keeps 0.1 of it, as CCD would
+// certify: it is skipped (a near pair's lower bound that does not suffice is replaced by the
+// distance in known); the far pairs of known (candidate_distances.h) are skipped together
+// when twice the longest move is within 0.9 of the gap they all keep. Output: returns t.
 double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
-                  const double *const *x, double dmin, CandidateDistances *known);
+                  const double *const *x, int n, double dmin, CandidateDistances *known);
 
 // Whether path_limit() would return 1 for this move without looking at a pair: every point of
 // the n atoms (owned and ghost: all the candidates' points) moves from xref to x by at most a

@@ -27,6 +27,11 @@ namespace {
     {
       return point_triangle_barrier_gradient(y[0], y[1], y[2], y[3], prm);
     }
+    double barrier_energy_gradient(const Vector3d *y, double, const BarrierParameters &prm,
+                                   Vector12d &g) const override
+    {
+      return point_triangle_barrier(y[0], y[1], y[2], y[3], prm, g);
+    }
     Matrix12d barrier_hessian(const Vector3d *y, double, const BarrierParameters &prm,
                               bool psd) const override
     {
@@ -63,6 +68,11 @@ namespace {
     {
       return edge_edge_barrier_gradient(y[0], y[1], y[2], y[3], eps, prm);
     }
+    double barrier_energy_gradient(const Vector3d *y, double eps, const BarrierParameters &prm,
+                                   Vector12d &g) const override
+    {
+      return edge_edge_barrier(y[0], y[1], y[2], y[3], eps, prm, g);
+    }
     Matrix12d barrier_hessian(const Vector3d *y, double eps, const BarrierParameters &prm,
                               bool psd) const override
     {
@@ -96,6 +106,15 @@ namespace {
       Vector12d g = Vector12d::Zero();
       g.head<6>() = point_point_barrier_gradient(y[0], y[1], prm);
       return g;
+    }
+    double barrier_energy_gradient(const Vector3d *y, double, const BarrierParameters &prm,
+                                   Vector12d &g) const override
+    {
+      Vector6d g6;
+      const double E = point_point_barrier(y[0], y[1], prm, g6);
+      g.setZero();
+      g.head<6>() = g6;
+      return E;
     }
     Matrix12d barrier_hessian(const Vector3d *y, double, const BarrierParameters &prm,
                               bool psd) const override

@@ -101,7 +101,7 @@ TEST(AdaptiveStiffness, BalanceSumsOverTheGroup)
   BalanceSums b =
       balance_sums(cands, dist, s.rows.data(), rres.data(), volume, mask, 1, 4, dhat, dmin);
   EXPECT_FALSE(b.active);
-  dist.evaluate(cands, s.rows.data(), s.n(), 1, dmin + dhat, 1.0);
+  dist.evaluate(cands, s.rows.data(), s.n(), 1, dmin + dhat, 1.0, 0.1);
   b = balance_sums(cands, dist, s.rows.data(), rres.data(), volume, mask, 1, 4, dhat, dmin);
   EXPECT_TRUE(b.active);
   // direct: the three pairs among atoms 0, 1, 2 (0-1 at 0.05, 0-2 at 0.08 are active; 1-2 at

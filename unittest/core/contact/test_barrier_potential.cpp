@@ -58,7 +58,7 @@ TEST(BarrierPotential, ForcesAreMinusTheGradientOfTheEnergy)
   std::vector<double *> f;
   for (auto &q : force) f.push_back(q.data());
   CandidateDistances dist;
-  dist.evaluate(cands, s.rows.data(), s.n(), 1, prm.dmin + prm.dhat, 1.0);
+  dist.evaluate(cands, s.rows.data(), s.n(), 1, prm.dmin + prm.dhat, 1.0, 0.1);
   const BarrierTally t =
       barrier_forces(cands, dist, s.rows.data(), volume.data(), prm, 1.0, f.data());
   EXPECT_EQ(t.too_close, -1);
@@ -149,7 +149,7 @@ TEST(BarrierPotential, BlocksAreTheProjectedHessiansDiagonalBlocks)
   CandidateDistances dist;
   barrier_blocks(cands, dist, s.rows.data(), volume.data(), prm, b.data());    // not valid
   for (const auto &q : blk) EXPECT_EQ(q[0], 0.0);
-  dist.evaluate(cands, s.rows.data(), s.n(), 1, prm.dmin + prm.dhat, 1.0);
+  dist.evaluate(cands, s.rows.data(), s.n(), 1, prm.dmin + prm.dhat, 1.0, 0.1);
   barrier_blocks(cands, dist, s.rows.data(), volume.data(), prm, b.data());
   std::vector<std::array<double, 6>> ref(s.n(), {0, 0, 0, 0, 0, 0});
   for (std::size_t ic = 0; ic < cands.size(); ic++) {

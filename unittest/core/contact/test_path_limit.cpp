@@ -26,13 +26,13 @@ TEST(PathLimit, OnePairIsItsCcd)
   const std::vector<Candidate> cands = {c};
   CcdOptions opt;
   opt.dmin = 0.1;
-  const double t = path_limit(cands, ra.data(), rb.data(), 0.1, nullptr);
+  const double t = path_limit(cands, ra.data(), rb.data(), (int) ra.size(), 0.1, nullptr);
   EXPECT_EQ(t,
             point_point_ccd(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, 0, 0),
                             Vector3d(-0.5, 0, 0), opt));
   EXPECT_LT(t, 0.9);
   // no move: no limit
-  EXPECT_EQ(path_limit(cands, ra.data(), ra.data(), 0.1, nullptr), 1.0);
+  EXPECT_EQ(path_limit(cands, ra.data(), ra.data(), (int) ra.size(), 0.1, nullptr), 1.0);
 }
 
 TEST(PathLimit, SheetsPressedTogether)
@@ -51,7 +51,7 @@ TEST(PathLimit, SheetsPressedTogether)
   end[32][0] += 0.3;
   auto xe = rows_of(end);
   const double dmin = 0.02;
-  const double t = path_limit(cands, s.rows.data(), xe.data(), dmin, nullptr);
+  const double t = path_limit(cands, s.rows.data(), xe.data(), s.n(), dmin, nullptr);
   // the smallest of the pairs' CCD fractions
   double smallest = 1.0;
   CcdOptions opt;
@@ -71,8 +71,8 @@ TEST(PathLimit, SheetsPressedTogether)
   EXPECT_GE(t, 0.5 * smallest);
   // the known gaps at the start skip pairs but give the same fraction
   CandidateDistances known;
-  known.evaluate(cands, s.rows.data(), s.n(), 1, 0.2, 1.0);
-  EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), dmin, &known), t);
+  known.evaluate(cands, s.rows.data(), s.n(), 1, 0.2, 1.0, 0.3);
+  EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), s.n(), dmin, &known), t);
   // every pair stays beyond dmin along the scaled move
   for (int k = 0; k <= 100; k++) {
     const double tau = t * k / 100.0;
@@ -100,7 +100,7 @@ TEST(PathLimit, MoveWithinGapsSkipsThePairs)
   const double dmin = 0.02;
   CandidateDistances known;
   EXPECT_FALSE(move_within_gaps(s.rows.data(), s.rows.data(), s.n(), dmin, known));    // unknown
-  known.evaluate(cands, s.rows.data(), s.n(), 1, 0.2, 1.0);
+  known.evaluate(cands, s.rows.data(), s.n(), 1, 0.2, 1.0, 0.3);
   const double gap = known.smallest_gap(dmin);
   ASSERT_GT(gap, 0.0);
   EXPECT_TRUE(move_within_gaps(s.rows.data(), s.rows.data(), s.n(), dmin, known));    // no move
@@ -124,7 +124,7 @@ TEST(PathLimit, MoveWithinGapsSkipsThePairs)
     EXPECT_EQ(within, 2.0 * f <= 0.9) << f;
     if (!within) continue;
     CandidateDistances after = known;
-    EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), dmin, &after), 1.0);
+    EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), s.n(), dmin, &after), 1.0);
     for (std::size_t ic = 0; ic < cands.size(); ic++) {
       EXPECT_EQ(after[ic], known[ic]);
       EXPECT_EQ(after.exact(ic), known.exact(ic));
