@@ -206,10 +206,14 @@ TEST(CandidateDistances, NearPairsAloneUntilAnAtomMovesHalfTheMargin)
   d = exact_all();
   for (std::size_t ic = 0; ic < cands.size(); ic++) {
     EXPECT_LE(dist[ic], d[ic] + 1e-15) << ic;
-    if (d[ic] < range) EXPECT_EQ(dist[ic], d[ic]);
+    if (d[ic] < range) {
+      EXPECT_EQ(dist[ic], d[ic]);
+    }
   }
   EXPECT_NE(dist.near(), near);
   EXPECT_GT(dist.far_bound(), range + margin - 1e-15);
   for (std::size_t ic = 0; ic < cands.size(); ic++)
-    if (dist.far(ic)) EXPECT_GE(dist[ic], dist.far_bound());
+    if (dist.far(ic)) {
+      EXPECT_GE(dist[ic], dist.far_bound());
+    }
 }
