@@ -48,8 +48,12 @@ class CollisionLimit {
   // list (the atoms moved far enough from the last build to shorten the next step's reach).
   // Collective.
   virtual bool rebuild_wanted() = 0;
-  // add the positive semi-definite diagonal blocks of the contact's stiffness at the last
-  // force evaluation, per unit volume of each owned atom (xx yy zz xy xz yz), to block
+  // keep what add_blocks() needs of the last force evaluation (called after the evaluations
+  // whose blocks the solver may ask for)
+  virtual void keep_blocks() = 0;
+  // add the positive semi-definite diagonal blocks of the contact's stiffness at the evaluation
+  // of the last keep_blocks(), per unit volume of each owned atom (xx yy zz xy xz yz), to
+  // block (later evaluations, Jacobian probes, do not change them)
   virtual void add_blocks(double **block) = 0;
 
   // true when the contact adapts its stiffness (then the three calls below are made, and the

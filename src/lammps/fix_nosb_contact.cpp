@@ -365,7 +365,8 @@ void FixNosbContact::post_force(int /*vflag*/)
   if (iterate_pending) adapt_at_iterate();
   const PeriSISSM::BarrierParameters prm{kappa, opt.dhat, opt.dmin};
   barrier =
-      PeriSISSM::barrier_forces(candidates, distances, atom->x, atom->vfrac, prm, nearest, atom->f);
+      PeriSISSM::barrier_forces(candidates, distances, atom->x, atom->vfrac, prm, nearest, atom->f,
+                                &active);
   if (barrier.too_close >= 0)
     error->one(FLERR, "Fix nosb/contact {}: at step {} {}", id, update->ntimestep,
                PeriSISSM::too_close_error(candidates[barrier.too_close],

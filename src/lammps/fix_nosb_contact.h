@@ -58,6 +58,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
   bool reach_limited() const override { return reach_bound; }
   void reach_error(const char *integrator) override;
   bool rebuild_wanted() override;
+  void keep_blocks() override;
   void add_blocks(double **block) override;
   bool adapts_stiffness() const override { return opt.kappa_auto; }
   void set_force_factor(double c) override { inertia_c = c; }
@@ -93,6 +94,15 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double step_h = 0.0;              // the step of the last begin_step()
   bigint generation = 0;            // candidate builds so far (local indices change with them)
   bigint lagged_generation = -1;    // the generation the lagged data's local indices belong to
+
+  // the pairs within the barrier's range at the last force evaluation (barrier_forces()), and
+  // at the evaluation of keep_blocks(), with its positions (owned and ghost), stiffness and
+  // whether its friction had blocks (add_blocks())
+  std::vector<int> active, kept_active;
+  std::vector<double> kept_x;
+  std::vector<double *> kept_rows;
+  double kept_kappa = 0.0, kept_step_h = 0.0;
+  int kept_friction = 0;
 
   // results of the last force evaluation (this rank; each pair counted once over all ranks)
   PeriSISSM::BarrierTally barrier;

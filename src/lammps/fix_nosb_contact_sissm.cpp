@@ -172,16 +172,34 @@ bool FixNosbContact::rebuild_wanted()
 
 /* ----------------------------------------------------------------------
    the barrier's and the friction's diagonal stiffness blocks of the owned vertices at the
-   current positions (barrier_potential.h, friction_potential.h)
+   positions of the last keep_blocks() (barrier_potential.h, friction_potential.h): its active
+   pairs and positions, so that the blocks of an iterate can be made after the probes of its
+   Jacobian products (their positions differ). The candidates and the lagged friction pairs do
+   not change inside a step.
 ------------------------------------------------------------------------- */
+
+void FixNosbContact::keep_blocks()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  kept_active = active;
+  kept_x.resize(3 * (std::size_t) nall);
+  kept_rows.resize(nall);
+  double **x = atom->x;
+  for (int i = 0; i < nall; i++) {
+    for (int d = 0; d < 3; d++) kept_x[3 * i + d] = x[i][d];
+    kept_rows[i] = &kept_x[3 * i];
+  }
+  kept_kappa = kappa;
+  kept_step_h = step_h;
+  kept_friction = opt.mu > 0.0 && in_step && lagged_generation == generation;
+}
 
 void FixNosbContact::add_blocks(double **block)
 {
-  // (the distances of the last force evaluation: these positions, as fix sissm calls this right
-  // after post_force)
-  PeriSISSM::barrier_blocks(candidates, distances, atom->x, atom->vfrac,
-                            {kappa, opt.dhat, opt.dmin}, block);
-  // the friction's (positive semi-definite) blocks at the current slip of the step
-  if (!(opt.mu > 0.0) || !in_step || lagged_generation != generation) return;
-  PeriSISSM::friction_blocks(lagged, atom->x, {opt.mu, opt.epsv * step_h}, atom->vfrac, block);
+  PeriSISSM::barrier_blocks(candidates, kept_active, kept_rows.data(), atom->vfrac,
+                            {kept_kappa, opt.dhat, opt.dmin}, block);
+  // the friction's (positive semi-definite) blocks at the slip of the kept positions
+  if (!kept_friction) return;
+  PeriSISSM::friction_blocks(lagged, kept_rows.data(), {opt.mu, opt.epsv * kept_step_h},
+                             atom->vfrac, block);
 }

@@ -63,8 +63,8 @@ void SissmSystem::evaluate(bool blocks)
   FixSissm &s = *fix_;
   Atom *atom = s.atom;
   evaluations_++;
-  contact_blocks_skipped_ = !blocks && (contact_blocks_skipped_ || contact_blocks_due_);
-  contact_blocks_due_ = false;
+  // (the blocks are made anew at an evaluation with blocks; a probe's evaluation keeps them)
+  if (blocks) contact_blocks_due_ = false;
   s.comm->forward_comm();
   if (!s.limiters.empty()) s.limit_path(false);
   // an iterate of the solver (a probe of a Jacobian product has no blocks): a contact may
@@ -96,7 +96,10 @@ void SissmSystem::evaluate(bool blocks)
       }
     for (Fix *fix : s.implicit_fixes) fix->post_force(0);
     // (the contacts' blocks at these positions when block() first asks, see there)
-    if (blocks && !s.limiters.empty()) contact_blocks_due_ = true;
+    if (blocks && !s.limiters.empty()) {
+      for (CollisionLimit *limit : s.limiters) limit->keep_blocks();
+      contact_blocks_due_ = true;
+    }
     for (int i = 0; i < nlocal; i++)
       if (mask[i] & groupbit)
         for (int k = 0; k < 3; k++) {
@@ -132,17 +135,13 @@ void SissmSystem::evaluate(bool blocks)
 
 void SissmSystem::block(int i, double D[6]) const
 {
-  // The contacts' blocks (a PSD projection of each active pair's Hessian) at the positions and
-  // distances of the last evaluation with blocks: made here, at the first block() after it,
-  // which the solvers ask before they evaluate again (the sweep that ends a step, the block
-  // preconditioner's first application before the first Jacobian probe), so that iterates
-  // whose blocks nobody asks for (every Newton step with precond amg) do not pay for them
+  // The contacts' blocks (a PSD projection of each active pair's Hessian) at the positions of
+  // the last evaluation with blocks (the contacts keep them: probes of Jacobian products that
+  // came since do not change them): made here, at the first block() after it, so that iterates
+  // whose blocks nobody asks for (most Newton steps with precond amg) do not pay for them
   if (contact_blocks_due_) {
     for (CollisionLimit *limit : fix_->limiters) limit->add_blocks(fix_->kblock);
     contact_blocks_due_ = false;
-  } else if (contact_blocks_skipped_) {
-    fix_->error->one(FLERR, "Fix sissm {}: internal error: the contact's blocks of an iterate "
-                     "were asked for after a later evaluation", fix_->id);
   }
   fix_->scheme->block(fix_->atom->rmass[i], fix_->kblock[i], D);
 }

@@ -63,7 +63,6 @@ class SissmSystem : public PeriSISSM::NonlinearSystem {
   // the first block() before the next evaluation: most iterates never ask for them), or were
   // skipped by a later evaluation without blocks
   mutable bool contact_blocks_due_ = false;
-  bool contact_blocks_skipped_ = false;
 };
 
 }    // namespace LAMMPS_NS

@@ -21,12 +21,13 @@ std::string too_close_error(const Candidate &c, double distance, double dmin)
 BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
                             const CandidateDistances &distances, const double *const *x,
                             const double *volume, const BarrierParameters &prm, double mindist,
-                            double **f)
+                            double **f, std::vector<int> *active)
 {
   const double range = prm.dmin + prm.dhat;
   BarrierTally t;
   t.mindist = mindist;
   t.ncandidates = distances.counted();
+  if (active) active->clear();
   // (the far pairs are beyond the range and the smallest distance: candidate_distances.h)
   for (int ic : distances.near()) {
     const Candidate &c = candidates[ic];
@@ -37,6 +38,7 @@ BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
       t.too_close = (long) ic;
       return t;
     }
+    if (active) active->push_back(ic);
     const int nv = c.nv();
     Vector3d y[4];
     c.gather(x, y);
@@ -59,15 +61,12 @@ BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
   return t;
 }
 
-void barrier_blocks(const std::vector<Candidate> &candidates, const CandidateDistances &distances,
+void barrier_blocks(const std::vector<Candidate> &candidates, const std::vector<int> &active,
                     const double *const *x, const double *volume, const BarrierParameters &prm,
                     double **block)
 {
-  const double range = prm.dmin + prm.dhat;
-  if (!distances.valid()) return;
-  for (int ic : distances.near()) {
+  for (int ic : active) {
     const Candidate &c = candidates[ic];
-    if (!(distances[ic] < range)) continue;
     Vector3d y[4];
     c.gather(x, y);
     add_diagonal_blocks(c.stencil().barrier_hessian(y, c.eps, prm, true), c.nv(), c.own, volume,

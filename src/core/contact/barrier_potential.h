@@ -33,20 +33,21 @@ struct BarrierTally {
 // owned vertices; only the near pairs of distances are looked at (candidate_distances.h: the
 // far ones are beyond the range and the smallest distance). Inputs: the candidates, their
 // distances at x, x, the volumes, the barrier's parameters, the smallest distance to start
-// from. Outputs: f; returns the tally.
+// from. Outputs: f; the pairs within the range (indices, ascending) in active unless nullptr;
+// returns the tally.
 BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
                             const CandidateDistances &distances, const double *const *x,
                             const double *volume, const BarrierParameters &prm, double mindist,
-                            double **f);
+                            double **f, std::vector<int> *active = nullptr);
 
 // The error for the pair too_close of a tally at the given distance: named by kind and IDs,
 // with dmin (the barrier is infinite there)
 std::string too_close_error(const Candidate &c, double distance, double dmin);
 
-// The 3x3 diagonal blocks of the PSD-projected Hessians of the pairs within dmin + dhat
-// (distances valid at x), divided by each owned vertex's volume, added to block (xx yy zz xy xz
-// yz per atom).
-void barrier_blocks(const std::vector<Candidate> &candidates, const CandidateDistances &distances,
+// The 3x3 diagonal blocks of the PSD-projected Hessians of the pairs listed in active (those
+// within dmin + dhat at x: barrier_forces()), divided by each owned vertex's volume, added to
+// block (xx yy zz xy xz yz per atom).
+void barrier_blocks(const std::vector<Candidate> &candidates, const std::vector<int> &active,
                     const double *const *x, const double *volume, const BarrierParameters &prm,
                     double **block);
 

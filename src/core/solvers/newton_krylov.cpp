@@ -114,7 +114,6 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
     for (int i = 0; i < n; i++)
       if (rows.has(i))
         for (int k = 0; k < 3; k++) w.pdir[i][k] = w.zdir[i][k];
-    BlockPreconditioner().apply(sys, w.rbase, w.jbase);
     double rz = dot(sys, w.cres, w.zdir, w.term);
     const double target = fmax(0.25 * out.tolerance, eta * measure);
     int cg = 0;
@@ -153,6 +152,11 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
         if (rows.has(i))
           for (int k = 0; k < 3; k++) w.pdir[i][k] = w.zdir[i][k] + beta * w.pdir[i][k];
     }
+    // the SISSM correction of the base, taken if the budget ends in this Newton step's line
+    // search (at its iterate or one of at most four cuts: above); block() still gives the
+    // base's blocks (the probes have none). Made only then: the contacts' blocks cost a
+    // PSD projection per active pair
+    if (sys.evaluations() + 5 >= maxiter) BlockPreconditioner().apply(sys, w.rbase, w.jbase);
     out.newton++;
     out.krylov += cg;
     slope0 = dot(sys, w.sdir, w.rbase, w.term);

@@ -147,10 +147,17 @@ TEST(BarrierPotential, BlocksAreTheProjectedHessiansDiagonalBlocks)
   std::vector<double *> b;
   for (auto &q : blk) b.push_back(q.data());
   CandidateDistances dist;
-  barrier_blocks(cands, dist, s.rows.data(), volume.data(), prm, b.data());    // not valid
-  for (const auto &q : blk) EXPECT_EQ(q[0], 0.0);
   dist.evaluate(cands, s.rows.data(), s.n(), 1, prm.dmin + prm.dhat, 1.0, 0.1);
-  barrier_blocks(cands, dist, s.rows.data(), volume.data(), prm, b.data());
+  // the pairs within the range, as the forces found them
+  std::vector<std::array<double, 3>> force(s.n(), {0.0, 0.0, 0.0});
+  auto f = PeriSISSMContactTest::rows_of(force);
+  std::vector<int> active;
+  barrier_forces(cands, dist, s.rows.data(), volume.data(), prm, 1.0, f.data(), &active);
+  std::vector<int> within;
+  for (std::size_t ic = 0; ic < cands.size(); ic++)
+    if (dist[ic] < prm.dmin + prm.dhat) within.push_back((int) ic);
+  EXPECT_EQ(active, within);
+  barrier_blocks(cands, active, s.rows.data(), volume.data(), prm, b.data());
   std::vector<std::array<double, 6>> ref(s.n(), {0, 0, 0, 0, 0, 0});
   for (std::size_t ic = 0; ic < cands.size(); ic++) {
     const Candidate &c = cands[ic];
