@@ -164,6 +164,48 @@ namespace {
     std::int64_t missing = 0;
   };
 
+  // The pairs sorted by kind and then by their IDs. With IDs below 2^31 (every run of fewer
+  // than two billion atoms) a pair's kind and IDs fit in two 64-bit words in that order, and
+  // those keys with their indices are sorted (the 96-byte pairs are moved once, not at every
+  // exchange of the sort); otherwise the pairs themselves.
+  void sort_by_ids(std::vector<Candidate> &found)
+  {
+    const auto before = [](const Candidate &a, const Candidate &b) {
+      if (a.type != b.type) return a.type < b.type;
+      return std::lexicographical_compare(a.tag, a.tag + 4, b.tag, b.tag + 4);
+    };
+    constexpr std::int64_t kLimit = std::int64_t(1) << 31;
+    bool small = true;
+    for (const Candidate &c : found)
+      for (int k = 0; k < 4; k++) small = small && c.tag[k] >= 0 && c.tag[k] < kLimit;
+    if (!small) {
+      std::sort(found.begin(), found.end(), before);
+      return;
+    }
+    struct Key {
+      std::uint64_t hi, lo;    // kind (2 bits), tag[0], tag[1] | tag[2], tag[3] (31 bits each)
+      int n;
+      bool operator<(const Key &o) const
+      {
+        return hi != o.hi ? hi < o.hi : (lo != o.lo ? lo < o.lo : n < o.n);
+      }
+    };
+    std::vector<Key> keys(found.size());
+    for (std::size_t n = 0; n < found.size(); n++) {
+      const Candidate &c = found[n];
+      const auto t = [&c](int k) {
+        return (std::uint64_t) c.tag[k];
+      };
+      keys[n] = {((std::uint64_t) c.type << 62) | (t(0) << 31) | t(1), (t(2) << 31) | t(3),
+                 (int) n};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<Candidate> sorted;
+    sorted.reserve(found.size());
+    for (const Key &k : keys) sorted.push_back(found[k.n]);
+    found = std::move(sorted);
+  }
+
 }    // namespace
 
 std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list, double reach,
@@ -292,24 +334,28 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
       }
       if (!member(j) && !particle(j)) continue;
       if (member(j)) prim.find(j);
-      // (the primitives at i and at j, and the points i and j, lie within their atoms' bounds)
+      // (the primitives at i and at j, and the points i and j, lie within their atoms' bounds:
+      // a point or an edge apart from all the primitives at the other atom is apart from each)
       if (member(i) && member(j) && apart(prim.around[i], prim.around[j], reach)) continue;
-      if (member(j))
+      const auto at = [&](int k) {
+        const Vector3d y = point(k);
+        return Bounds{y, y, y, 0.0};
+      };
+      if (member(j) && !apart(at(i), prim.around[j], reach))
         for (int t = prim.tri_at[j]; t < prim.tri_end[j]; t++) add_pt(i, prim.tris[t]);
-      if (member(i))
+      if (member(i) && !apart(at(j), prim.around[i], reach))
         for (int t = prim.tri_at[i]; t < prim.tri_end[i]; t++) add_pt(j, prim.tris[t]);
       if (member(i) && member(j))
-        for (int a = prim.edge_at[i]; a < prim.edge_end[i]; a++)
+        for (int a = prim.edge_at[i]; a < prim.edge_end[i]; a++) {
+          if (apart(prim.edges[a].b, prim.around[j], reach)) continue;
           for (int b = prim.edge_at[j]; b < prim.edge_end[j]; b++)
             add_ee(prim.edges[a], prim.edges[b]);
+        }
     }
   }
 
   // each pair once, in the order of its IDs
-  std::sort(found.begin(), found.end(), [](const Candidate &a, const Candidate &b) {
-    if (a.type != b.type) return a.type < b.type;
-    return std::lexicographical_compare(a.tag, a.tag + 4, b.tag, b.tag + 4);
-  });
+  sort_by_ids(found);
   const auto same = [](const Candidate &a, const Candidate &b) {
     return a.type == b.type && std::equal(a.tag, a.tag + 4, b.tag);
   };

@@ -137,6 +137,26 @@ TEST(Candidates, AreThePairsWithinReachEachOnceInOrder)
   }
 }
 
+// IDs of 2^31 and more (sorted as pairs, not as packed keys): the same pairs in the same order
+TEST(Candidates, LargeIdsGiveTheSameOrder)
+{
+  Scene s = two_sheets(4);
+  std::vector<Candidate> small, large;
+  find_candidates(s.atoms(), s.list(), 0.5, small);
+  const std::int64_t offset = std::int64_t(1) << 33;
+  for (std::int64_t &t : s.tag) t += offset;
+  find_candidates(s.atoms(), s.list(), 0.5, large);
+  ASSERT_EQ(small.size(), large.size());
+  ASSERT_GT(small.size(), 20u);
+  for (std::size_t n = 0; n < small.size(); n++) {
+    EXPECT_EQ(small[n].type, large[n].type);
+    for (int k = 0; k < small[n].nv(); k++) {
+      EXPECT_EQ(small[n].v[k], large[n].v[k]);
+      EXPECT_EQ(small[n].tag[k] + offset, large[n].tag[k]);
+    }
+  }
+}
+
 // A process that owns only the first nlocal atoms (the others ghosts, its list the owned atoms'
 // full lists): the pairs within reach that have an owned point, each once
 TEST(Candidates, OwnedAndGhostAtomsGiveThePairsWithAnOwnedPointEachOnce)
