@@ -44,10 +44,10 @@ class CollisionLimit {
   virtual bool reach_limited() const = 0;
   // the error for a step that ended cut short by the candidates' reach (collective)
   virtual void reach_error(const char *integrator) = 0;
-  // at the end of a step: true (all ranks) when the next step should start from a new neighbor
-  // list (the atoms moved far enough from the last build to shorten the next step's reach).
-  // Collective.
-  virtual bool rebuild_wanted() = 0;
+  // true (all ranks) when the next step should start from a new neighbor list (the atoms moved
+  // far enough from the last build to shorten the next step's reach): end_of_step at the end
+  // of a step (its motion may predict the next one's), else before a sub-step. Collective.
+  virtual bool rebuild_wanted(bool end_of_step) = 0;
   // keep what add_blocks() needs of the last force evaluation (called after the evaluations
   // whose blocks the solver may ask for)
   virtual void keep_blocks() = 0;

@@ -327,7 +327,9 @@ void FixNosbContact::check_motion()
   // LAMMPS checks the motion only once per step; fix sissm's iterates move the atoms inside the
   // step (its post_integrate, before that check): beyond a quarter of the skin, the next step
   // builds a new list (decided on all ranks alike). A pending request is not moved: fix sissm
-  // evaluates the forces of step n + 1 before LAMMPS decides on that step's list build.
+  // evaluates the forces of step n + 1 before LAMMPS decides on that step's list build. Under
+  // fix sissm with ccd yes the end of each step decides instead (rebuild_wanted()).
+  if (in_step) return;
   double all;
   MPI_Allreduce(&most, &all, 1, MPI_DOUBLE, MPI_MAX, world);
   const double request = MotionTracker::request_distance(neighbor->skin);

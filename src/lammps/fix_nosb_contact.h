@@ -57,7 +57,7 @@ class FixNosbContact : public Fix, public CollisionLimit {
   double limit_move(int groupbit) override;
   bool reach_limited() const override { return reach_bound; }
   void reach_error(const char *integrator) override;
-  bool rebuild_wanted() override;
+  bool rebuild_wanted(bool end_of_step) override;
   void keep_blocks() override;
   void add_blocks(double **block) override;
   bool adapts_stiffness() const override { return opt.kappa_auto; }
@@ -92,6 +92,8 @@ class FixNosbContact : public Fix, public CollisionLimit {
   std::vector<PeriSISSM::LaggedPair> lagged;
   int in_step = 0;                  // begin_step() was called in this run: the implicit recipe
   double step_h = 0.0;              // the step of the last begin_step()
+  std::vector<double> xstep;        // the owned positions at the last begin_step()
+  bigint xstep_generation = -1;     // the generation then
   bigint generation = 0;            // candidate builds so far (local indices change with them)
   bigint lagged_generation = -1;    // the generation the lagged data's local indices belong to
 

@@ -18,6 +18,7 @@
 #include "update.h"
 
 #include <algorithm>
+#include <cmath>
 
 using namespace LAMMPS_NS;
 using PeriSISSM::MotionTracker;
@@ -81,6 +82,11 @@ void FixNosbContact::begin_step(double h, double c)
 {
   in_step = 1;
   step_h = h;
+  const int nlocal = atom->nlocal;
+  xstep.resize(3 * (std::size_t) nlocal);
+  for (int i = 0; i < nlocal; i++)
+    for (int d = 0; d < 3; d++) xstep[3 * i + d] = atom->x[i][d];
+  xstep_generation = generation;
   if (opt.kappa_auto) {
     inertia_c = c;
     kappa = stiffness.value() / inertia_c;
@@ -156,18 +162,36 @@ void FixNosbContact::reach_error(const char *integrator)
 }
 
 /* ----------------------------------------------------------------------
-   at the end of an implicit step: a new neighbor list before the next step once an atom has
-   moved skin/8 (motion_tracker.h; fix sissm builds it before the forces of that step)
+   a new neighbor list before the next (sub-)step (motion_tracker.h; fix sissm builds it before
+   the forces of that step): at the end of a step once an atom has moved so far from the last
+   build that the next step, predicted by the largest move of the last (sub-)step scaled to a
+   full step, has less than 1.5 times that left before skin/2 (rebuild_due()); before a
+   sub-step, or without a prediction (a build inside the step), once an atom has moved skin/8
 ------------------------------------------------------------------------- */
 
-bool FixNosbContact::rebuild_wanted()
+bool FixNosbContact::rebuild_wanted(bool end_of_step)
 {
   int farthest;
-  const double most = motion.largest_move2(atom->x, atom->nlocal, atom->mask, groupbit, farthest);
-  double all;
-  MPI_Allreduce(&most, &all, 1, MPI_DOUBLE, MPI_MAX, world);
-  const double trigger = MotionTracker::rebuild_distance(neighbor->skin);
-  return all > trigger * trigger;
+  const int nlocal = atom->nlocal;
+  double mine[2] = {motion.largest_move2(atom->x, nlocal, atom->mask, groupbit, farthest), -1.0};
+  const bool predict = end_of_step && xstep_generation == generation && step_h > 0.0 &&
+      xstep.size() == 3 * (std::size_t) nlocal;
+  if (predict) {
+    mine[1] = 0.0;
+    for (int i = 0; i < nlocal; i++) {
+      if (!(atom->mask[i] & groupbit)) continue;
+      double r2 = 0.0;
+      for (int d = 0; d < 3; d++) r2 += std::pow(atom->x[i][d] - xstep[3 * i + d], 2);
+      mine[1] = std::max(mine[1], r2);
+    }
+  }
+  double all[2];
+  MPI_Allreduce(mine, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  const double skin = neighbor->skin;
+  // (every rank predicts or none: the generation, nlocal and the step are the same on all)
+  if (all[1] < 0.0) return all[0] > std::pow(MotionTracker::rebuild_distance(skin), 2);
+  const double predicted = std::sqrt(all[1]) * update->dt / step_h;
+  return MotionTracker::rebuild_due(std::sqrt(all[0]), predicted, skin);
 }
 
 /* ----------------------------------------------------------------------

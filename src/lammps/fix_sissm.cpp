@@ -526,7 +526,7 @@ void FixSissm::post_integrate()
   // the next step starts from a fresh neighbor list if this one moved atoms far
   const std::string cause = converged ? "" : PeriSISSM::unconverged_cause(measure, tol_step);
   bool rebuild = forces->contact_end_of_step(cause);
-  for (CollisionLimit *limit : limiters) rebuild = limit->rebuild_wanted() || rebuild;
+  for (CollisionLimit *limit : limiters) rebuild = limit->rebuild_wanted(true) || rebuild;
   if (rebuild) next_reneighbor = update->ntimestep;
 
   const int evaluations = outcome.evaluations;

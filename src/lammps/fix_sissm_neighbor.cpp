@@ -35,7 +35,7 @@ using namespace LAMMPS_NS;
 void FixSissm::start_substep()
 {
   bool wanted = forces->contact_build_wanted() > 0;
-  for (CollisionLimit *limit : limiters) wanted = limit->rebuild_wanted() || wanted;
+  for (CollisionLimit *limit : limiters) wanted = limit->rebuild_wanted(false) || wanted;
   if (wanted) build_neighbors_in_step();
 }
 

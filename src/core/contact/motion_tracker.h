@@ -19,6 +19,7 @@
 #ifndef PERISISSM_CONTACT_MOTION_TRACKER_H
 #define PERISISSM_CONTACT_MOTION_TRACKER_H
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,6 +33,16 @@ class MotionTracker {
   static double error_distance(double skin) { return 0.5 * skin; }
   static double request_distance(double skin) { return 0.25 * skin; }
   static double rebuild_distance(double skin) { return 0.125 * skin; }
+  // At the end of a step whose largest move predicts the next step's (predicted: that move
+  // scaled to the next step's length): a build is wanted once an atom has moved so far that
+  // the next step has less than 1.5 predicted left before skin/2, and in any case beyond 3/8 of
+  // the skin. Where the motion is steady this builds a list every few steps instead of at
+  // every step that moves an atom skin/8, and a step that then needs more than the reach is
+  // redone as sub-steps as before.
+  static bool rebuild_due(double moved, double predicted, double skin)
+  {
+    return moved > std::min(0.375 * skin, 0.5 * skin - 1.5 * predicted);
+  }
   // the errors of a contact model for an atom (by ID) that moved `moved` (> error_distance())
   // since the neighbor list build at step `build`, and for an implicit step of `integrator` that
   // needs an atom beyond error_distance(skin) (from: its distance at the start of the move)

@@ -95,6 +95,12 @@ TEST(MotionTracker, SkinThresholds)
   EXPECT_EQ(MotionTracker::error_distance(0.8), 0.4);
   EXPECT_EQ(MotionTracker::request_distance(0.8), 0.2);
   EXPECT_EQ(MotionTracker::rebuild_distance(0.8), 0.1);
+  // predicted: room for 1.5 times the next step's move before skin/2, at most 3/8 skin moved
+  EXPECT_FALSE(MotionTracker::rebuild_due(0.19, 0.14, 0.8));    // 0.19 + 0.21 < 0.4
+  EXPECT_TRUE(MotionTracker::rebuild_due(0.2, 0.14, 0.8));      // 0.2 + 0.21 > 0.4
+  EXPECT_FALSE(MotionTracker::rebuild_due(0.29, 0.0, 0.8));     // a body at rest: 3/8 skin
+  EXPECT_TRUE(MotionTracker::rebuild_due(0.31, 0.0, 0.8));
+  EXPECT_TRUE(MotionTracker::rebuild_due(0.01, 0.3, 0.8));      // faster than the reach allows
 }
 
 // The reach of a move over a group: the smallest fraction, of equals the smallest tag
