@@ -299,8 +299,8 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
     for (int k = 0; k < 2; k++)
       for (int l = 0; l < 2; l++)
         if (tag[a.v[k]] == tag[b.v[l]]) return;
-    if (!from_ee(a, b)) return;
     if (apart(a.b, b.b, reach)) return;
+    if (!from_ee(a, b)) return;
     std::array<int, 2> u{a.v[0], a.v[1]}, w{b.v[0], b.v[1]};
     if (tag[u[1]] < tag[u[0]]) std::swap(u[0], u[1]);
     if (tag[w[1]] < tag[w[0]]) std::swap(w[0], w[1]);
