@@ -125,9 +125,9 @@ Vector12d point_triangle_barrier_gradient(const Vector3d &p, const Vector3d &t0,
 }
 
 double point_triangle_barrier(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
-                              const Vector3d &t2, const BarrierParameters &prm, Vector12d &g)
+                              const Vector3d &t2, double D, const BarrierParameters &prm,
+                              Vector12d &g)
 {
-  const double D = point_triangle_distance2(p, t0, t1, t2);
   if (!acts(D, prm)) {
     g.setZero();
     return 0.0;
@@ -174,10 +174,9 @@ Vector12d edge_edge_barrier_gradient(const Vector3d &a0, const Vector3d &a1, con
 }
 
 double edge_edge_barrier(const Vector3d &a0, const Vector3d &a1, const Vector3d &b0,
-                         const Vector3d &b1, double eps, const BarrierParameters &prm,
+                         const Vector3d &b1, double eps, double D, const BarrierParameters &prm,
                          Vector12d &g)
 {
-  const double D = edge_edge_distance2(a0, a1, b0, b1);
   if (!acts(D, prm)) {
     g.setZero();
     return 0.0;
@@ -229,10 +228,9 @@ Vector6d point_point_barrier_gradient(const Vector3d &p, const Vector3d &q,
       point_point_distance2_gradient(p, q);
 }
 
-double point_point_barrier(const Vector3d &p, const Vector3d &q, const BarrierParameters &prm,
-                           Vector6d &g)
+double point_point_barrier(const Vector3d &p, const Vector3d &q, double D,
+                           const BarrierParameters &prm, Vector6d &g)
 {
-  const double D = point_point_distance2(p, q);
   if (!acts(D, prm)) {
     g.setZero();
     return 0.0;

@@ -85,15 +85,17 @@ Vector6d point_point_barrier_gradient(const Eigen::Vector3d &p, const Eigen::Vec
 Matrix6d point_point_barrier_hessian(const Eigen::Vector3d &p, const Eigen::Vector3d &q,
                                      const BarrierParameters &prm, bool project_psd);
 
-// The energy (returned) and gradient (g) of the three functions above together, the squared
-// distance (and the edge-edge mollifier) computed once: the form for force evaluations.
+// The energy (returned) and gradient (g) of the three functions above together, from the
+// squared distance D known to the caller, the edge-edge mollifier computed once: the form for
+// force evaluations.
+// D: the pair's squared distance as point_triangle_distance2() etc. give it.
 double point_triangle_barrier(const Eigen::Vector3d &p, const Eigen::Vector3d &t0,
-                              const Eigen::Vector3d &t1, const Eigen::Vector3d &t2,
+                              const Eigen::Vector3d &t1, const Eigen::Vector3d &t2, double D,
                               const BarrierParameters &prm, Vector12d &g);
 double edge_edge_barrier(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1,
                          const Eigen::Vector3d &b0, const Eigen::Vector3d &b1, double eps,
-                         const BarrierParameters &prm, Vector12d &g);
-double point_point_barrier(const Eigen::Vector3d &p, const Eigen::Vector3d &q,
+                         double D, const BarrierParameters &prm, Vector12d &g);
+double point_point_barrier(const Eigen::Vector3d &p, const Eigen::Vector3d &q, double D,
                            const BarrierParameters &prm, Vector6d &g);
 
 // The nearest positive semi-definite matrix (Frobenius norm) of a symmetric one: its

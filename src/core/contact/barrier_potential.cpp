@@ -43,7 +43,8 @@ BarrierTally barrier_forces(const std::vector<Candidate> &candidates,
     Vector3d y[4];
     c.gather(x, y);
     Vector12d g;
-    const double E = c.stencil().barrier_energy_gradient(y, c.eps, prm, g);
+    // (a pair within the range is exact: its squared distance is known)
+    const double E = c.stencil().barrier_energy_gradient(y, c.eps, distances.squared(ic), prm, g);
     if (c.counts) {
       t.nactive[(int) c.type]++;
       t.energy_pairs += E;

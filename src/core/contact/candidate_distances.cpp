@@ -19,6 +19,7 @@ void CandidateDistances::evaluate(const std::vector<Candidate> &candidates, cons
   if (!same) {
     // new candidates: every pair exact
     distance.assign(n, 0.0);
+    distance2.assign(n, 0.0);
     exact_.assign(n, 1);
     far_.assign(n, 0);
     counted_ = 0;
@@ -85,7 +86,8 @@ double CandidateDistances::pass(const std::vector<Candidate> &candidates, const 
     }
     Vector3d y[4];
     c.gather(x, y);
-    distance[ic] = std::sqrt(c.stencil().distance2(y));
+    distance2[ic] = c.stencil().distance2(y);
+    distance[ic] = std::sqrt(distance2[ic]);
     exact_[ic] = 1;
     nearest = std::min(nearest, distance[ic]);
     smallest_ = std::min(smallest_, distance[ic]);

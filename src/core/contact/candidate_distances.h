@@ -49,11 +49,16 @@ class CandidateDistances {
     return far_[ic] ? distance[ic] - stale_ : distance[ic];
   }
   bool exact(std::size_t ic) const { return exact_[ic] != 0; }
-  // the distance of pair ic replaces its lower bound (a near pair's; a far pair keeps its bound)
-  void set_exact(std::size_t ic, double d)
+  // an exact pair's squared distance, as CollisionStencil::distance2() gave it (its distance
+  // is the square root)
+  double squared(std::size_t ic) const { return distance2[ic]; }
+  // the distance of pair ic, from its square D, replaces its lower bound (a near pair's; a far
+  // pair keeps its bound)
+  void set_exact(std::size_t ic, double D)
   {
     if (far_[ic]) return;
-    distance[ic] = d;
+    distance2[ic] = D;
+    distance[ic] = std::sqrt(D);
     exact_[ic] = 1;
   }
   // the near pairs, in ascending order: every pair within the range, and the nearest one
@@ -80,6 +85,7 @@ class CandidateDistances {
   void split(const double *const *x, int nall, double range, double nearest, double margin);
 
   std::vector<double> distance;    // near: at the last evaluation; far: at the last split
+  std::vector<double> distance2;   // the squares of the exact ones
   std::vector<char> exact_;
   std::vector<char> far_;
   std::vector<int> near_;

@@ -34,8 +34,9 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
       const double most = closing(c.type, len) * t_pairs;
       if (most <= (1.0 - opt.s) * ((*known)[ic] - dmin)) return;
       if (!known->exact(ic)) {
-        const double d = std::sqrt(stencil.distance2(y));
-        known->set_exact(ic, d);
+        const double D = stencil.distance2(y);
+        const double d = std::sqrt(D);
+        known->set_exact(ic, D);
         if (most <= (1.0 - opt.s) * (d - dmin)) return;
       }
     }

@@ -27,10 +27,10 @@ namespace {
     {
       return point_triangle_barrier_gradient(y[0], y[1], y[2], y[3], prm);
     }
-    double barrier_energy_gradient(const Vector3d *y, double, const BarrierParameters &prm,
-                                   Vector12d &g) const override
+    double barrier_energy_gradient(const Vector3d *y, double, double D,
+                                   const BarrierParameters &prm, Vector12d &g) const override
     {
-      return point_triangle_barrier(y[0], y[1], y[2], y[3], prm, g);
+      return point_triangle_barrier(y[0], y[1], y[2], y[3], D, prm, g);
     }
     Matrix12d barrier_hessian(const Vector3d *y, double, const BarrierParameters &prm,
                               bool psd) const override
@@ -68,10 +68,10 @@ namespace {
     {
       return edge_edge_barrier_gradient(y[0], y[1], y[2], y[3], eps, prm);
     }
-    double barrier_energy_gradient(const Vector3d *y, double eps, const BarrierParameters &prm,
-                                   Vector12d &g) const override
+    double barrier_energy_gradient(const Vector3d *y, double eps, double D,
+                                   const BarrierParameters &prm, Vector12d &g) const override
     {
-      return edge_edge_barrier(y[0], y[1], y[2], y[3], eps, prm, g);
+      return edge_edge_barrier(y[0], y[1], y[2], y[3], eps, D, prm, g);
     }
     Matrix12d barrier_hessian(const Vector3d *y, double eps, const BarrierParameters &prm,
                               bool psd) const override
@@ -107,11 +107,11 @@ namespace {
       g.head<6>() = point_point_barrier_gradient(y[0], y[1], prm);
       return g;
     }
-    double barrier_energy_gradient(const Vector3d *y, double, const BarrierParameters &prm,
-                                   Vector12d &g) const override
+    double barrier_energy_gradient(const Vector3d *y, double, double D,
+                                   const BarrierParameters &prm, Vector12d &g) const override
     {
       Vector6d g6;
-      const double E = point_point_barrier(y[0], y[1], prm, g6);
+      const double E = point_point_barrier(y[0], y[1], D, prm, g6);
       g.setZero();
       g.head<6>() = g6;
       return E;

@@ -45,8 +45,8 @@ class CollisionStencil {
                                 const BarrierParameters &prm) const = 0;
   virtual Vector12d barrier_gradient(const Eigen::Vector3d *y, double eps,
                                      const BarrierParameters &prm) const = 0;
-  // both (the energy returned, the gradient in g), the distance computed once
-  virtual double barrier_energy_gradient(const Eigen::Vector3d *y, double eps,
+  // both (the energy returned, the gradient in g) from the squared distance D = distance2(y)
+  virtual double barrier_energy_gradient(const Eigen::Vector3d *y, double eps, double D,
                                          const BarrierParameters &prm, Vector12d &g) const = 0;
   // psd: projected to positive semi-definite
   virtual Matrix12d barrier_hessian(const Eigen::Vector3d *y, double eps,

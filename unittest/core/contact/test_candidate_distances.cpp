@@ -89,7 +89,7 @@ TEST(CandidateDistances, ExactThenBoundedThenExactAgain)
   // set_exact replaces a bound (raises it: the gap bound stays below)
   for (std::size_t ic = 0; ic < cands.size(); ic++)
     if (!dist.exact(ic) && !dist.far(ic)) {
-      dist.set_exact(ic, exact_distance(cands[ic], s));
+      dist.set_exact(ic, std::pow(exact_distance(cands[ic], s), 2));
       EXPECT_TRUE(dist.exact(ic));
       break;
     }
