@@ -25,7 +25,7 @@ void CandidateDistances::evaluate(const std::vector<Candidate> &candidates, cons
     counted_ = 0;
     for (const Candidate &c : candidates) counted_ += c.counts ? 1 : 0;
     pass(candidates, x, nullptr, false, moved, range, nearest);
-    split(x, nall, range, nearest_given, margin);
+    split(candidates, x, nall, range, nearest_given, margin);
   } else {
     // the near pairs, bounded by their points' moves since the last evaluation
     moved.resize(nall);
@@ -54,7 +54,7 @@ void CandidateDistances::evaluate(const std::vector<Candidate> &candidates, cons
         moved[i] = std::sqrt(ex * ex + ey * ey + ez * ez);
       }
       pass(candidates, x, &far, true, moved, range, nearest);
-      split(x, nall, range, nearest_given, margin);
+      split(candidates, x, nall, range, nearest_given, margin);
     }
   }
   valid_ = true;
@@ -68,15 +68,20 @@ double CandidateDistances::pass(const std::vector<Candidate> &candidates, const 
                                 const std::vector<int> *idx, bool bounded,
                                 const std::vector<double> &moved, double range, double nearest)
 {
+  // (the near pairs' kinds and points from their contiguous copy: 20 bytes a pair, not the 96
+  // of a candidate scattered among the far ones)
+  const bool near = idx == &near_;
   const std::size_t n = idx ? idx->size() : candidates.size();
   for (std::size_t k = 0; k < n; k++) {
     const std::size_t ic = idx ? (std::size_t) (*idx)[k] : k;
-    const Candidate &c = candidates[ic];
+    const StencilType type = near ? near_pairs_[k].type : candidates[ic].type;
+    const int *v = near ? near_pairs_[k].v : candidates[ic].v;
+    const int nv = type == StencilType::kPointPoint ? 2 : 4;
     far_[ic] = 0;
     if (bounded) {
       double len[4];
-      for (int j = 0; j < c.nv(); j++) len[j] = moved[c.v[j]];
-      const double bound = distance[ic] - closing(c.type, len);
+      for (int j = 0; j < nv; j++) len[j] = moved[v[j]];
+      const double bound = distance[ic] - closing(type, len);
       if (bound >= range && bound >= nearest) {
         distance[ic] = bound;
         exact_[ic] = 0;
@@ -85,8 +90,8 @@ double CandidateDistances::pass(const std::vector<Candidate> &candidates, const 
       }
     }
     Vector3d y[4];
-    c.gather(x, y);
-    distance2[ic] = c.stencil().distance2(y);
+    for (int j = 0; j < nv; j++) y[j] = Vector3d(x[v[j]][0], x[v[j]][1], x[v[j]][2]);
+    distance2[ic] = CollisionStencil::of(type).distance2(y);
     distance[ic] = std::sqrt(distance2[ic]);
     exact_[ic] = 1;
     nearest = std::min(nearest, distance[ic]);
@@ -95,12 +100,13 @@ double CandidateDistances::pass(const std::vector<Candidate> &candidates, const 
   return nearest;
 }
 
-void CandidateDistances::split(const double *const *x, int nall, double range, double nearest,
-                               double margin)
+void CandidateDistances::split(const std::vector<Candidate> &candidates, const double *const *x,
+                               int nall, double range, double nearest, double margin)
 {
   const double threshold = std::max(range, std::min(smallest_, nearest));
   const double floor = threshold + margin;
   near_.clear();
+  near_pairs_.clear();
   bool any_far = false;
   for (std::size_t ic = 0; ic < distance.size(); ic++) {
     far_[ic] = distance[ic] >= floor ? 1 : 0;
@@ -109,6 +115,8 @@ void CandidateDistances::split(const double *const *x, int nall, double range, d
       any_far = true;
     } else {
       near_.push_back((int) ic);
+      const Candidate &c = candidates[ic];
+      near_pairs_.push_back({c.type, {c.v[0], c.v[1], c.v[2], c.v[3]}});
     }
   }
   far_floor_ = any_far ? floor : HUGE_VAL;

@@ -82,13 +82,19 @@ class CandidateDistances {
               double range, double nearest);
   // the near and far pairs at x (the distances current), from T = max(range, the smallest
   // distance capped at nearest)
-  void split(const double *const *x, int nall, double range, double nearest, double margin);
+  void split(const std::vector<Candidate> &candidates, const double *const *x, int nall,
+             double range, double nearest, double margin);
 
   std::vector<double> distance;    // near: at the last evaluation; far: at the last split
   std::vector<double> distance2;   // the squares of the exact ones
   std::vector<char> exact_;
   std::vector<char> far_;
   std::vector<int> near_;
+  struct NearPair {
+    StencilType type;
+    int v[4];
+  };
+  std::vector<NearPair> near_pairs_;    // the kinds and points of the near pairs
   double far_floor_ = HUGE_VAL;    // T + margin: every far pair's distance at the split
   double stale_ = 0.0;             // twice the largest move since the split
   double margin_ = 0.0;
