@@ -127,6 +127,15 @@ void CandidateDistances::split(const std::vector<Candidate> &candidates, const d
     for (int d = 0; d < 3; d++) xsplit[3 * i + d] = x[i][d];
 }
 
+double CandidateDistances::memory_bytes() const
+{
+  return (double) (distance.capacity() + distance2.capacity() + xlast.capacity() +
+                   xsplit.capacity() + moved.capacity()) *
+      sizeof(double) +
+      (double) (exact_.capacity() + far_.capacity()) + (double) near_.capacity() * sizeof(int) +
+      (double) near_pairs_.capacity() * sizeof(NearPair);
+}
+
 double CandidateDistances::smallest_gap(double dmin) const
 {
   double gap = HUGE_VAL;

@@ -73,6 +73,8 @@ class CandidateDistances {
   // a lower bound of it, kept by evaluate() (the smallest distance then; set_exact() only
   // raises distances)
   double gap_bound(double dmin) const { return smallest_ - dmin; }
+  // the bytes its arrays hold
+  double memory_bytes() const;
 
  private:
   // the pairs idx (all: nullptr) at x, bounded by their points' moves moved[] where bounded
