@@ -506,9 +506,13 @@ void FixSissm::post_integrate()
     ImplicitStep step(forces, groupbit);
     // precond amg: the preconditioner that converged the last step goes first
     precond = (amg_precond && !block_first) ? amg_precond.get() : block_precond.get();
+    const bool blocks_went_first = amg_precond && block_first > 0;
     if (block_first > 0) block_first--;
     SissmAttempts attempts(this, lagged ? flagged : nullptr);
     outcome = PeriSISSM::run_retry_ladder(attempts, opt.retry);
+    // the blocks that went first did not settle the step either: multigrid first again
+    if (blocks_went_first && (outcome.refreshed || outcome.switched || outcome.cut_back))
+      block_first = 0;
     report_retries(outcome);
   }
   const PeriSISSM::SolveResult &result = outcome.result;
