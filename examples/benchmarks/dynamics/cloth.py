@@ -25,8 +25,10 @@ examples/contact/in.thrown-cloth) with -var settings only:
            reference), relative to the reference's own displacement since the start; --halve
            also runs fix nve at half its step to show that the reference is converged. Frame
            1/60 s.
-  ball     1, 3 or 6 layers of cloth falling onto a ball. fix sissm at 1 ms (skin 8 mm, ghost
-           cutoff 9 cm); fix nve at 20 us. Frame 1/30 s.
+  ball     1, 3 or 6 layers of cloth falling onto a ball, one frame (33 steps of fix sissm). fix
+           sissm at 1 ms (skin 12 mm, 5 to 7 times a step's move, ghost cutoff 12 cm: with 8 mm
+           steps 26-31 of the 3 layers end beyond the candidates' reach and are cut back); fix
+           nve at 20 us. Frame 1/30 s.
   twist    a strip twisted by its ends. fix sissm at 1 ms (kappa 10, the deck's); fix nve at
            20 us with kappa 100 (at 10 the explicit run goes through the barrier after the
            buckle: examples/twisting-cloth/README.md); both with the deck's skin, 16 mm.
@@ -75,7 +77,7 @@ SCENES = {
                     sissm_dt=2e-3, nve_dt=None, time=0.3, sissm={}, nve={"solver": "nve"}),
     "ball": dict(folder="cloth-on-ball", deck="in.cloth-on-ball",
                  files=["cloth.obj", "ball.obj"], frame=1 / 30, sissm_dt=1e-3, nve_dt=2e-5,
-                 time=0.02, sissm={"solver": "sissm", "skin": 0.008, "comm": 0.09},
+                 time=1 / 30, sissm={"solver": "sissm", "skin": 0.012, "comm": 0.12},
                  nve={"solver": "nve"}),
     "twist": dict(folder="twisting-cloth", deck="in.twisting-cloth", files=["strip.obj"],
                   frame=1 / 30, sissm_dt=1e-3, nve_dt=2e-5, time=0.2,
