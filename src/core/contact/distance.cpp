@@ -658,29 +658,23 @@ double point_edge_distance(const Vector3d &p, const Vector3d &e0, const Vector3d
 }
 
 // Face: |(p - t0) . n| / |n| (the closest point is p minus that along n); otherwise the nearest
-// edge's closest point.
+// edge's closest point. The classification of point_triangle_type() inlined: outside the face
+// the nearest of the three edges' closest points is the distance, whichever vertex or edge it
+// is (the same value as through the class, which the continuous collision detection's many
+// queries need not know).
 double point_triangle_distance(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
                                const Vector3d &t2)
 {
-  switch (point_triangle_type(p, t0, t1, t2)) {
-    case PointTriangleType::kFace: {
-      const Vector3d n = (t1 - t0).cross(t2 - t0);
+  const Vector3d n = (t1 - t0).cross(t2 - t0);
+  if (n.squaredNorm() > 0.0) {
+    const Vector3d q0 = t0 - p, q1 = t1 - p, q2 = t2 - p;
+    if (q1.cross(q2).dot(n) >= 0.0 && q2.cross(q0).dot(n) >= 0.0 && q0.cross(q1).dot(n) >= 0.0)
       return std::fabs((p - t0).dot(n)) / n.norm();
-    }
-    case PointTriangleType::kT0:
-      return (p - t0).norm();
-    case PointTriangleType::kT1:
-      return (p - t1).norm();
-    case PointTriangleType::kT2:
-      return (p - t2).norm();
-    case PointTriangleType::kE01:
-      return point_edge_distance(p, t0, t1);
-    case PointTriangleType::kE12:
-      return point_edge_distance(p, t1, t2);
-    case PointTriangleType::kE20:
-      return point_edge_distance(p, t2, t0);
   }
-  return 0.0;
+  const double d01 = (p - closest_on_segment(p, t0, t1)).squaredNorm();
+  const double d12 = (p - closest_on_segment(p, t1, t2)).squaredNorm();
+  const double d20 = (p - closest_on_segment(p, t2, t0)).squaredNorm();
+  return std::sqrt(std::min(std::min(d01, d12), d20));
 }
 
 double edge_edge_distance(const Vector3d &a0, const Vector3d &a1, const Vector3d &b0,
