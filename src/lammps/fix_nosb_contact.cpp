@@ -492,7 +492,7 @@ double FixNosbContact::memory_usage()
   return (double) candidates.capacity() * sizeof(Candidate) +
       (double) lagged.capacity() * sizeof(PeriSISSM::LaggedPair) +
       3.0 * (motion.size() + nxref) * sizeof(double) + distances.memory_bytes() +
-      (double) (kept_x.capacity() + xstep.capacity()) * sizeof(double) +
+      (double) (kept_x.capacity() + 3 * step_start.size()) * sizeof(double) +
       (double) kept_rows.capacity() * sizeof(double *) +
       (double) (active.capacity() + kept_active.capacity()) * sizeof(int);
 }

@@ -92,8 +92,8 @@ class FixNosbContact : public Fix, public CollisionLimit {
   std::vector<PeriSISSM::LaggedPair> lagged;
   int in_step = 0;                  // begin_step() was called in this run: the implicit recipe
   double step_h = 0.0;              // the step of the last begin_step()
-  std::vector<double> xstep;        // the owned positions at the last begin_step()
-  bigint xstep_generation = -1;     // the generation then
+  PeriSISSM::MotionTracker step_start;    // the owned positions at the last begin_step()
+  bigint step_start_generation = -1;       // the generation then
   bigint generation = 0;            // candidate builds so far (local indices change with them)
   bigint lagged_generation = -1;    // the generation the lagged data's local indices belong to
 

@@ -82,11 +82,8 @@ void FixNosbContact::begin_step(double h, double c)
 {
   in_step = 1;
   step_h = h;
-  const int nlocal = atom->nlocal;
-  xstep.resize(3 * (std::size_t) nlocal);
-  for (int i = 0; i < nlocal; i++)
-    for (int d = 0; d < 3; d++) xstep[3 * i + d] = atom->x[i][d];
-  xstep_generation = generation;
+  step_start.record(atom->x, atom->nlocal);
+  step_start_generation = generation;
   if (opt.kappa_auto) {
     inertia_c = c;
     kappa = stiffness.value() / inertia_c;
@@ -174,21 +171,14 @@ bool FixNosbContact::rebuild_wanted(bool end_of_step)
   int farthest;
   const int nlocal = atom->nlocal;
   double mine[2] = {motion.largest_move2(atom->x, nlocal, atom->mask, groupbit, farthest), -1.0};
-  const bool predict = end_of_step && xstep_generation == generation && step_h > 0.0 &&
-      xstep.size() == 3 * (std::size_t) nlocal;
-  if (predict) {
-    mine[1] = 0.0;
-    for (int i = 0; i < nlocal; i++) {
-      if (!(atom->mask[i] & groupbit)) continue;
-      double r2 = 0.0;
-      for (int d = 0; d < 3; d++) r2 += std::pow(atom->x[i][d] - xstep[3 * i + d], 2);
-      mine[1] = std::max(mine[1], r2);
-    }
-  }
+  const bool predict = end_of_step && step_start_generation == generation && step_h > 0.0 &&
+      step_start.size() == (std::size_t) nlocal;
+  if (predict) mine[1] = step_start.largest_move2(atom->x, nlocal, atom->mask, groupbit, farthest);
   double all[2];
   MPI_Allreduce(mine, all, 2, MPI_DOUBLE, MPI_MAX, world);
   const double skin = neighbor->skin;
-  // (every rank predicts or none: the generation, nlocal and the step are the same on all)
+  // (every rank predicts or none: the generation and the step are the same on all, and a
+  // rank's nlocal changes only with a build, which starts a new generation)
   if (all[1] < 0.0) return all[0] > std::pow(MotionTracker::rebuild_distance(skin), 2);
   const double predicted = std::sqrt(all[1]) * update->dt / step_h;
   return MotionTracker::rebuild_due(std::sqrt(all[0]), predicted, skin);

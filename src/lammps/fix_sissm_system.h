@@ -60,8 +60,8 @@ class SissmSystem : public PeriSISSM::NonlinearSystem {
   int evaluations_ = 0;           // force evaluations of the current (sub-)step
   int contact_incomplete_ = 0;    // the last evaluation's contact candidates were incomplete
   // the contacts' diagonal blocks of the last evaluation with blocks are still to be added (at
-  // the first block() before the next evaluation: most iterates never ask for them), or were
-  // skipped by a later evaluation without blocks
+  // the first block() after it, Jacobian probes in between or not: most iterates never ask for
+  // them)
   mutable bool contact_blocks_due_ = false;
 };
 

@@ -118,10 +118,9 @@ double point_triangle_barrier_energy(const Vector3d &p, const Vector3d &t0, cons
 Vector12d point_triangle_barrier_gradient(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
                                           const Vector3d &t2, const BarrierParameters &prm)
 {
-  const double D = point_triangle_distance2(p, t0, t1, t2);
-  if (!acts(D, prm)) return Vector12d::Zero();
-  return prm.kappa * distance_barrier_first_derivative(D, prm.dmin, prm.dhat) *
-      point_triangle_distance2_gradient(p, t0, t1, t2);
+  Vector12d g;
+  point_triangle_barrier(p, t0, t1, t2, point_triangle_distance2(p, t0, t1, t2), prm, g);
+  return g;
 }
 
 double point_triangle_barrier(const Vector3d &p, const Vector3d &t0, const Vector3d &t1,
@@ -163,14 +162,9 @@ double edge_edge_barrier_energy(const Vector3d &a0, const Vector3d &a1, const Ve
 Vector12d edge_edge_barrier_gradient(const Vector3d &a0, const Vector3d &a1, const Vector3d &b0,
                                      const Vector3d &b1, double eps, const BarrierParameters &prm)
 {
-  const double D = edge_edge_distance2(a0, a1, b0, b1);
-  if (!acts(D, prm)) return Vector12d::Zero();
-  const double B = distance_barrier(D, prm.dmin, prm.dhat);
-  const double B1 = distance_barrier_first_derivative(D, prm.dmin, prm.dhat);
-  const double e = edge_edge_mollifier(a0, a1, b0, b1, eps);
-  Vector12d g = e * B1 * edge_edge_distance2_gradient(a0, a1, b0, b1);
-  if (e < 1.0) g += B * edge_edge_mollifier_gradient(a0, a1, b0, b1, eps);
-  return prm.kappa * g;
+  Vector12d g;
+  edge_edge_barrier(a0, a1, b0, b1, eps, edge_edge_distance2(a0, a1, b0, b1), prm, g);
+  return g;
 }
 
 double edge_edge_barrier(const Vector3d &a0, const Vector3d &a1, const Vector3d &b0,
@@ -222,10 +216,9 @@ double point_point_barrier_energy(const Vector3d &p, const Vector3d &q,
 Vector6d point_point_barrier_gradient(const Vector3d &p, const Vector3d &q,
                                       const BarrierParameters &prm)
 {
-  const double D = point_point_distance2(p, q);
-  if (!acts(D, prm)) return Vector6d::Zero();
-  return prm.kappa * distance_barrier_first_derivative(D, prm.dmin, prm.dhat) *
-      point_point_distance2_gradient(p, q);
+  Vector6d g;
+  point_point_barrier(p, q, point_point_distance2(p, q), prm, g);
+  return g;
 }
 
 double point_point_barrier(const Vector3d &p, const Vector3d &q, double D,

@@ -7,6 +7,22 @@ using Eigen::Vector3d;
 
 namespace PeriSISSM {
 
+namespace {
+
+  // the longest move of the n atoms from xref to x
+  double longest_move(const double *const *xref, const double *const *x, int n)
+  {
+    double most2 = 0.0;
+    for (int i = 0; i < n; i++) {
+      const double dx = x[i][0] - xref[i][0], dy = x[i][1] - xref[i][1],
+                   dz = x[i][2] - xref[i][2];
+      most2 = std::max(most2, dx * dx + dy * dy + dz * dz);
+    }
+    return std::sqrt(most2);
+  }
+
+}    // namespace
+
 double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
                   const double *const *x, int n, double dmin, CandidateDistances *known)
 {
@@ -51,12 +67,7 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
   // the near pairs one by one; the far ones all at once when no point moves far enough to
   // close the gap they all keep (as each of them would be skipped), else one by one
   for (int ic : known->near()) limit((std::size_t) ic);
-  double most2 = 0.0;
-  for (int i = 0; i < n; i++) {
-    const double dx = x[i][0] - xref[i][0], dy = x[i][1] - xref[i][1], dz = x[i][2] - xref[i][2];
-    most2 = std::max(most2, dx * dx + dy * dy + dz * dz);
-  }
-  if (2.0 * std::sqrt(most2) * t_pairs <= (1.0 - opt.s) * (known->far_bound() - dmin))
+  if (2.0 * longest_move(xref, x, n) * t_pairs <= (1.0 - opt.s) * (known->far_bound() - dmin))
     return t_pairs;
   for (std::size_t ic = 0; ic < candidates.size(); ic++)
     if (known->far(ic)) limit(ic);
@@ -67,12 +78,7 @@ bool move_within_gaps(const double *const *xref, const double *const *x, int n, 
                       const CandidateDistances &known)
 {
   if (!known.valid()) return false;
-  double most2 = 0.0;
-  for (int i = 0; i < n; i++) {
-    const double dx = x[i][0] - xref[i][0], dy = x[i][1] - xref[i][1], dz = x[i][2] - xref[i][2];
-    most2 = std::max(most2, dx * dx + dy * dy + dz * dz);
-  }
-  return 2.0 * std::sqrt(most2) <= (1.0 - CcdOptions().s) * known.gap_bound(dmin);
+  return 2.0 * longest_move(xref, x, n) <= (1.0 - CcdOptions().s) * known.gap_bound(dmin);
 }
 
 void scale_move(const double *const *xref, double **x, int n, const int *mask, int groupbit,
