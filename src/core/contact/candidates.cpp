@@ -223,6 +223,11 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
   auto point = [&](int k) {
     return prim.point(k);
   };
+  // the bounds of a point alone
+  auto at = [&](int k) {
+    const Vector3d y = point(k);
+    return Bounds{y, y, y, 0.0};
+  };
 
   std::vector<Candidate> found;
   // the pairs closer than reach (tested as they are found: a neighbor list with a wide skin
@@ -282,8 +287,7 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
     for (int k = 0; k < 3; k++)
       if (tag[t.v[k]] == tag[p]) return;
     if (!from_pt(p, t)) return;
-    const Vector3d y = point(p);
-    if (apart(Bounds{y, y, y, 0.0}, t.b, reach)) return;
+    if (apart(at(p), t.b, reach)) return;
     int s[3] = {t.v[0], t.v[1], t.v[2]};
     std::sort(s, s + 3, [tag](int a, int b) {
       return tag[a] < tag[b];
@@ -337,10 +341,6 @@ std::int64_t find_candidates(const ContactAtoms &atoms, const NeighborView &list
       // (the primitives at i and at j, and the points i and j, lie within their atoms' bounds:
       // a point or an edge apart from all the primitives at the other atom is apart from each)
       if (member(i) && member(j) && apart(prim.around[i], prim.around[j], reach)) continue;
-      const auto at = [&](int k) {
-        const Vector3d y = point(k);
-        return Bounds{y, y, y, 0.0};
-      };
       if (member(j) && !apart(at(i), prim.around[j], reach))
         for (int t = prim.tri_at[j]; t < prim.tri_end[j]; t++) add_pt(i, prim.tris[t]);
       if (member(i) && !apart(at(j), prim.around[i], reach))
