@@ -119,18 +119,19 @@ double FixNosbContact::limit_move(int groupbit)
   double **x = atom->x;
   const int nlocal = atom->nlocal;
 
-  // pairs: the largest fraction that no candidate pair contradicts (all of it, without a look
-  // at the pairs, for a move shorter than the gaps allow: a Jacobian product's probe)
-  const int nall = nlocal + atom->nghost;
-  const double t_pairs = PeriSISSM::move_within_gaps(xref, x, nall, opt.dmin, distances)
-      ? 1.0
-      : PeriSISSM::path_limit(candidates, xref, x, nall, opt.dmin, &distances);
-
   // reach: no atom of the group farther than skin/2 from the list build
   const double R = MotionTracker::error_distance(neighbor->skin) * (1.0 - 1.0e-9);
   const MotionTracker::Reach r =
       motion.reach_limit(xref, x, nlocal, atom->mask, this->groupbit, atom->tag, R);
   const double t_reach = r.t;
+
+  // pairs: the largest fraction up to this rank's reach that no candidate pair contradicts
+  // (the minimum over ranks is the same as with the pairs' own; all of it, without a look at
+  // the pairs, for a move shorter than the gaps allow: a Jacobian product's probe)
+  const int nall = nlocal + atom->nghost;
+  const double t_pairs = PeriSISSM::move_within_gaps(xref, x, nall, opt.dmin, distances)
+      ? 1.0
+      : PeriSISSM::path_limit(candidates, xref, x, nall, opt.dmin, &distances, t_reach);
 
   double mine[2] = {t_pairs, t_reach}, all[2];
   MPI_Allreduce(mine, all, 2, MPI_DOUBLE, MPI_MIN, world);

@@ -49,6 +49,9 @@ namespace {
     const double keep = opt.s * g0;    // stop before the gap falls below this
     double t = 0.0;
     double step = (1.0 - opt.s) * g0 / l;
+    // (a first sub-step that reaches the end needs no look at its distance: the loop below
+    // would return t_max after it whatever the distance)
+    if (step >= opt.t_max) return opt.t_max;
     std::array<Vector3d, K> y;
     while (r.iterations < opt.max_iterations) {
       r.iterations++;

@@ -21,13 +21,30 @@ namespace {
     return std::sqrt(most2);
   }
 
+  // how fast a pair's gap can close: ccd.h's rate l (the largest move of a point of each
+  // primitive relative to the pair's mean move, summed), or closing()'s without the mean when
+  // that is smaller; both bound the distance's loss over a straight move
+  double closing_rate(StencilType type, int nv, const Vector3d *dy)
+  {
+    Vector3d mean = Vector3d::Zero();
+    double len[4], rel[4];
+    for (int k = 0; k < nv; k++) {
+      mean += dy[k];
+      len[k] = dy[k].norm();
+    }
+    mean /= nv;
+    for (int k = 0; k < nv; k++) rel[k] = (dy[k] - mean).norm();
+    return std::min(closing(type, len), closing(type, rel));
+  }
+
 }    // namespace
 
 double path_limit(const std::vector<Candidate> &candidates, const double *const *xref,
-                  const double *const *x, int n, double dmin, CandidateDistances *known)
+                  const double *const *x, int n, double dmin, CandidateDistances *known,
+                  double t_max)
 {
   const bool gaps = known && known->valid();
-  double t_pairs = 1.0;
+  double t_pairs = t_max;
   CcdOptions opt;
   opt.dmin = dmin;
   const auto limit = [&](std::size_t ic) {
@@ -45,9 +62,7 @@ double path_limit(const std::vector<Candidate> &candidates, const double *const 
     if (gaps) {
       // (a lower bound that does not suffice is replaced by the distance: the same pairs are
       // skipped as with the distances, and the move is the same)
-      double len[4];
-      for (int k = 0; k < c.nv(); k++) len[k] = dy[k].norm();
-      const double most = closing(c.type, len) * t_pairs;
+      const double most = closing_rate(c.type, c.nv(), dy) * t_pairs;
       if (most <= (1.0 - opt.s) * ((*known)[ic] - dmin)) return;
       if (!known->exact(ic)) {
         const double D = stencil.distance2(y);

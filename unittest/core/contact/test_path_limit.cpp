@@ -1,8 +1,8 @@
 // Tests of the path limit (contact/path_limit.h): with one pair it is that pair's CCD fraction;
 // over many pairs the smallest; the skip by known gaps gives the same fraction as the CCD of
 // every pair; no move, no limit; the scaled move keeps every pair apart (sampled); a move
-// shorter than the gaps allow gives 1 without looking at a pair; scale_move() moves the group's
-// atoms only.
+// shorter than the gaps allow gives 1 without looking at a pair; an earlier end t_max gives
+// min(t, t_max); scale_move() moves the group's atoms only.
 
 #include "contact/path_limit.h"
 
@@ -73,6 +73,13 @@ TEST(PathLimit, SheetsPressedTogether)
   CandidateDistances known;
   known.evaluate(cands, s.rows.data(), s.n(), 1, 0.2, 1.0, 0.3);
   EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), s.n(), dmin, &known), t);
+  // an end before 1 (the caller's reach) gives the smaller of the two, with and without gaps
+  for (double t_max : {2.0 * t, 1.0001 * t, t, 0.5 * t, 0.0}) {
+    EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), s.n(), dmin, nullptr, t_max),
+              std::min(t, t_max));
+    EXPECT_EQ(path_limit(cands, s.rows.data(), xe.data(), s.n(), dmin, &known, t_max),
+              std::min(t, t_max));
+  }
   // every pair stays beyond dmin along the scaled move
   for (int k = 0; k <= 100; k++) {
     const double tau = t * k / 100.0;
