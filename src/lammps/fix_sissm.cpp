@@ -98,10 +98,11 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
     for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
   }
   if (ncols > 0) {
-    restart_global = 1;
     restart_peratom = 1;
     atom->add_callback(Atom::RESTART);
   }
+  // the scheme's state and the Newton forcing term carried to the next solve
+  if (ncols > 0 || opt.solver == SolverKind::krylov) restart_global = 1;
 #ifndef PERISISSM_HAVE_PETSC
   if (opt.precond == PrecondKind::amg)
     error->all(FLERR,
@@ -364,7 +365,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
   system->begin_solve();
   PeriSISSM::SolveResult result;
   if (opt.solver == SolverKind::krylov) {
-    const PeriSISSM::KrylovWork work{xbase, rbase, jbase, cres, zdir, pdir, sdir, term};
+    const PeriSISSM::KrylovWork work{xbase, rbase, jbase, cres, zdir, pdir, sdir, term, &forcing};
     result = PeriSISSM::solve_newton_krylov(*system, *precond, opt.iterations, work, opt.error);
     // (tolerance 0: every step runs to the limit by request, which says nothing of the
     // preconditioner)

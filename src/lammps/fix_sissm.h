@@ -20,6 +20,7 @@ FixStyle(sissm,FixSissm);
 
 #include "solvers/external_forces.h"
 #include "solvers/jacobi.h"
+#include "solvers/newton_krylov.h"
 #include "solvers/step_options.h"
 #include "solvers/step_report.h"
 #include "solvers/step_start.h"
@@ -77,6 +78,9 @@ class FixSissm : public Fix {
   // block, and a step that amg did not converge)
   PeriSISSM::Preconditioner *precond = nullptr;
   std::unique_ptr<PeriSISSM::Preconditioner> amg_precond, block_precond;
+  // the Newton steps' forcing term carried from solve to solve (solvers/newton_krylov.h; kept
+  // in restart files)
+  PeriSISSM::NewtonForcing forcing;
   std::unique_ptr<PeriSISSM::TimeScheme> scheme;    // which implicit step
   PeriSISSM::StepOptions opt;                       // the keywords (solvers/step_options.h)
   PeriSISSM::StepArrays arrays;                     // the per-atom arrays of the step being solved

@@ -19,8 +19,8 @@
 using namespace LAMMPS_NS;
 
 namespace {
-// restart layout version of fix sissm's global record
-constexpr double kRestartVersion = 1.0;
+// restart layout version of fix sissm's global record (2: the forcing term after the state)
+constexpr double kRestartVersion = 2.0;
 
 // a code for the scheme that wrote a history (its name and its parameters' effect on the
 // columns: all generalized-alpha variants share the layout)
@@ -68,7 +68,8 @@ int FixSissm::unpack_exchange(int nlocal, double *buf)
 }
 
 /* ----------------------------------------------------------------------
-   global record: version, scheme code, state size, state
+   global record: version, scheme code, state size, state, the Newton forcing term carried to
+   the next solve (version 1 has no forcing term: the run then starts from its default)
 ------------------------------------------------------------------------- */
 
 void FixSissm::write_restart(FILE *fp)
@@ -77,17 +78,19 @@ void FixSissm::write_restart(FILE *fp)
                               (double) scheme->state_size()};
   list.resize(3 + scheme->state_size());
   scheme->get_state(list.data() + 3);
+  list.push_back(forcing.first);
   write_global_record(fp, comm->me, list.data(), (int) list.size());
 }
 
 void FixSissm::restart(char *buf)
 {
   auto list = (double *) buf;
-  hist_from_restart = list[0] == kRestartVersion && list[1] == scheme_code(scheme->name()) &&
-      (int) list[2] == scheme->state_size();
+  if (list[0] == kRestartVersion) forcing.first = list[3 + (int) list[2]];
+  hist_from_restart = (list[0] == kRestartVersion || list[0] == 1.0) &&
+      list[1] == scheme_code(scheme->name()) && (int) list[2] == scheme->state_size();
   if (hist_from_restart) {
     scheme->set_state(list + 3);
-  } else if (comm->me == 0) {
+  } else if (comm->me == 0 && ncols > 0) {
     utils::logmesg(lmp,
                    "Fix sissm {}: the restart file holds no history of scheme {} (written with "
                    "another scheme): the atoms start it anew, as at a first step\n",

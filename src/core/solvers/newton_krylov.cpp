@@ -15,7 +15,13 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
   const int n = rows.n;
   const SweepMemory plain;
   SolveResult out;
-  double measure_prev = 0.0, phi_base = 0.0, eta = 1.0e-2;
+  double measure_prev = 0.0, phi_base = 0.0;
+  double eta = w.forcing ? w.forcing->first : NewtonForcing().first;
+  double linear = -1.0;    // the measure of CG's residual at the end of the last Newton step
+  // (a solve that the error estimate can end follows the model's miss; one held to the
+  // tolerance tightens as the measure falls, choice 2)
+  const bool estimated = error > 0.0 && precond.estimates_error();
+  bool carried = false;
   double slope0 = 0.0, tstep = 1.0;    // <s, r(base)>, and the fraction of s being tried
   int have_base = 0, halvings = 0;
 
@@ -81,8 +87,21 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
 
     // accept the iterate as the base of a Newton step
     const double measure = out.measure;
-    if (have_base && measure_prev > 0.0)
-      eta = fmin(0.1, fmax(1.0e-4, 0.9 * (measure / measure_prev) * (measure / measure_prev)));
+    if (have_base && measure_prev > 0.0) {
+      const double ratio = measure / measure_prev;
+      const double second = fmin(0.1, fmax(1.0e-4, 0.9 * ratio * ratio));
+      if (tstep == 1.0 && linear >= 0.0) {
+        const double safeguard = std::pow(eta, 0.5 * (1.0 + std::sqrt(5.0)));
+        const double missed = std::fabs(measure - linear) / measure_prev;
+        const double first =
+            fmin(kMaxForcing, fmax(1.0e-4, safeguard > 0.1 ? fmax(missed, safeguard) : missed));
+        if (w.forcing && !carried) w.forcing->first = first;
+        carried = true;
+        eta = estimated ? first : second;
+      } else {
+        eta = second;
+      }
+    }
     measure_prev = measure;
     halvings = 0;
     have_base = 1;
@@ -157,6 +176,7 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
     // base's blocks (the probes have none). Made only then: the contacts' blocks cost a
     // PSD projection per active pair
     if (sys.evaluations() + 5 >= maxiter) BlockPreconditioner().apply(sys, w.rbase, w.jbase);
+    linear = scaled_max(sys, w.cres, true);
     out.newton++;
     out.krylov += cg;
     slope0 = dot(sys, w.sdir, w.rbase, w.term);
