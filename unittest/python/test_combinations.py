@@ -57,11 +57,13 @@ CASES = {
 STATE = ("x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "c_nosb[1]")
 # newton on, contact pairs split between ranks (see the top of the file): measured over these
 # runs, up to 2e-13 relative to the largest value with fix nve (fracture included), 6e-12 with
-# the Jacobi sweeps, 9e-10 with krylov and 2.1e-9 with krylov and fracture (the round-off of
-# single evaluations grows through the fracture dynamics and the solver's iterations; a bond
-# that broke on one side only, or one more solver iteration, would give 1e-3 or more). 1e-8 is
-# the cross-rank tolerance of the other parallel tests.
-ROUND_OFF = 1e-8
+# the Jacobi sweeps, 9e-10 with krylov and 2.1e-9 with krylov and fracture until 2026-11-30;
+# since the first Newton step of a step takes its forcing term from the last step's measures
+# (doc/fix_sissm.rst, "The forcing term"), whose round-off then moves where CG stops, 1.1e-8
+# with krylov and 2.0e-8 with krylov and fracture (2026-12-01). The round-off of single
+# evaluations grows through the fracture dynamics and the solver's iterations; a bond that
+# broke on one side only, or one more solver iteration, would give 1e-3 or more.
+ROUND_OFF = 1e-7
 
 
 def blocks(workdir, case, nprocs=1, **changes):
