@@ -93,8 +93,8 @@ class FixSissm : public Fix {
   // contact fixes (collision_limit.h) re-evaluated at every iterate, and among them those that
   // make the step collision-free (limiting every move) and those that adapt their stiffness
   std::vector<class CollisionLimit *> contacts, limiters, adapting;
-  int balance_first = 0;        // the next evaluation is the first of a (sub-)step: balance them
-  int reach_cut = 0;            // the last evaluation's move was cut short by a contact's reach
+  int balance_first = 0;    // the next evaluation is the first of a (sub-)step: balance them
+  int reach_cut = 0;        // the last evaluation's move was cut short by a contact's reach
   // the contact whose reach cut the last solve's end of step short (null: none)
   class CollisionLimit *end_reach = nullptr;
   std::string external_note;    // what was last logged about them
@@ -128,7 +128,7 @@ class FixSissm : public Fix {
   // amg: global node number of each atom (-1: not an unknown); it travels with the atom, so a
   // hierarchy outlives atoms changing processes or local slots (fix_sissm_amg.cpp)
   double *gnode = nullptr;
-  bool travels = false;    // amg: gnode is allocated and travels
+  bool travels = false;       // amg: gnode is allocated and travels
   double *psize = nullptr;    // V^(1/3) of each atom (Rows::size), refreshed at every step
   friend class SissmAmg;
   friend class SissmSystem;

@@ -14,8 +14,7 @@ namespace {
   {
     double most2 = 0.0;
     for (int i = 0; i < n; i++) {
-      const double dx = x[i][0] - xref[i][0], dy = x[i][1] - xref[i][1],
-                   dz = x[i][2] - xref[i][2];
+      const double dx = x[i][0] - xref[i][0], dy = x[i][1] - xref[i][1], dz = x[i][2] - xref[i][2];
       most2 = std::max(most2, dx * dx + dy * dy + dz * dz);
     }
     return std::sqrt(most2);

@@ -382,6 +382,26 @@ TEST(Ccd, RandomEdgeEdgePairsStayApart)
   random_pairs(ee_distance, ee_ccd, "edge-edge", true, 42);
 }
 
+double pair_ccd(bool pt, const Motion &m, const CcdOptions &opt, CcdReport *rep = nullptr)
+{
+  return pt ? pt_ccd(m, opt, rep) : ee_ccd(m, opt, rep);
+}
+
+// The random pairs of the tests below: point-triangle and edge-edge in turn, every other pair of
+// each kind aimed; check(trial, pt, motion, opt, t) for each, opt with the pair's dmin and t its
+// CCD fraction with those options
+template <class Check> void alternating_pairs(unsigned seed, int n, Check check)
+{
+  std::mt19937_64 rng(seed);
+  for (int trial = 0; trial < n; trial++) {
+    const bool pt = trial % 2 == 0;
+    const Motion m = random_motion(rng, !pt, trial % 4 >= 2);
+    CcdOptions opt;
+    opt.dmin = m.dmin;
+    check(trial, pt, m, opt, pair_ccd(pt, m, opt));
+  }
+}
+
 // ---- the step's end ----
 
 // An earlier end t_max gives the same sub-steps up to it: t = min(t at t_max = 1, t_max) bit
@@ -389,22 +409,15 @@ TEST(Ccd, RandomEdgeEdgePairsStayApart)
 // sub-step that already reaches t_max returns it without a look at a distance (0 iterations).
 TEST(Ccd, AnEarlierEndCutsTheSameSubSteps)
 {
-  std::mt19937_64 rng(44);
   int without_a_look = 0;
-  for (int trial = 0; trial < 2000; trial++) {
-    const bool pt = trial % 2 == 0;
-    const Motion m = random_motion(rng, !pt, trial % 4 >= 2);
-    CcdOptions opt;
-    opt.dmin = m.dmin;
-    const double t = pt ? pt_ccd(m, opt, nullptr) : ee_ccd(m, opt, nullptr);
+  alternating_pairs(44, 2000, [&](int trial, bool pt, const Motion &m, CcdOptions opt, double t) {
     for (double t_max : {0.7, 0.2, 0.03, 1e-3}) {
       opt.t_max = t_max;
       CcdReport rep;
-      EXPECT_EQ(pt ? pt_ccd(m, opt, &rep) : ee_ccd(m, opt, &rep), std::min(t, t_max))
-          << trial << " t_max " << t_max;
+      EXPECT_EQ(pair_ccd(pt, m, opt, &rep), std::min(t, t_max)) << trial << " t_max " << t_max;
       without_a_look += rep.iterations == 0 && !rep.initially_close;
     }
-  }
+  });
   EXPECT_GT(without_a_look, 1000);
   // a move of 1e11 (a diverged iterate) whose end is cut to 1e-13 first
   const Vector3d t0(-1, -1, 0), t1(1, -1, 0), t2(0, 1, 0), zero = Vector3d::Zero();
@@ -425,14 +438,8 @@ TEST(Ccd, AnEarlierEndCutsTheSameSubSteps)
 // asserted 1e-9.
 TEST(Ccd, ScaleInvariance)
 {
-  std::mt19937_64 rng(43);
   double worst = 0.0;
-  for (int trial = 0; trial < 4000; trial++) {
-    const bool pt = trial % 2 == 0;
-    const Motion m = random_motion(rng, !pt, trial % 4 >= 2);
-    CcdOptions opt;
-    opt.dmin = m.dmin;
-    const double t = pt ? pt_ccd(m, opt, nullptr) : ee_ccd(m, opt, nullptr);
+  alternating_pairs(43, 4000, [&](int trial, bool pt, const Motion &m, CcdOptions opt, double t) {
     for (double s : {1e-6, 1e6}) {
       Motion ms = m;
       for (int k = 0; k < 4; k++) {
@@ -441,12 +448,12 @@ TEST(Ccd, ScaleInvariance)
       }
       CcdOptions os = opt;
       os.dmin = s * m.dmin;
-      const double ts = pt ? pt_ccd(ms, os, nullptr) : ee_ccd(ms, os, nullptr);
+      const double ts = pair_ccd(pt, ms, os);
       const double rel = t > 0.0 ? std::fabs(ts - t) / t : std::fabs(ts);
       EXPECT_LE(rel, 1e-9) << trial << " scale " << s;
       worst = std::max(worst, rel);
     }
-  }
+  });
   std::printf("largest relative change of t under scaling by 1e-6 and 1e6: %.1e\n", worst);
 }
 
