@@ -17,7 +17,7 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
   SolveResult out;
   double measure_prev = 0.0, phi_base = 0.0;
   double eta = w.forcing ? w.forcing->first : NewtonForcing().first;
-  double linear = -1.0;    // the measure of CG's residual at the end of the last Newton step
+  double linear = -1.0;    // the measure of CG's residual as the last Newton step's CG left it
   // (a solve that the error estimate can end follows the model's miss; one held to the
   // tolerance tightens as the measure falls, choice 2)
   const bool estimated = error > 0.0 && precond.estimates_error();
@@ -136,6 +136,7 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
     double rz = dot(sys, w.cres, w.zdir, w.term);
     const double target = fmax(0.25 * out.tolerance, eta * measure);
     int cg = 0;
+    linear = measure;    // (CG's residual starts as the base's)
 
     while (sys.evaluations() < maxiter - 1 && rz > 0.0) {
       const double e = 1.0e-7 / scaled_max(sys, w.pdir, false);
@@ -161,7 +162,8 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
             w.cres[i][k] -= alpha * res[i][k];
           }
       cg++;
-      if (scaled_max(sys, w.cres, true) <= target) break;
+      linear = scaled_max(sys, w.cres, true);
+      if (linear <= target) break;
       precond.apply(sys, w.cres, w.zdir);
       if (cg_enough > 0.0 && scaled_max(sys, w.zdir, false) <= cg_enough) break;
       const double rz_new = dot(sys, w.cres, w.zdir, w.term);
@@ -176,7 +178,6 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
     // base's blocks (the probes have none). Made only then: the contacts' blocks cost a
     // PSD projection per active pair
     if (sys.evaluations() + 5 >= maxiter) BlockPreconditioner().apply(sys, w.rbase, w.jbase);
-    linear = scaled_max(sys, w.cres, true);
     out.newton++;
     out.krylov += cg;
     slope0 = dot(sys, w.sdir, w.rbase, w.term);
