@@ -30,6 +30,7 @@
 #include "pair.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -196,11 +197,16 @@ void FixSissm::begin_path(double h)
 void FixSissm::limit_path(bool end_of_step)
 {
   reach_cut = 0;
+  reach_kept = 1.0;
+  reach_limiter = nullptr;
   for (CollisionLimit *limit : limiters) {
-    if (limit->limit_move(groupbit) < 1.0) comm->forward_comm();
+    const double t = limit->limit_move(groupbit);
+    if (t < 1.0) comm->forward_comm();
     if (limit->reach_limited()) {
       if (end_of_step && !end_reach) end_reach = limit;
       reach_cut = 1;
+      if (!reach_limiter || t < reach_kept) reach_limiter = limit;
+      reach_kept = std::min(reach_kept, t);
     }
   }
   for (CollisionLimit *limit : limiters) limit->begin_path();
@@ -374,6 +380,8 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
     result = PeriSISSM::solve_jacobi(*system, opt.iterations, {rprev, dprev, yprev}, opt.chebyshev);
   }
   stats.solved(result);
+  // (a solve that the reach stalled ends beyond it, whatever its last move does)
+  CollisionLimit *const stalled_by = system->stalled() ? reach_limiter : nullptr;
   if (!forces->group_coupled(groupbit)) {
     const PeriSISSM::MomentumBalance balance{h, scheme->force_factor(), scheme->name() == "euler"};
     PeriSISSM::balance_momentum(rows, *reductions, balance, x, yn, yhat, flag ? nullptr : fext,
@@ -385,6 +393,7 @@ PeriSISSM::SolveResult FixSissm::solve_step(double h, double t_end, double **fla
     comm->forward_comm();
     limit_path(true);
   }
+  if (!end_reach) end_reach = stalled_by;
   scheme->finish(rows, arrays);
   if (move_others) place_others(t_end);
   return result;

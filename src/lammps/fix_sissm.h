@@ -93,8 +93,10 @@ class FixSissm : public Fix {
   // contact fixes (collision_limit.h) re-evaluated at every iterate, and among them those that
   // make the step collision-free (limiting every move) and those that adapt their stiffness
   std::vector<class CollisionLimit *> contacts, limiters, adapting;
-  int balance_first = 0;    // the next evaluation is the first of a (sub-)step: balance them
-  int reach_cut = 0;        // the last evaluation's move was cut short by a contact's reach
+  int balance_first = 0;      // the next evaluation is the first of a (sub-)step: balance them
+  int reach_cut = 0;          // the last evaluation's move was cut short by a contact's reach
+  double reach_kept = 1.0;    // ... to this fraction (the smallest over the contacts that cut it)
+  class CollisionLimit *reach_limiter = nullptr;    // ... by this contact's reach (null: none)
   // the contact whose reach cut the last solve's end of step short (null: none)
   class CollisionLimit *end_reach = nullptr;
   std::string external_note;    // what was last logged about them

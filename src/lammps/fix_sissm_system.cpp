@@ -18,6 +18,16 @@
 
 using namespace LAMMPS_NS;
 
+namespace {
+// an iterate whose move a contact's reach cut to less than this fraction has stalled: the
+// reach puts the farthest atom at its end (motion_tracker.h), so a direction that pushes that
+// atom on is cut to nothing at every later iterate (measured: examples/twisting-cloth under
+// genalpha, step 120, cut to 5.5e-5, 2e-20, then 0 at the 48 iterates up to its budget; a
+// thrown cloth whose step went past the reach: every probe of its CG cut to 4e-9 up to the
+// budget)
+constexpr double kStalledMove = 1.0e-3;
+}    // namespace
+
 /* ----------------------------------------------------------------------
    Reductions over the world communicator
 ------------------------------------------------------------------------- */
@@ -82,6 +92,10 @@ void SissmSystem::evaluate(bool blocks)
   // an iterate that contact candidates could not follow (the pair's short-range contact, or a
   // move cut short by the reach of a contact fix's candidates) cannot count as converged
   contact_incomplete_ = s.forces->contact_follow_motion() < 0 || s.reach_cut;
+  // an iterate that the reach left where the last evaluation was (its farthest atom sits at the
+  // reach, and the solve's direction pushes it out), or a Jacobian product's probe that the
+  // reach cut at all (a product of a cut move is not J's)
+  stalled_ = s.reach_cut && (!blocks || s.reach_kept < kStalledMove);
   for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
   s.forces->evaluate(blocks ? s.kblock : nullptr);
   if (s.forces->ghost_forces()) s.comm->reverse_comm();
@@ -123,8 +137,10 @@ void SissmSystem::evaluate(bool blocks)
     if (changed) {
       // (the redo's move is empty: a cut of the first move still makes the iterate incomplete)
       const int incomplete = contact_incomplete_;
+      const bool stalled = stalled_;
       evaluate(blocks);
       contact_incomplete_ = contact_incomplete_ || incomplete;
+      stalled_ = stalled_ || stalled;
     }
   }
 }

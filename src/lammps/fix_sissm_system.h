@@ -48,6 +48,7 @@ class SissmSystem : public PeriSISSM::NonlinearSystem {
   double **residual() override;
   int evaluations() const override { return evaluations_; }
   bool evaluation_complete() const override { return !contact_incomplete_; }
+  bool stalled() const override { return stalled_; }
   void block(int i, double D[6]) const override;
   double step_tolerance() override;
   double **start() override;
@@ -59,6 +60,7 @@ class SissmSystem : public PeriSISSM::NonlinearSystem {
   PeriSISSM::Rows rows_;
   int evaluations_ = 0;           // force evaluations of the current (sub-)step
   int contact_incomplete_ = 0;    // the last evaluation's contact candidates were incomplete
+  bool stalled_ = false;          // the last iterate's move was cut to almost nothing by a reach
   // the contacts' diagonal blocks of the last evaluation with blocks are still to be added (at
   // the first block() after it, Jacobian probes in between or not: most iterates never ask for
   // them)

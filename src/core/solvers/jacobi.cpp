@@ -64,6 +64,7 @@ SolveResult solve_jacobi(NonlinearSystem &sys, int maxiter, const SweepMemory &m
     sys.evaluate(true);
     out.measure = scaled_max(sys, sys.residual(), true);
     if (k == 0) out.tolerance = sys.step_tolerance();
+    if (sys.stalled()) break;
     sissm_sweep(sys, k == 0, memory, weights.next());
     if (out.measure <= out.tolerance && sys.evaluation_complete()) break;
   }

@@ -44,6 +44,7 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
       sissm_sweep(sys, true, plain);
       break;
     }
+    if (sys.stalled()) break;
     const double phi = merit(sys, w.term);
     // Is the iterate base + t s acceptable? r = -(1/V) grad Pi of the step's incremental
     // potential Pi (a hyperelastic model: kinetic term plus stored energy minus the work of
@@ -137,11 +138,16 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
     const double target = fmax(0.25 * out.tolerance, eta * measure);
     int cg = 0;
     linear = measure;    // (CG's residual starts as the base's)
+    bool stalled = false;
 
     while (sys.evaluations() < maxiter - 1 && rz > 0.0) {
       const double e = 1.0e-7 / scaled_max(sys, w.pdir, false);
       axpy_positions(w.xbase, e, w.pdir);
       sys.evaluate(false);
+      if (sys.stalled()) {
+        stalled = true;
+        break;
+      }
       // res <- J p
       for (int i = 0; i < n; i++)
         if (rows.has(i))
@@ -178,6 +184,12 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
     // base's blocks (the probes have none). Made only then: the contacts' blocks cost a
     // PSD projection per active pair
     if (sys.evaluations() + 5 >= maxiter) BlockPreconditioner().apply(sys, w.rbase, w.jbase);
+    if (stalled) {
+      // (no product from this base: the solve ends at it, as it stood)
+      axpy_positions(w.xbase, 0.0, w.sdir);
+      out.measure = measure;
+      break;
+    }
     out.newton++;
     out.krylov += cg;
     slope0 = dot(sys, w.sdir, w.rbase, w.term);

@@ -23,11 +23,10 @@ RetryTexts retry_texts(const RetryOutcome &outcome, const StepContext &c, bool n
     texts.warning = me + "with precond " + (now_block ? "amg" : "block") + "; redone with the " +
         (now_block ? "block" : "amg") + " preconditioner (" +
         (!outcome.switch_converged ? "not converged either"
-             : now_block ? "converged; the blocks go first for the next " +
-                    n(kBlocksFirstSteps) + " steps"
-                         : "converged; multigrid goes first from now on") +
-        "; counted in f_" + c.id +
-        "[9]; reported once per run)";
+             : now_block
+             ? "converged; the blocks go first for the next " + n(kBlocksFirstSteps) + " steps"
+             : "converged; multigrid goes first from now on") +
+        "; counted in f_" + c.id + "[9]; reported once per run)";
   if (!outcome.cut_back) return texts;
   const int substeps = outcome.substeps;
   const std::string sub = n(substeps) + " sub-steps of " + general_format(c.dt / substeps, 6);
@@ -37,6 +36,11 @@ RetryTexts retry_texts(const RetryOutcome &outcome, const StepContext &c, bool n
         general_format(outcome.result.tolerance, 3) +
         "): raise iterations, lower the time step, or accept unconverged steps with "
         "'unconverged warn'";
+  else if (outcome.reach_first)
+    texts.note = "Fix sissm " + c.id + ": step " + n(c.step) +
+        " went beyond the reach of the contact candidates (half the neighbor skin from the last "
+        "list build); redone as " +
+        sub + " (counted in f_" + c.id + "[6])\n";
   else
     texts.note = me + "in " + n(c.iterations) + " iterations; redone as " + sub +
         " (counted in f_" + c.id + "[6])\n";

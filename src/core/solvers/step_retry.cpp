@@ -45,6 +45,7 @@ RetryOutcome run_retry_ladder(StepAttempts &step, const RetryPolicy &policy)
   out.evaluations = step.evaluations();
   const bool retry = !policy.fixed_count;
   bool done = settled(step, policy, out);
+  out.reach_first = out.beyond_reach;
   // (beyond reach, the whole step again moves the atoms as far: straight to the sub-steps)
   if (!done && retry && !out.beyond_reach && step.refresh_preconditioner()) {
     out.refreshed = true;

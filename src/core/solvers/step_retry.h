@@ -74,6 +74,7 @@ struct RetryOutcome {
   bool switched = false;            // rung 3 was taken
   bool switch_converged = false;    // ... and converged the step
   bool beyond_reach = false;        // the last solve ended beyond the candidates' reach
+  bool reach_first = false;         // ... and so did the whole step's first solve
   bool cut_back = false;            // rung 4 was taken
   bool cutback_failed = false;      // ... and no level converged: the step fails
 };

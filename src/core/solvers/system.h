@@ -40,6 +40,12 @@ class NonlinearSystem {
   // false when the last evaluation cannot count as converged, whatever its residual (e.g. its
   // contact candidates were incomplete)
   virtual bool evaluation_complete() const = 0;
+  // true when the last evaluation's move could not be made and no later one of this solve can
+  // (e.g. the reach of the contact candidates from the last neighbor list build, used up: an
+  // iterate cut to almost nothing, a Jacobian product's probe cut at all); the solve then ends
+  // unconverged at once, leaving the step to its retries (step_retry.h) instead of spending its
+  // budget where it stands
+  virtual bool stalled() const = 0;
   // diagonal block of row i of J (xx yy zz xy xz yz) from the last evaluation with blocks
   virtual void block(int i, double D[6]) const = 0;
   // the tolerance of this step, asked once after its first evaluation

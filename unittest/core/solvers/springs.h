@@ -124,6 +124,7 @@ class Springs : public NonlinearSystem {
   double **residual() override { return res.ptr(); }
   int evaluations() const override { return evals_; }
   bool evaluation_complete() const override { return true; }
+  bool stalled() const override { return stall_from > 0 && evals_ >= stall_from; }
   double step_tolerance() override { return tol; }
   double **start() override { return yn.ptr(); }
   void check_finite() override
@@ -147,6 +148,7 @@ class Springs : public NonlinearSystem {
 
   double tol = 1e-10;
   double g[3] = {0.0, 0.0, 0.0};
+  int stall_from = 0;    // stalled() from this evaluation on (0: never)
 
  private:
   struct Spring {

@@ -78,6 +78,7 @@ class LinearChain : public NonlinearSystem {
   double **residual() override { return res.ptr(); }
   int evaluations() const override { return evals_; }
   bool evaluation_complete() const override { return true; }
+  bool stalled() const override { return false; }
   void block(int, double D[6]) const override
   {
     D[0] = D[1] = D[2] = m_ + 2.0 * k_;

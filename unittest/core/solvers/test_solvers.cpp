@@ -55,6 +55,52 @@ TEST(Solvers, JacobiAndNewtonKrylovReachTheSameStep)
   EXPECT_LT(diff, 1e-8);
 }
 
+// A system whose moves stall (NonlinearSystem::stalled(): the contact candidates' reach used
+// up) ends both solvers at that evaluation, unconverged, instead of at their budgets, with
+// Newton-Krylov's unknowns at the last iterate it evaluated.
+TEST(Solvers, AStalledIterateEndsTheSolve)
+{
+  const int n = 12;
+  const double h = 0.05;
+  for (int stall : {1, 2, 5}) {
+    Springs a = chain(n, h), b = chain(n, h);
+    a.stall_from = b.stall_from = stall;
+    a.begin();
+    b.begin();
+    const SolveResult ra = solve_jacobi(a, 20000, SweepMemory());
+    BlockPreconditioner pc;
+    KrylovTables kt(n);
+    const SolveResult rb = solve_newton_krylov(b, pc, 200, kt.work());
+    EXPECT_FALSE(ra.converged());
+    EXPECT_FALSE(rb.converged());
+    // (an iterate or a CG product's probe: both end Newton-Krylov)
+    EXPECT_EQ(a.evaluations(), stall);
+    EXPECT_EQ(b.evaluations(), stall);
+    EXPECT_GT(rb.measure, rb.tolerance);
+  }
+  // Newton-Krylov's first iterate: no CG product at all
+  Springs c = chain(n, h);
+  c.stall_from = 1;
+  c.begin();
+  BlockPreconditioner pc;
+  KrylovTables kt(n);
+  const SolveResult rc = solve_newton_krylov(c, pc, 200, kt.work());
+  EXPECT_EQ(c.evaluations(), 1);
+  EXPECT_EQ(rc.newton, 0);
+  // a stall at the first probe of a Newton step: the unknowns back at its base
+  Springs d = chain(n, h);
+  d.stall_from = 2;
+  d.begin();
+  std::vector<double> base;
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++) base.push_back(d.y.rows[i][k]);
+  const SolveResult rd = solve_newton_krylov(d, pc, 200, kt.work());
+  EXPECT_EQ(d.evaluations(), 2);
+  EXPECT_EQ(rd.newton, 0);
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++) EXPECT_EQ(d.y.rows[i][k], base[3 * i + k]);
+}
+
 // The forcing term (NewtonForcing, newton_krylov.h): a solve hands the first Eisenstat-Walker
 // term it computes (how far its linear model missed) to the next solve's first Newton step.
 // Particles on linear anchors: the model misses only by the products' finite differences, so

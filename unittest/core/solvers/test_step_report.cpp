@@ -23,8 +23,9 @@ TEST(StepReport, SwitchOfPreconditionerNamesBoth)
             "in f_int[9]; reported once per run)");
   EXPECT_EQ(t.error, "");
   EXPECT_EQ(t.note, "");
-  EXPECT_NE(retry_texts(o, kStep, false).warning.find("(converged; multigrid goes first from now on;"),
-            std::string::npos);
+  EXPECT_NE(
+      retry_texts(o, kStep, false).warning.find("(converged; multigrid goes first from now on;"),
+      std::string::npos);
   o.switch_converged = false;
   const std::string back = retry_texts(o, kStep, false).warning;
   EXPECT_NE(back.find("with precond block; redone with the amg preconditioner (not converged "
@@ -43,6 +44,12 @@ TEST(StepReport, CutbackNotesTheSubsteps)
   EXPECT_EQ(t.note,
             "Fix sissm int: step 120 did not converge in 50 iterations; redone as 8 sub-steps of "
             "0.000125 (counted in f_int[6])\n");
+  // a step whose first solve went beyond the contact candidates' reach says so
+  o.reach_first = true;
+  EXPECT_EQ(retry_texts(o, kStep, false).note,
+            "Fix sissm int: step 120 went beyond the reach of the contact candidates (half the "
+            "neighbor skin from the last list build); redone as 8 sub-steps of 0.000125 "
+            "(counted in f_int[6])\n");
 }
 
 TEST(StepReport, FailedCutbackIsAnError)
