@@ -31,17 +31,29 @@ using namespace PeriSISSMTest;
 // tolerance, the two solutions within the distance the tolerance allows (measure < tol bounds
 // |y - y*| by about tol * size / (1 - contraction); 1e-8 here with tol 1e-10), Newton-Krylov
 // in far fewer evaluations.
+// The chain's step solved by the sweeps (a, ra) and by Newton-Krylov with the blocks (b, rb);
+// stall: Springs::stall_from of both
+struct BothSolvers {
+  Springs a, b;
+  SolveResult ra, rb;
+  BothSolvers(int n, double h, int stall = 0) : a(chain(n, h)), b(chain(n, h))
+  {
+    a.stall_from = b.stall_from = stall;
+    a.begin();
+    b.begin();
+    ra = solve_jacobi(a, 20000, SweepMemory());
+    BlockPreconditioner pc;
+    KrylovTables kt(n);
+    rb = solve_newton_krylov(b, pc, 200, kt.work());
+  }
+};
+
 TEST(Solvers, JacobiAndNewtonKrylovReachTheSameStep)
 {
   const int n = 12;
-  const double h = 0.05;
-  Springs a = chain(n, h), b = chain(n, h);
-  a.begin();
-  b.begin();
-  const SolveResult ra = solve_jacobi(a, 20000, SweepMemory());
-  BlockPreconditioner pc;
-  KrylovTables kt(n);
-  const SolveResult rb = solve_newton_krylov(b, pc, 200, kt.work());
+  BothSolvers s(n, 0.05);
+  const Springs &a = s.a, &b = s.b;
+  const SolveResult &ra = s.ra, &rb = s.rb;
   EXPECT_TRUE(ra.converged()) << ra.measure;
   EXPECT_TRUE(rb.converged()) << rb.measure;
   EXPECT_LT(b.evaluations(), a.evaluations() / 5) << b.evaluations() << " vs " << a.evaluations();
@@ -63,20 +75,13 @@ TEST(Solvers, AStalledIterateEndsTheSolve)
   const int n = 12;
   const double h = 0.05;
   for (int stall : {1, 2, 5}) {
-    Springs a = chain(n, h), b = chain(n, h);
-    a.stall_from = b.stall_from = stall;
-    a.begin();
-    b.begin();
-    const SolveResult ra = solve_jacobi(a, 20000, SweepMemory());
-    BlockPreconditioner pc;
-    KrylovTables kt(n);
-    const SolveResult rb = solve_newton_krylov(b, pc, 200, kt.work());
-    EXPECT_FALSE(ra.converged());
-    EXPECT_FALSE(rb.converged());
+    const BothSolvers s(n, h, stall);
+    EXPECT_FALSE(s.ra.converged());
+    EXPECT_FALSE(s.rb.converged());
     // (an iterate or a CG product's probe: both end Newton-Krylov)
-    EXPECT_EQ(a.evaluations(), stall);
-    EXPECT_EQ(b.evaluations(), stall);
-    EXPECT_GT(rb.measure, rb.tolerance);
+    EXPECT_EQ(s.a.evaluations(), stall);
+    EXPECT_EQ(s.b.evaluations(), stall);
+    EXPECT_GT(s.rb.measure, s.rb.tolerance);
   }
   // Newton-Krylov's first iterate: no CG product at all
   Springs c = chain(n, h);
