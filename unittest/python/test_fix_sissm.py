@@ -23,13 +23,15 @@ G = 9.81
 
 def cut_back_steps(run):
     """{step: sub-steps} of the steps fix sissm logged as cut back ("Fix sissm ID: step N did
-    not converge in M iterations; redone as K sub-steps of H", doc/fix_sissm.rst,
+    not converge in M iterations; redone as K sub-steps of H", or "... step N went beyond the
+    reach of the contact candidates ...; redone as ...", doc/fix_sissm.rst,
     "Unconverged steps"). With the default `unconverged cutback` a step that misses the
     tolerance is redone as sub-steps (or stops the run), never counted in f_ID[4]: a test that
     asks for every step to converge at its full length checks both."""
     return {int(step): int(k) for step, k in re.findall(
-        r"Fix sissm \S+: step (\d+) did not converge in \d+ iterations; "
-        r"redone as (\d+) sub-steps", run.log)}
+        r"Fix sissm \S+: step (\d+) (?:did not converge in \d+ iterations|went beyond the reach "
+        r"of the contact candidates of the last neighbor list build); redone as (\d+) sub-steps",
+        run.log)}
 
 
 # --------------------------------------------------------------------------------------------

@@ -28,8 +28,9 @@ def cut_back(run):
     steps"): with the default `unconverged cutback` a step that misses the tolerance is redone
     as sub-steps (or stops the run), never counted in f_ID[4], so a test that asks for every
     step to converge at its full length checks both."""
-    return re.findall(r"Fix sissm \S+: step \d+ did not converge in \d+ iterations; redone as",
-                      run.log)
+    return re.findall(r"Fix sissm \S+: step \d+ (?:did not converge in \d+ iterations|went beyond "
+                      r"the reach of the contact candidates of the last neighbor list build); "
+                      r"redone as", run.log)
 
 
 def explicit_limit_brackets(name, workdir):

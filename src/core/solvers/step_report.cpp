@@ -38,8 +38,8 @@ RetryTexts retry_texts(const RetryOutcome &outcome, const StepContext &c, bool n
         "'unconverged warn'";
   else if (outcome.reach_first)
     texts.note = "Fix sissm " + c.id + ": step " + n(c.step) +
-        " went beyond the reach of the contact candidates (half the neighbor skin from the last "
-        "list build); redone as " +
+        " went beyond the reach of the contact candidates of the last neighbor list build; "
+        "redone as " +
         sub + " (counted in f_" + c.id + "[6])\n";
   else
     texts.note = me + "in " + n(c.iterations) + " iterations; redone as " + sub +

@@ -47,9 +47,8 @@ TEST(StepReport, CutbackNotesTheSubsteps)
   // a step whose first solve went beyond the contact candidates' reach says so
   o.reach_first = true;
   EXPECT_EQ(retry_texts(o, kStep, false).note,
-            "Fix sissm int: step 120 went beyond the reach of the contact candidates (half the "
-            "neighbor skin from the last list build); redone as 8 sub-steps of 0.000125 "
-            "(counted in f_int[6])\n");
+            "Fix sissm int: step 120 went beyond the reach of the contact candidates of the last "
+            "neighbor list build; redone as 8 sub-steps of 0.000125 (counted in f_int[6])\n");
 }
 
 TEST(StepReport, FailedCutbackIsAnError)
