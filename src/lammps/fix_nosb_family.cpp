@@ -101,13 +101,16 @@ void FixNosbFamily::init()
   // trimmed copy of a longer one (fix nosb/contact's) and NPairTrim trims a list without a
   // custom cutoff at distance 0: every atom was left without a bond. So when the user's ghost
   // cutoff (comm_modify cutoff, which a longer list needs) exceeds the default list cutoff, the
-  // list gets that cutoff as its own: trimmed at it, or built alone, never emptied. A longer
-  // list than the horizon costs nothing but its one build: the families keep the horizon.
+  // list gets a custom cutoff of its own, just above the default one (LAMMPS keeps a custom
+  // cutoff only above its shortest list cutoff): trimmed at it, or built alone, never emptied.
+  // (With the ghost cutoff itself as that cutoff, stacked cloths with a wide contact skin held
+  // more than LAMMPS's 2000 neighbors per atom in this list.) The families keep the horizon and
+  // are ordered by ID, whichever list they come from.
 
   if (!built) {
     auto req = neighbor->add_request(this, NeighConst::REQ_FULL | NeighConst::REQ_OCCASIONAL);
     const double cutdefault = force->pair->cutforce + neighbor->skin;
-    if (comm->cutghostuser > cutdefault) req->set_cutoff(comm->cutghostuser);
+    if (comm->cutghostuser > cutdefault) req->set_cutoff(cutdefault * (1.0 + 1.0e-6));
   }
 
   // an implicit integrator moves the atoms in its own post_integrate, which may come after

@@ -110,13 +110,21 @@ def horizon_pairs(vertices):
 # Regression: with fix nosb/contact defined, LAMMPS made the families' neighbor list a trimmed
 # copy of the contact fix's longer list, trimmed at distance 0: every membrane had no bond at
 # all (the cloth fell as loose particles). The bond count of the scene is the sum over its
-# meshes of the vertex pairs within the horizon, with and without the contact fix.
-def test_families_are_built_under_fix_nosb_contact(tmp_path):
-    run, vertices, faces, nball, ncloth = ball_scene(tmp_path, layers=2, steps=0)
+# meshes of the vertex pairs within the horizon, with and without the contact fix. The
+# families' list has a cutoff just above the pair's own (horizon + skin), whatever the ghost
+# cutoff (with the ghost cutoff as its cutoff, 6 stacked layers with a 10 mm skin overflowed
+# LAMMPS's 2000 neighbors per atom).
+@pytest.mark.parametrize("comm", [None, 0.3])
+def test_families_are_built_under_fix_nosb_contact(tmp_path, comm):
+    more = None if comm is None else {"comm": comm}
+    run, vertices, faces, nball, ncloth = ball_scene(tmp_path, layers=2, steps=0, more=more)
     expected = horizon_pairs(vertices[:nball]) + 2 * horizon_pairs(vertices[nball:nball + ncloth])
     bonds = int(run.log.split("total # of bonds =")[1].split()[0])
     assert bonds == expected > 0
     assert "atoms with a singular shape tensor = 0" in run.log
+    family = run.log.split("fix nosb/family, occasional")[1].split("cut ")[1].split()[0]
+    horizon_and_skin = HORIZON + 0.002    # (the deck's skin)
+    assert horizon_and_skin < float(family) < 1.001 * horizon_and_skin
 
 
 # The same three layers under fix sissm with 1 ms steps, 50 times the explicit step: every step

@@ -28,8 +28,8 @@ examples/contact/in.thrown-cloth) with -var settings only:
   ball     1, 3 or 6 layers of cloth falling onto a ball, one frame (33 steps of fix sissm). fix
            sissm at 1 ms (skin 10 mm, 4 to 6 times a step's move, ghost cutoff 10.5 cm: the
            steps that go beyond the candidates' reach stop at once and are cut back, which
-           costs less than the wider lists of 12 mm; 6 layers keep 8 mm and 9 cm, whose list
-           stays within 2000 neighbors per atom); fix nve at 20 us. Frame 1/30 s.
+           costs less than the wider lists of 12 mm; 6 layers keep 8 mm and 9 cm, faster there);
+           fix nve at 20 us. Frame 1/30 s.
   twist    a strip twisted by its ends. fix sissm at 1 ms (kappa 10, the deck's); fix nve at
            20 us with kappa 100 (at 10 the explicit run goes through the barrier after the
            buckle: examples/twisting-cloth/README.md); both with the deck's skin, 16 mm.
@@ -234,8 +234,7 @@ class Cloth:
         for layers in layer_counts:
             extra = {"layers": layers} if layers else {}
             mesh = self.contact_mesh(layers)
-            # (6 layers: with a 10 mm skin fix nosb/family's list, whose cutoff is the ghost
-            # cutoff, holds more than LAMMPS's 2000 neighbors per atom)
+            # (6 layers: 10 mm took 1.1 x the loop time of 8 mm, 2026-12-01)
             sissm_extra = {**extra, "skin": 0.008, "comm": 0.09} if layers and layers > 3 else extra
             for nprocs in self.args.np:
                 best = self.alternate([("sissm", self.sissm_vars(sissm_extra)),
