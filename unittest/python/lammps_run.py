@@ -11,6 +11,7 @@ numbers of ranks compare element by element.
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 from dataclasses import dataclass, field
@@ -183,3 +184,16 @@ def relative_difference(a, b, floor: float = 0.0) -> float:
     a, b = np.asarray(a, float), np.asarray(b, float)
     scale = max(np.max(np.abs(a)), np.max(np.abs(b)), floor)
     return float(np.max(np.abs(a - b)) / scale) if scale > 0 else 0.0
+
+
+def cut_back_steps(run) -> dict:
+    """{step: sub-steps} of the steps fix sissm logged as cut back ("Fix sissm ID: step N did
+    not converge in M iterations; redone as K sub-steps of H", or "... step N went beyond the
+    reach of the contact candidates ...; redone as ...", doc/fix_sissm.rst, "Unconverged
+    steps"). With the default `unconverged cutback` a step that misses the tolerance is redone
+    as sub-steps (or stops the run), never counted in f_ID[4]: a test that asks for every step
+    to converge at its full length checks both."""
+    return {int(step): int(k) for step, k in re.findall(
+        r"Fix sissm \S+: step (\d+) (?:did not converge in \d+ iterations|went beyond the reach "
+        r"of the contact candidates of the last neighbor list build); redone as (\d+) sub-steps",
+        run.log)}

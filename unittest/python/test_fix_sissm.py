@@ -12,26 +12,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lammps_run import read_dump, run_deck
+from lammps_run import cut_back_steps, read_dump, run_deck
 from sissm_support import (A, BLOCK, EXPLICIT_LIMIT, FIX_DEFAULTS, balance_momentum,
                            block_variables, explicit_limit_brackets, forces, positions,
                            velocities)
 
 RHO = 1000.0  # density of the K = 1 GPa decks (kg/m^3)
 G = 9.81
-
-
-def cut_back_steps(run):
-    """{step: sub-steps} of the steps fix sissm logged as cut back ("Fix sissm ID: step N did
-    not converge in M iterations; redone as K sub-steps of H", or "... step N went beyond the
-    reach of the contact candidates ...; redone as ...", doc/fix_sissm.rst,
-    "Unconverged steps"). With the default `unconverged cutback` a step that misses the
-    tolerance is redone as sub-steps (or stops the run), never counted in f_ID[4]: a test that
-    asks for every step to converge at its full length checks both."""
-    return {int(step): int(k) for step, k in re.findall(
-        r"Fix sissm \S+: step (\d+) (?:did not converge in \d+ iterations|went beyond the reach "
-        r"of the contact candidates of the last neighbor list build); redone as (\d+) sub-steps",
-        run.log)}
 
 
 # --------------------------------------------------------------------------------------------

@@ -2,13 +2,12 @@
 the step for any iteration count, converged steps far beyond the explicit limit bring the beam
 to the rest deflection of the explicit damped run, and a beam that is not at rest is not
 reported as converged."""
-import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from lammps_run import read_dump, run_deck
+from lammps_run import cut_back_steps, read_dump, run_deck
 from sissm_support import CANTILEVER, EXPLICIT_LIMIT, positions
 
 GRAV = 100.0  # m/s^2 (the beams are linear-elastic: the deflection is just proportional to g)
@@ -21,16 +20,6 @@ GAMMA = 4.0e7
 def cantilever(name):
     nx, ny, nz = (int(d) for d in name.split()[1].split("x"))
     return {"nx": nx, "ny": ny, "nz": nz, "held": 3, "grav": GRAV}
-
-
-def cut_back(run):
-    """The steps fix sissm logged as cut back into sub-steps (doc/fix_sissm.rst, "Unconverged
-    steps"): with the default `unconverged cutback` a step that misses the tolerance is redone
-    as sub-steps (or stops the run), never counted in f_ID[4], so a test that asks for every
-    step to converge at its full length checks both."""
-    return re.findall(r"Fix sissm \S+: step \d+ (?:did not converge in \d+ iterations|went beyond "
-                      r"the reach of the contact candidates of the last neighbor list build); "
-                      r"redone as", run.log)
 
 
 def explicit_limit_brackets(name, workdir):
@@ -71,7 +60,7 @@ def test_static_equilibrium_is_a_fixed_point(tmp_path, solver):
     # less (measured 2e-10 relative over the 20 steps).
     drift = max(np.abs(positions(f) - positions(relaxed)).max() for f in frames)
     assert drift < 1e-3 * deflection, drift / deflection
-    assert np.all(sissm["f_integrate[4]"] == 0) and not cut_back(run)
+    assert np.all(sissm["f_integrate[4]"] == 0) and not cut_back_steps(run)
 
 
 @pytest.mark.parametrize("solver", ["jacobi", "krylov"])
@@ -92,7 +81,7 @@ def test_converged_steps_reach_the_explicit_rest_deflection(tmp_path, solver):
         **cantilever(name), "nsissm": 4, "dt_sissm": 100.0 * EXPLICIT_LIMIT[name],
         "iters": 1000000, "tol": 1e-10, "solver": solver, "thermo_every": 1})
     t = sissm.thermo[0]
-    assert np.all(t["f_integrate[4]"] == 0) and not cut_back(sissm)
+    assert np.all(t["f_integrate[4]"] == 0) and not cut_back_steps(sissm)
     assert t["c_tipdz"][-1] == pytest.approx(tip[-1], rel=0.01)
 
 

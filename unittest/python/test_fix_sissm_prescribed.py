@@ -1,12 +1,11 @@
 """fix sissm with particles driven from outside and external forces (issue 4): atoms outside the
 group go where fix move / displace_atoms put them and pull the free ones through their bonds;
 fix addforce and fix indent act on the free atoms."""
-import re
 
 import numpy as np
 import pytest
 
-from lammps_run import read_dump, run_deck
+from lammps_run import cut_back_steps, read_dump, run_deck
 from sissm_support import (BLOCK, EXPLICIT_LIMIT, FIX_DEFAULTS, PRESCRIBED, block_variables,
                            explicit_limit_brackets, positions)
 
@@ -22,16 +21,6 @@ def held_mask(frame, held=2):
     return frame["x"] < (held - 0.5) * A
 
 
-def cut_back(run):
-    """The steps fix sissm logged as cut back into sub-steps (doc/fix_sissm.rst, "Unconverged
-    steps"): with the default `unconverged cutback` a step that misses the tolerance is redone
-    as sub-steps (or stops the run), never counted in f_ID[4], so a test that asks for every
-    step to converge at its full length checks both."""
-    return re.findall(r"Fix sissm \S+: step \d+ (?:did not converge in \d+ iterations|went beyond "
-                      r"the reach of the contact candidates of the last neighbor list build); "
-                      r"redone as", run.log)
-
-
 def test_fix_move_drives_held_atoms_and_they_pull_the_free_ones(tmp_path):
     # 6x3x3 block, its first two layers moved by fix move linear at 1 m/s (box units), the
     # other 36 atoms integrated; dt = 1e-7 s (~0.2 of the explicit limit), 200 steps
@@ -39,7 +28,7 @@ def test_fix_move_drives_held_atoms_and_they_pull_the_free_ones(tmp_path):
     args = {"drive": "move", "vdrive": 1.0, "nsteps": 200, "dump_every": 20}
     sissm = run_deck(PRESCRIBED, tmp_path / "sissm", variables=args)
     run_deck(PRESCRIBED, tmp_path / "nve", variables={**args, "integ": "nve"})
-    assert np.all(sissm.thermo[-1]["f_integrate[4]"] == 0) and not cut_back(sissm)
+    assert np.all(sissm.thermo[-1]["f_integrate[4]"] == 0) and not cut_back_steps(sissm)
     frames = read_dump(tmp_path / "sissm/dump.atoms")
     first = frames[0]
     held = held_mask(first)
@@ -178,7 +167,7 @@ def test_indenter_with_the_defaults_converges_and_bounces_the_block(tmp_path):
         "drive": "indent", "held": 0, "nx": 4, "ny": 4, "nz": 4, "vdrive": 1.0,
         "overlap": 5e-4, "kind": 1e15, "dt": 2e-5, **FIX_DEFAULTS, "nsteps": 50,
         "dump_every": 10, "thermo_every": 10})
-    assert not cut_back(run)  # every step converged at its full length
+    assert not cut_back_steps(run)  # every step converged at its full length
     frames = read_dump(tmp_path / "dump.atoms")
     assert all(np.all(np.isfinite(positions(f))) for f in frames)
     vx = np.mean(frames[-1]["vx"])
@@ -211,6 +200,6 @@ def test_viscous_drag_is_implicit_or_lagged_as_asked(tmp_path, solver, external)
     # velocity error is below 1e-15 m / h = 1e-9 m/s.
     run = run_deck(viscous_deck(f"solver {solver} external {external}"), tmp_path)
     t = run.thermo[-1]
-    assert t["f_1[4]"][-1] == 0 and not cut_back(run)
+    assert t["f_1[4]"][-1] == 0 and not cut_back_steps(run)
     expected = 0.25 if external == "implicit" else -2.0
     assert t["c_vx"][-1] == pytest.approx(expected, abs=1e-8)
