@@ -60,7 +60,7 @@ class SissmSystem : public PeriSISSM::NonlinearSystem {
   PeriSISSM::Rows rows_;
   int evaluations_ = 0;           // force evaluations of the current (sub-)step
   int contact_incomplete_ = 0;    // the last evaluation's contact candidates were incomplete
-  bool stalled_ = false;          // the last iterate's move was cut to almost nothing by a reach
+  bool stalled_ = false;          // the last evaluation's move stalled at a reach (stalled())
   // the contacts' diagonal blocks of the last evaluation with blocks are still to be added (at
   // the first block() after it, Jacobian probes in between or not: most iterates never ask for
   // them)

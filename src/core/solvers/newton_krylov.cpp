@@ -179,17 +179,16 @@ SolveResult solve_newton_krylov(NonlinearSystem &sys, Preconditioner &precond, i
         if (rows.has(i))
           for (int k = 0; k < 3; k++) w.pdir[i][k] = w.zdir[i][k] + beta * w.pdir[i][k];
     }
+    if (stalled) {
+      // (no product from this base: the solve ends at it, its measure the base's)
+      axpy_positions(w.xbase, 0.0, w.sdir);
+      break;
+    }
     // the SISSM correction of the base, taken if the budget ends in this Newton step's line
     // search (at its iterate or one of at most four cuts: above); block() still gives the
     // base's blocks (the probes have none). Made only then: the contacts' blocks cost a
     // PSD projection per active pair
     if (sys.evaluations() + 5 >= maxiter) BlockPreconditioner().apply(sys, w.rbase, w.jbase);
-    if (stalled) {
-      // (no product from this base: the solve ends at it, as it stood)
-      axpy_positions(w.xbase, 0.0, w.sdir);
-      out.measure = measure;
-      break;
-    }
     out.newton++;
     out.krylov += cg;
     slope0 = dot(sys, w.sdir, w.rbase, w.term);

@@ -27,10 +27,6 @@ namespace {
 using namespace PeriSISSM;
 using namespace PeriSISSMTest;
 
-// Both solvers reach the backward-Euler step of the chain: the residual measure below the
-// tolerance, the two solutions within the distance the tolerance allows (measure < tol bounds
-// |y - y*| by about tol * size / (1 - contraction); 1e-8 here with tol 1e-10), Newton-Krylov
-// in far fewer evaluations.
 // The chain's step solved by the sweeps (a, ra) and by Newton-Krylov with the blocks (b, rb);
 // stall: Springs::stall_from of both
 struct BothSolvers {
@@ -48,6 +44,10 @@ struct BothSolvers {
   }
 };
 
+// Both solvers reach the backward-Euler step of the chain: the residual measure below the
+// tolerance, the two solutions within the distance the tolerance allows (measure < tol bounds
+// |y - y*| by about tol * size / (1 - contraction); 1e-8 here with tol 1e-10), Newton-Krylov
+// in far fewer evaluations.
 TEST(Solvers, JacobiAndNewtonKrylovReachTheSameStep)
 {
   const int n = 12;
