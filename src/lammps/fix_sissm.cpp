@@ -89,6 +89,7 @@ FixSissm::FixSissm(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
   if (!bad.problem.empty()) error->all(FLERR, "Illegal fix sissm command: {}", bad.problem);
 
   scheme = PeriSISSM::make_time_scheme(opt.scheme, opt.rho_inf);
+  scheme->set_error_rule(opt.error > 0.0);
   ncols = scheme->history_columns();
   travels = opt.precond == PrecondKind::amg;
   if (ncols > 0 || travels) {

@@ -30,23 +30,26 @@ void GeneralizedAlpha::begin(const Rows &rows, const StepArrays &a)
 {
   const double h = h_, wf = 1.0 - alpha_f_;
   const double ka = h * h * (0.5 - beta_ - beta_ * alpha_m_ / (1.0 - alpha_m_));
+  const bool mean = error_rule_ && alpha_f_ > 0.0;    // (generalized_alpha.h)
   for (int i = 0; i < rows.n; i++) {
     if (!rows.has(i)) continue;
     double *y = a.y[i], *hist = a.hist[i];
     const double *v = a.v[i];
-    if (hist[3] != 1.0) {
+    if (hist[6] < 1.0) {
       for (int k = 0; k < 3; k++) hist[k] = a.fstart[i][k] / rows.density[i];
-      hist[3] = 1.0;
+      hist[6] = 1.0;
     }
+    const double older = mean && hist[6] >= 2.0 ? 0.5 : 0.0;    // the weight of a^{n-1}
     for (int k = 0; k < 3; k++) {
       a.yn[i][k] = y[k];
       a.vn[i][k] = v[k];
       const double step = wf * (h * v[k] + ka * hist[k]);
       a.yhat[i][k] = y[k] + step;
       if (a.flag) a.yhat[i][k] += c_ * a.flag[i][k] / rows.density[i];
-      // the first iterate: the motion at constant acceleration a^n (the predictor plus
-      // c a^n), exact where the acceleration does not change (free fall: one evaluation)
-      y[k] += step + (extrapolate_ ? c_ * hist[k] : 0.0);
+      // the first iterate: the predictor plus c times the guessed acceleration, exact where
+      // the acceleration does not change (free fall: one evaluation)
+      const double guess = (1.0 - older) * hist[k] + older * hist[3 + k];
+      y[k] += step + (extrapolate_ ? c_ * guess : 0.0);
     }
   }
 }
@@ -76,9 +79,11 @@ void GeneralizedAlpha::finish(const Rows &rows, const StepArrays &a)
       double acc, v1;
       end_state(i, k, a, acc, v1);
       a.y[i][k] = a.yn[i][k] + (a.y[i][k] - a.yn[i][k]) / (1.0 - alpha_f_);
+      a.hist[i][3 + k] = a.hist[i][k];
       a.hist[i][k] = acc;
       a.v[i][k] = v1;
     }
+    a.hist[i][6] = 2.0;
   }
 }
 

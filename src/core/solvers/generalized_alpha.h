@@ -21,11 +21,23 @@
 // y^{n+1}, where a contact that checks every move of the unknowns keeps the step
 // collision-free (the end of Chung and Hulbert's step lies beyond u on the same straight move,
 // 1 / (1 - alpha_f) as far from y^n, unchecked).
-// History per row: a^n and the valid flag; a row without it starts from a^n = f(y^n) / rho.
-// The first iterate is u at a^{n+1} = a^n, i.e. uhat + c a^n (without the lagged force of the
-// predictor; uhat alone where extrapolation is off): exact for a constant acceleration, so free fall converges at the first evaluation;
-// measured on examples/hanging-cloth at 2 ms (3038 vertices, 150 steps): 35.0 -> 30.7
-// evaluations per step, the same thermo output to 8 digits.
+// History per row: a^n, a^{n-1} and how many of them are valid; a row without a^n starts from
+// a^n = f(y^n) / rho. The first iterate is u at a guessed a^{n+1} (uhat + c a, without the lagged
+// force of the predictor; uhat alone where extrapolation is off), exact for a constant
+// acceleration, so free fall converges at the first evaluation:
+// - Chung and Hulbert's step where keyword error ends the solves (set_error_rule): the mean
+//   (a^n + a^{n-1}) / 2 once both are known. Such a solve ends at an estimate of its error, and
+//   what it leaves in the modes far beyond the step alternates in sign from step to step (the
+//   scheme's roots there are -rho_inf); the mean cancels most of it, at the price of half a
+//   step's lag in the smooth motion. Measured on examples/hanging-cloth (3038 vertices, 2 ms,
+//   150 steps, defaults), evaluations per step with a^n -> the mean: rho_inf 1: 15.8 -> 10.1,
+//   0.8: 10.15 -> 9.1, 0.65: 9.16 -> 9.05, 0.5: 8.7 -> 9.05.
+// - Otherwise a^n. Solves held to a tolerance leave little in those modes, and the lag cost
+//   more than the mean saved (tolerance 1e-6: the same cloth 27.7 against 26.8; the
+//   cantilever of examples/cantilever at 1e-9 23.0 with both); with the forces at the end
+//   (contact) the accelerations jump with the contact's impulses (examples/twisting-cloth 26.8
+//   against 20.1, the cloth on a ball within the spread).
+// (a^n alone: 30.7 instead of 35.0 evaluations per step from u = uhat, tolerance 1e-6.)
 
 #ifndef PERISISSM_SOLVERS_GENERALIZED_ALPHA_H
 #define PERISISSM_SOLVERS_GENERALIZED_ALPHA_H
@@ -36,11 +48,12 @@ namespace PeriSISSM {
 
 class GeneralizedAlpha : public TimeScheme {
  public:
-  // history columns: a^n (0-2), valid (3)
-  static constexpr int kColumns = 4;
+  // history columns: a^n (0-2), a^{n-1} (3-5), how many of them are valid (6: 0, 1 or 2)
+  static constexpr int kColumns = 7;
   explicit GeneralizedAlpha(double rho_inf);
   std::string name() const override { return "genalpha"; }
   void set_forces_at_end(bool on) override;
+  void set_error_rule(bool on) override { error_rule_ = on; }
   int history_columns() const override { return kColumns; }
   void set_step(double h) override;
   double force_time() const override { return 1.0 - alpha_f_; }
@@ -56,6 +69,7 @@ class GeneralizedAlpha : public TimeScheme {
   // a^{n+1} and v^{n+1} of one component from the unknown u (see above)
   void end_state(int i, int k, const StepArrays &a, double &acc, double &vel) const;
   double rho_inf_, alpha_m_, alpha_f_, gamma_, beta_;
+  bool error_rule_ = false;
 };
 
 }    // namespace PeriSISSM

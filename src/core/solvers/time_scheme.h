@@ -68,6 +68,10 @@ class TimeScheme {
   // inside the step switches to a member of its family that does not (generalized-alpha:
   // alpha_f = 0); the others have nothing to change
   virtual void set_forces_at_end(bool /*on*/) {}
+  // on: keyword error can end the steps (newton_krylov.h), so that a solve ends at an estimate
+  // of its error instead of a tolerance; generalized-alpha then guesses the first iterate's
+  // acceleration otherwise (generalized_alpha.h), the others have nothing to change
+  virtual void set_error_rule(bool /*on*/) {}
   // residual of one row from its force density f at the current iterate y
   void residual(double rho, const double *yhat, const double *y, const double *f, double *r) const
   {

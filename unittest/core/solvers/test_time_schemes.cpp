@@ -2,7 +2,7 @@
 // exactness for free fall, order of convergence on a nonlinear swinging chain, the linear
 // oscillator's amplitude and period per step against the schemes' characteristic roots, energy
 // behaviour of generalized-alpha, variable steps of BDF2, the momentum balance of truncated
-// steps, and the generalized-alpha step against Chung and Hulbert's equations.
+// steps, the generalized-alpha step against Chung and Hulbert's equations, and its first iterate.
 
 #include "solvers/springs.h"
 
@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -304,7 +305,7 @@ void expect_step_is(Oscillator &o, double h, const Eigen::Matrix3d &A, const std
 {
   o.s.v.rows[0][0] = 0.2;
   o.s.hist.rows[0][0] = 0.05;    // a^n
-  o.s.hist.rows[0][3] = 1.0;     // valid
+  o.s.hist.rows[0][6] = 1.0;     // a^n valid, a^{n-1} not
   const Eigen::Vector3d s0(o.u(), h * 0.2, h * h * 0.05);
   step(o.s);
   const Eigen::Vector3d s1 = A * s0;
@@ -362,6 +363,59 @@ TEST(TimeSchemes, GeneralizedAlphaWithForcesAtTheEndIsBossak)
   ga->set_forces_at_end(true);
   ga->set_forces_at_end(false);
   EXPECT_NEAR(ga->force_time(), 1.0 - 0.8 / 1.8, 1e-15);
+}
+
+// The first iterate of a generalized-alpha step (generalized_alpha.h). On a mode far beyond the
+// step (h omega = 1000), whose accelerations alternate in sign from step to step (the roots
+// meet at -rho_inf), Chung and Hulbert's step with the error rule on starts from the mean of
+// the last two accelerations: after 12 converged steps its first iterate is within 0.6 of the
+// distance to the solved step that the last acceleration alone gives (measured 2e-4 of it at
+// rho_inf = 1, 0.2 at 0.8). Without the error rule, with the forces at the end, in a first
+// step (one acceleration known) it starts from the last acceleration; without extrapolation
+// from the predictor itself.
+TEST(TimeSchemes, GeneralizedAlphaFirstIterate)
+{
+  const double omega = 2.5, x = 1000.0, h = x / omega;
+  for (double rho_inf : {1.0, 0.8})
+    for (int variant = 0; variant < 3; variant++) {
+      const bool at_end = variant == 1, rule = variant != 2, mean = rule && !at_end;
+      Oscillator o({"genalpha", rho_inf}, h, omega);
+      o.s.scheme().set_forces_at_end(at_end);
+      o.s.scheme().set_error_rule(rule);
+      const std::string what = std::to_string(rho_inf) + (at_end ? " at the end" : "") +
+          (rule ? "" : " without the error rule");
+      for (int n = 0; n < 12; n++) {
+        o.s.begin();
+        const double first = o.s.y.rows[0][0];
+        const double an = o.s.hist.rows[0][0], older = o.s.hist.rows[0][3];
+        const double c = o.s.scheme().force_factor();
+        // the first iterate from a^n alone: the predictor plus c a^n
+        const double from_an = o.s.yhat.rows[0][0] + c * an;
+        BlockPreconditioner pc;
+        KrylovTables kt(1);
+        ASSERT_TRUE(solve_newton_krylov(o.s, pc, 200, kt.work()).converged()) << what;
+        const double solved = o.s.y.rows[0][0];
+        o.s.finish();
+        const double roundoff = 1e-14 * std::fabs(first);
+        if (n == 0 || !mean) {
+          EXPECT_NEAR(first, from_an, roundoff) << what << " step " << n;
+          continue;
+        }
+        EXPECT_NEAR(first, o.s.yhat.rows[0][0] + 0.5 * c * (an + older), roundoff) << what;
+        if (n == 11) {
+          std::printf("rho_inf %s: first iterate %.3g from the solved step, a^n's %.3g\n",
+                      what.c_str(), std::fabs(first - solved), std::fabs(from_an - solved));
+          EXPECT_LT(std::fabs(first - solved), 0.6 * std::fabs(from_an - solved)) << what;
+        }
+      }
+    }
+  // without extrapolation the first iterate is the predictor itself
+  Oscillator o({"genalpha", 0.8}, h, omega);
+  o.s.scheme().set_error_rule(true);
+  for (int n = 0; n < 3; n++) step(o.s);
+  o.s.scheme().set_extrapolation(false);
+  o.s.begin();
+  EXPECT_EQ(o.s.y.rows[0][0], o.s.yhat.rows[0][0]);
 }
 
 // BDF2 at variable steps (alternating h and h/2, w = 1/2 and 2) stays second order on the
